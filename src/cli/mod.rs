@@ -1,0 +1,66 @@
+//! Argument definitions (clap) and dispatch. Clap types stay in the binary; the library
+//! never sees them.
+
+mod read;
+
+use std::io::IsTerminal;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Check, derive and explain analytical mechanics.
+#[derive(Parser, Debug)]
+#[command(name = "lagrange", version, about)]
+struct Cli {
+    /// When to use colour: auto (a terminal, unless NO_COLOR is set), always or never.
+    #[arg(long, global = true, value_enum, default_value_t = ColorChoice::Auto)]
+    color: ColorChoice,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ColorChoice {
+    Auto,
+    Always,
+    Never,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Show how an input is read: plain, Unicode and LaTeX forms, symbols, dimension, and
+    /// optionally a derivative.
+    Read(read::ReadArgs),
+}
+
+/// Parses arguments and runs the command.
+pub fn run() -> anyhow::Result<ExitCode> {
+    let cli = Cli::parse();
+    let color = match cli.color {
+        ColorChoice::Always => true,
+        ColorChoice::Never => false,
+        ColorChoice::Auto => {
+            std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none()
+        }
+    };
+    colored::control::set_override(color);
+    let mut out = String::new();
+    let code = match cli.command {
+        Command::Read(args) => read::run(&args, color, &mut out),
+    };
+    emit(&out)?;
+    code
+}
+
+/// Writes a command's output; a closed pipe (`lagrange … | head`) is not an error.
+fn emit(text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other,
+    }
+}

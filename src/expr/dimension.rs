@@ -1,0 +1,440 @@
+//! Physical dimensions: exponents of mass M, length L and time T, inferred for any
+//! expression from the dimensions of its symbols. A time derivative divides by T.
+
+use std::collections::BTreeMap;
+use std::fmt;
+
+use num_rational::Rational32;
+use num_traits::{ToPrimitive, Zero};
+use rustc_hash::FxHashMap;
+
+use super::names;
+use super::node::{Func, Id, Node};
+use super::pool::Pool;
+
+/// Exponents of M, L and T.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, Default, PartialOrd, Ord)]
+pub struct Dimension {
+    pub m: Rational32,
+    pub l: Rational32,
+    pub t: Rational32,
+}
+
+impl Dimension {
+    /// Dimensionless.
+    pub const NONE: Dimension = Dimension {
+        m: Rational32::new_raw(0, 1),
+        l: Rational32::new_raw(0, 1),
+        t: Rational32::new_raw(0, 1),
+    };
+
+    /// M^m L^l T^t for integer exponents.
+    pub fn new(m: i32, l: i32, t: i32) -> Self {
+        Dimension {
+            m: m.into(),
+            l: l.into(),
+            t: t.into(),
+        }
+    }
+
+    /// Energy, M L² T⁻².
+    pub fn energy() -> Self {
+        Dimension::new(1, 2, -2)
+    }
+
+    /// Whether dimensionless.
+    pub fn is_none(&self) -> bool {
+        self.m.is_zero() && self.l.is_zero() && self.t.is_zero()
+    }
+
+    /// Raised to a rational power.
+    pub fn pow(self, k: Rational32) -> Self {
+        Dimension {
+            m: self.m * k,
+            l: self.l * k,
+            t: self.t * k,
+        }
+    }
+
+    /// Reads `"M L^2 T^-2"`, `"L T^-2"`, `"1"` or `""` (dimensionless). Also accepts `*`
+    /// between factors, `/` before a factor, and Unicode superscripts.
+    pub fn parse(src: &str) -> Result<Dimension, String> {
+        let text: String = src
+            .chars()
+            .map(|c| match c {
+                '·' | '*' => ' ',
+                '⁻' => '-',
+                c => names::superscript_digit(c)
+                    .and_then(|d| char::from_digit(d, 10))
+                    .unwrap_or(c),
+            })
+            .collect();
+        let text = text.trim();
+        if text.is_empty() || text == "1" || text.eq_ignore_ascii_case("dimensionless") {
+            return Ok(Dimension::NONE);
+        }
+        let mut d = Dimension::NONE;
+        let mut sign = 1;
+        let mut rest = text;
+        while !rest.is_empty() {
+            rest = rest.trim_start();
+            if let Some(r) = rest.strip_prefix('/') {
+                sign = -1;
+                rest = r;
+                continue;
+            }
+            let mut chars = rest.chars();
+            let base = chars.next().ok_or("empty dimension")?;
+            rest = chars.as_str();
+            let mut exp = Rational32::from(1);
+            let tail = rest.trim_start_matches('^');
+            let has_caret = tail.len() != rest.len();
+            // An exponent: optional `-`, digits, and optionally `/digits` (`L^1/2`).
+            let b = tail.as_bytes();
+            let mut k = usize::from(b.first() == Some(&b'-'));
+            let digits = |k: &mut usize| {
+                let s = *k;
+                while *k < b.len() && b[*k].is_ascii_digit() {
+                    *k += 1;
+                }
+                *k > s
+            };
+            let mut digits_end = 0;
+            if digits(&mut k) {
+                digits_end = k;
+                if k < b.len() && b[k] == b'/' {
+                    let mut j = k + 1;
+                    if digits(&mut j) {
+                        digits_end = j;
+                    }
+                }
+            }
+            if digits_end > 0 {
+                let e = &tail[..digits_end];
+                exp = parse_ratio(e).ok_or_else(|| format!("bad exponent `{e}` in `{src}`"))?;
+                rest = &tail[digits_end..];
+            } else if has_caret {
+                return Err(format!("missing exponent after `^` in `{src}`"));
+            }
+            let unit = match base {
+                'M' => Dimension::new(1, 0, 0),
+                'L' => Dimension::new(0, 1, 0),
+                'T' => Dimension::new(0, 0, 1),
+                other => {
+                    return Err(format!(
+                        "unknown dimension `{other}` in `{src}`: use M, L and T, e.g. \"L T^-2\""
+                    ));
+                }
+            };
+            d = d * unit.pow(exp * Rational32::from(sign));
+        }
+        Ok(d)
+    }
+
+    /// Plain form, `M L^2 T^-2` (`1` when dimensionless).
+    pub fn plain(&self) -> String {
+        self.render(false)
+    }
+
+    fn render(&self, unicode: bool) -> String {
+        if self.is_none() {
+            return if unicode {
+                "dimensionless".into()
+            } else {
+                "1".into()
+            };
+        }
+        let mut parts = Vec::new();
+        for (name, e) in [("M", self.m), ("L", self.l), ("T", self.t)] {
+            if e.is_zero() {
+                continue;
+            }
+            let exp = if e == Rational32::from(1) {
+                String::new()
+            } else if e.is_integer() && unicode {
+                names::superscript(i64::from(e.to_integer()))
+            } else if e.is_integer() {
+                format!("^{}", e.to_integer())
+            } else {
+                format!("^({e})")
+            };
+            parts.push(format!("{name}{exp}"));
+        }
+        parts.join(" ")
+    }
+}
+
+fn parse_ratio(s: &str) -> Option<Rational32> {
+    match s.split_once('/') {
+        Some((n, d)) => {
+            let d: i32 = d.parse().ok()?;
+            let n: i32 = n.parse().ok()?;
+            (d != 0).then(|| Rational32::new(n, d))
+        }
+        None => s.parse::<i32>().ok().map(Rational32::from),
+    }
+}
+
+impl std::ops::Mul for Dimension {
+    type Output = Dimension;
+
+    fn mul(self, o: Dimension) -> Dimension {
+        Dimension {
+            m: self.m + o.m,
+            l: self.l + o.l,
+            t: self.t + o.t,
+        }
+    }
+}
+
+impl std::ops::Div for Dimension {
+    type Output = Dimension;
+
+    fn div(self, o: Dimension) -> Dimension {
+        self * o.pow(Rational32::from(-1))
+    }
+}
+
+impl fmt::Display for Dimension {
+    /// Unicode form, `M L² T⁻²`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(true))
+    }
+}
+
+/// The dimensions of named symbols. A coordinate's time derivatives and `t` follow from it.
+#[derive(Clone, Debug, Default)]
+pub struct Dimensions {
+    map: BTreeMap<String, Dimension>,
+}
+
+impl Dimensions {
+    /// No symbol has a known dimension yet.
+    pub fn new() -> Self {
+        Dimensions::default()
+    }
+
+    /// Sets the dimension of a symbol.
+    pub fn set(&mut self, name: &str, d: Dimension) {
+        self.map.insert(names::normalize(name), d);
+    }
+
+    /// With one more symbol.
+    pub fn with(mut self, name: &str, d: Dimension) -> Self {
+        self.set(name, d);
+        self
+    }
+
+    /// The dimension of a symbol, if known (`t` is always T).
+    pub fn get(&self, name: &str) -> Option<Dimension> {
+        match self.map.get(name) {
+            Some(d) => Some(*d),
+            None if name == super::pool::TIME => Some(Dimension::new(0, 0, 1)),
+            None => None,
+        }
+    }
+}
+
+/// A dimension error, naming the offending parts (printed in Unicode).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DimError {
+    #[error("terms of different dimensions are added: {}", list(.terms))]
+    UnlikeTerms { terms: Vec<(String, Dimension)> },
+    #[error("the argument of {func} must be dimensionless, but {arg} is {dim}")]
+    DimensionfulArgument {
+        func: &'static str,
+        arg: String,
+        dim: Dimension,
+    },
+    #[error("an exponent must be dimensionless, but {exponent} is {dim}")]
+    DimensionfulExponent { exponent: String, dim: Dimension },
+    #[error("{base} has dimension {dim}, so its exponent must be a number, not {exponent}")]
+    SymbolicExponent {
+        base: String,
+        dim: Dimension,
+        exponent: String,
+    },
+    #[error("the two sides differ in dimension: {lhs} is {lhs_dim}, {rhs} is {rhs_dim}")]
+    UnlikeSides {
+        lhs: String,
+        lhs_dim: Dimension,
+        rhs: String,
+        rhs_dim: Dimension,
+    },
+}
+
+fn list(terms: &[(String, Dimension)]) -> String {
+    terms
+        .iter()
+        .map(|(t, d)| format!("{t} is {d}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl Pool {
+    /// The dimension of `e`; `Ok(None)` when some symbol's dimension is unknown.
+    pub fn dimension(&self, e: Id, dims: &Dimensions) -> Result<Option<Dimension>, DimError> {
+        let mut memo = FxHashMap::default();
+        self.dim_of(e, dims, &mut memo)
+    }
+
+    /// Checks that `lhs = rhs` is dimensionally consistent.
+    pub fn check_equation_dimension(
+        &self,
+        lhs: Id,
+        rhs: Id,
+        dims: &Dimensions,
+    ) -> Result<Option<Dimension>, DimError> {
+        let a = self.dimension(lhs, dims)?;
+        let b = self.dimension(rhs, dims)?;
+        match (a, b) {
+            (Some(x), Some(y)) if x != y && !self.is_zero(lhs) && !self.is_zero(rhs) => {
+                Err(DimError::UnlikeSides {
+                    lhs: self.unicode(lhs),
+                    lhs_dim: x,
+                    rhs: self.unicode(rhs),
+                    rhs_dim: y,
+                })
+            }
+            // `… = 0`: zero takes any dimension, so the other side decides.
+            _ if self.is_zero(rhs) => Ok(a),
+            _ if self.is_zero(lhs) => Ok(b),
+            _ => Ok(a.and(b)),
+        }
+    }
+
+    fn dim_of(
+        &self,
+        e: Id,
+        dims: &Dimensions,
+        memo: &mut FxHashMap<Id, Option<Dimension>>,
+    ) -> Result<Option<Dimension>, DimError> {
+        if let Some(d) = memo.get(&e) {
+            return Ok(*d);
+        }
+        let d = match self.node(e) {
+            Node::Num(_) | Node::Pi => Some(Dimension::NONE),
+            Node::Var(s, o) => dims
+                .get(self.name(*s))
+                .map(|d| d / Dimension::new(0, 0, i32::from(*o))),
+            Node::Mul(ch) => {
+                let mut acc = Some(Dimension::NONE);
+                for &c in ch.iter() {
+                    let dc = self.dim_of(c, dims, memo)?;
+                    acc = acc.zip(dc).map(|(a, b)| a * b);
+                }
+                acc
+            }
+            Node::Add(ch) => {
+                let mut seen: Vec<(String, Dimension)> = Vec::new();
+                let mut unknown = false;
+                let mut terms = ch.to_vec();
+                terms.sort_by(|&a, &b| self.display_cmp_terms(a, b));
+                for &c in &terms {
+                    match self.dim_of(c, dims, memo)? {
+                        Some(d) => {
+                            if !seen.iter().any(|(_, x)| *x == d) {
+                                seen.push((self.unicode(c), d));
+                            }
+                        }
+                        None => unknown = true,
+                    }
+                }
+                if seen.len() > 1 {
+                    return Err(DimError::UnlikeTerms { terms: seen });
+                }
+                if unknown {
+                    None
+                } else {
+                    seen.first().map(|x| x.1)
+                }
+            }
+            Node::Pow(b, x) => {
+                let db = self.dim_of(*b, dims, memo)?;
+                let dx = self.dim_of(*x, dims, memo)?;
+                if let Some(dx) = dx
+                    && !dx.is_none()
+                {
+                    return Err(DimError::DimensionfulExponent {
+                        exponent: self.unicode(*x),
+                        dim: dx,
+                    });
+                }
+                match (db, self.as_num(*x)) {
+                    (Some(d), _) if d.is_none() => Some(d),
+                    (Some(d), Some(v)) => {
+                        let r = v
+                            .numer()
+                            .to_i32()
+                            .zip(v.denom().to_i32())
+                            .map(|(n, k)| Rational32::new(n, k));
+                        r.map(|r| d.pow(r))
+                    }
+                    (Some(d), None) => {
+                        return Err(DimError::SymbolicExponent {
+                            base: self.unicode(*b),
+                            dim: d,
+                            exponent: self.unicode(*x),
+                        });
+                    }
+                    (None, _) => None,
+                }
+            }
+            Node::Func(f, a) => {
+                let da = self.dim_of(*a, dims, memo)?;
+                if f.needs_dimensionless() {
+                    if let Some(d) = da
+                        && !d.is_none()
+                    {
+                        return Err(DimError::DimensionfulArgument {
+                            func: f.name(),
+                            arg: self.unicode(*a),
+                            dim: d,
+                        });
+                    }
+                    Some(Dimension::NONE)
+                } else {
+                    debug_assert_eq!(*f, Func::Abs);
+                    da
+                }
+            }
+        };
+        memo.insert(e, d);
+        Ok(d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_dimensions() {
+        let cases = [
+            ("M", Dimension::new(1, 0, 0)),
+            ("L T^-2", Dimension::new(0, 1, -2)),
+            ("M L^2 T^-2", Dimension::energy()),
+            ("M L² T⁻²", Dimension::energy()),
+            ("M*L/T", Dimension::new(1, 1, -1)),
+            ("1", Dimension::NONE),
+            ("", Dimension::NONE),
+            ("T^-1", Dimension::new(0, 0, -1)),
+        ];
+        for (src, want) in cases {
+            assert_eq!(Dimension::parse(src), Ok(want), "{src}");
+        }
+        assert!(Dimension::parse("K").is_err());
+        assert!(Dimension::parse("L^").is_err());
+        assert_eq!(
+            Dimension::parse("L^1/2").map(|d| d.l),
+            Ok(Rational32::new(1, 2))
+        );
+    }
+
+    #[test]
+    fn display() {
+        assert_eq!(Dimension::energy().to_string(), "M L² T⁻²");
+        assert_eq!(Dimension::energy().plain(), "M L^2 T^-2");
+        assert_eq!(Dimension::NONE.to_string(), "dimensionless");
+    }
+}

@@ -1,0 +1,286 @@
+//! Numeric evaluation: an expression (or several sharing sub-expressions) is compiled once
+//! into a flat program over f64 slots and then run at many points without allocating.
+//!
+//! Every instruction checks its result: a value that is not finite (log of a negative, 1/0,
+//! overflow) stops the run with [`Undefined`] naming the node, instead of a silent NaN.
+
+use num_traits::ToPrimitive;
+use rustc_hash::FxHashMap;
+
+use super::node::{Func, Id, Node, Sym};
+use super::pool::Pool;
+
+/// The expression is not defined at the given point; `node` is where it first failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("undefined at this point")]
+pub struct Undefined {
+    pub node: Id,
+}
+
+/// A variable the program was not told about.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("`{name}` has no value")]
+pub struct Unbound {
+    pub name: String,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Instr {
+    Const(f64),
+    Input(u32),
+    Add(u32, u32),
+    Mul(u32, u32),
+    Recip(u32),
+    Sqrt(u32),
+    RecipSqrt(u32),
+    PowI(u32, i32),
+    PowF(u32, u32),
+    Func(Func, u32),
+}
+
+/// A compiled program: inputs in a fixed order, one slot per instruction, some outputs.
+#[derive(Clone, Debug)]
+pub struct Program {
+    inputs: Vec<(Sym, u8)>,
+    code: Vec<Instr>,
+    origin: Vec<Id>,
+    outputs: Vec<u32>,
+}
+
+impl Program {
+    /// Compiles `roots` with inputs in the order of `inputs` (symbol, derivative order).
+    pub fn compile(pool: &Pool, roots: &[Id], inputs: &[(Sym, u8)]) -> Result<Program, Unbound> {
+        // Children have smaller ids than parents, so ascending id order is a valid schedule
+        // and no recursion is needed.
+        let mut reach: Vec<Id> = Vec::new();
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut stack: Vec<Id> = roots.to_vec();
+        while let Some(n) = stack.pop() {
+            if seen.insert(n) {
+                reach.push(n);
+                stack.extend(pool.children(n));
+            }
+        }
+        reach.sort_unstable();
+        let mut prog = Program {
+            inputs: inputs.to_vec(),
+            code: Vec::with_capacity(reach.len() * 2),
+            origin: Vec::with_capacity(reach.len() * 2),
+            outputs: Vec::new(),
+        };
+        let mut slot: FxHashMap<Id, u32> = FxHashMap::default();
+        for &n in &reach {
+            let s = prog.node(pool, n, &slot)?;
+            slot.insert(n, s);
+        }
+        prog.outputs = roots.iter().map(|r| slot[r]).collect();
+        Ok(prog)
+    }
+
+    /// Compiles `roots` with every variable they contain as an input, sorted.
+    pub fn compile_all(pool: &Pool, roots: &[Id]) -> Program {
+        let mut vars: Vec<(Sym, u8)> = roots.iter().flat_map(|&r| pool.variables(r)).collect();
+        vars.sort();
+        vars.dedup();
+        // Every variable is an input, so compiling cannot fail.
+        Program::compile(pool, roots, &vars).unwrap_or_else(|_| Program {
+            inputs: Vec::new(),
+            code: Vec::new(),
+            origin: Vec::new(),
+            outputs: Vec::new(),
+        })
+    }
+
+    fn emit(&mut self, i: Instr, from: Id) -> u32 {
+        self.code.push(i);
+        self.origin.push(from);
+        (self.code.len() - 1) as u32
+    }
+
+    fn node(&mut self, pool: &Pool, n: Id, slot: &FxHashMap<Id, u32>) -> Result<u32, Unbound> {
+        Ok(match pool.node(n) {
+            Node::Num(v) => self.emit(Instr::Const(v.to_f64().unwrap_or(f64::NAN)), n),
+            Node::Pi => self.emit(Instr::Const(std::f64::consts::PI), n),
+            Node::Var(s, o) => {
+                let k = self
+                    .inputs
+                    .iter()
+                    .position(|v| *v == (*s, *o))
+                    .ok_or_else(|| Unbound {
+                        name: format!("{}{}", pool.name(*s), "'".repeat(*o as usize)),
+                    })?;
+                self.emit(Instr::Input(k as u32), n)
+            }
+            Node::Add(ch) | Node::Mul(ch) => {
+                let add = matches!(pool.node(n), Node::Add(_));
+                let mut acc = slot[&ch[0]];
+                for c in &ch[1..] {
+                    let i = if add {
+                        Instr::Add(acc, slot[c])
+                    } else {
+                        Instr::Mul(acc, slot[c])
+                    };
+                    acc = self.emit(i, n);
+                }
+                acc
+            }
+            Node::Pow(b, e) => {
+                let bs = slot[b];
+                match pool.as_num(*e) {
+                    Some(v)
+                        if v.is_integer() && v.to_integer().to_i32().is_some_and(|k| k == -1) =>
+                    {
+                        self.emit(Instr::Recip(bs), n)
+                    }
+                    Some(v) if v.is_integer() => match v.to_integer().to_i32() {
+                        Some(k) => self.emit(Instr::PowI(bs, k), n),
+                        None => self.emit(Instr::PowF(bs, slot[e]), n),
+                    },
+                    Some(v) if *v.denom() == 2.into() && v.numer().to_i32() == Some(1) => {
+                        self.emit(Instr::Sqrt(bs), n)
+                    }
+                    Some(v) if *v.denom() == 2.into() && v.numer().to_i32() == Some(-1) => {
+                        self.emit(Instr::RecipSqrt(bs), n)
+                    }
+                    _ => self.emit(Instr::PowF(bs, slot[e]), n),
+                }
+            }
+            Node::Func(f, a) => self.emit(Instr::Func(*f, slot[a]), n),
+        })
+    }
+
+    /// The inputs, in the order `run` expects their values.
+    pub fn inputs(&self) -> &[(Sym, u8)] {
+        &self.inputs
+    }
+
+    /// Number of instructions (slots).
+    pub fn len(&self) -> usize {
+        self.code.len()
+    }
+
+    /// Whether the program has no instructions.
+    pub fn is_empty(&self) -> bool {
+        self.code.is_empty()
+    }
+
+    /// Number of outputs.
+    pub fn output_count(&self) -> usize {
+        self.outputs.len()
+    }
+
+    /// A scratch buffer of the right size for [`run`](Self::run).
+    pub fn scratch(&self) -> Vec<f64> {
+        vec![0.0; self.code.len()]
+    }
+
+    /// Runs the program; afterwards [`output`](Self::output) reads the results from
+    /// `scratch`. `inputs` must have one value per input, `scratch` one slot per instruction.
+    pub fn run(&self, inputs: &[f64], scratch: &mut [f64]) -> Result<(), Undefined> {
+        for (i, ins) in self.code.iter().enumerate() {
+            let v = match *ins {
+                Instr::Const(c) => c,
+                Instr::Input(k) => inputs.get(k as usize).copied().unwrap_or(f64::NAN),
+                Instr::Add(a, b) => scratch[a as usize] + scratch[b as usize],
+                Instr::Mul(a, b) => scratch[a as usize] * scratch[b as usize],
+                Instr::Recip(a) => 1.0 / scratch[a as usize],
+                Instr::Sqrt(a) => scratch[a as usize].sqrt(),
+                Instr::RecipSqrt(a) => 1.0 / scratch[a as usize].sqrt(),
+                Instr::PowI(a, k) => scratch[a as usize].powi(k),
+                Instr::PowF(a, b) => scratch[a as usize].powf(scratch[b as usize]),
+                Instr::Func(f, a) => f.apply(scratch[a as usize]),
+            };
+            if !v.is_finite() {
+                return Err(Undefined {
+                    node: self.origin[i],
+                });
+            }
+            scratch[i] = v;
+        }
+        Ok(())
+    }
+
+    /// Output `k` after a successful [`run`](Self::run).
+    pub fn output(&self, k: usize, scratch: &[f64]) -> f64 {
+        scratch[self.outputs[k] as usize]
+    }
+
+    /// Runs and returns every output (allocates; for convenience, not for hot loops).
+    pub fn eval(&self, inputs: &[f64]) -> Result<Vec<f64>, Undefined> {
+        let mut s = self.scratch();
+        self.run(inputs, &mut s)?;
+        Ok((0..self.outputs.len())
+            .map(|k| self.output(k, &s))
+            .collect())
+    }
+}
+
+/// A slow, independent tree-walking evaluator, used as the reference the compiled programs
+/// are tested against. `value` gives each variable's value. Returns NaN where undefined.
+pub fn eval_tree(pool: &Pool, id: Id, value: &dyn Fn(Sym, u8) -> f64) -> f64 {
+    match pool.node(id) {
+        Node::Num(v) => v.to_f64().unwrap_or(f64::NAN),
+        Node::Pi => std::f64::consts::PI,
+        Node::Var(s, o) => value(*s, *o),
+        Node::Add(ch) => ch.iter().map(|&c| eval_tree(pool, c, value)).sum(),
+        Node::Mul(ch) => ch.iter().map(|&c| eval_tree(pool, c, value)).product(),
+        Node::Pow(b, e) => eval_tree(pool, *b, value).powf(eval_tree(pool, *e, value)),
+        Node::Func(f, a) => f.apply(eval_tree(pool, *a, value)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::{Context, read_expr};
+
+    fn at(src: &str, vals: &[(&str, f64)]) -> Result<f64, Undefined> {
+        let mut pool = Pool::new();
+        let e = read_expr(src, &Context::open(), &mut pool).unwrap();
+        let inputs: Vec<(Sym, u8)> = vals.iter().map(|(n, _)| (pool.symbol(n), 0)).collect();
+        let p = Program::compile(&pool, &[e], &inputs).unwrap();
+        let v: Vec<f64> = vals.iter().map(|(_, v)| *v).collect();
+        p.eval(&v).map(|o| o[0])
+    }
+
+    #[test]
+    fn values() {
+        type Row<'a> = (&'a str, &'a [(&'a str, f64)], f64);
+        let cases: &[Row] = &[
+            ("1/2*m*v^2", &[("m", 2.0), ("v", 3.0)], 9.0),
+            ("sqrt(g/l)", &[("g", 9.0), ("l", 4.0)], 1.5),
+            ("2^(1/2)", &[], std::f64::consts::SQRT_2),
+            ("x^(-1/2)", &[("x", 4.0)], 0.5),
+            ("cos(pi)", &[], -1.0),
+            ("exp(log(x))", &[("x", 2.5)], 2.5),
+            ("x^3 - 2x", &[("x", -2.0)], -4.0),
+        ];
+        for (src, vals, want) in cases {
+            let got = at(src, vals).unwrap();
+            assert!((got - want).abs() < 1e-12, "{src}: {got} != {want}");
+        }
+    }
+
+    #[test]
+    fn domain_errors_are_reported() {
+        for (src, vals) in [
+            ("log(x)", vec![("x", -1.0)]),
+            ("sqrt(x)", vec![("x", -4.0)]),
+            ("1/x", vec![("x", 0.0)]),
+            ("exp(-1/x)", vec![("x", 0.0)]),
+            ("exp(x)", vec![("x", 1e6)]),
+            ("x^(1/3)", vec![("x", -8.0)]),
+        ] {
+            assert!(at(src, &vals).is_err(), "{src} should be undefined");
+        }
+    }
+
+    #[test]
+    fn unbound_variable() {
+        let mut pool = Pool::new();
+        let e = read_expr("a + b", &Context::open(), &mut pool).unwrap();
+        let a = pool.symbol("a");
+        let err = Program::compile(&pool, &[e], &[(a, 0)]).unwrap_err();
+        assert_eq!(err.name, "b");
+    }
+}

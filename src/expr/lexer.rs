@@ -1,0 +1,353 @@
+//! The lexer: turns input text into tokens, each with its byte span.
+//!
+//! Besides ASCII it reads what the Unicode printer writes (Greek letters, combining dots for
+//! time derivatives, superscript exponents, subscript digits, `·`, `−`, `√`, `½`), so a
+//! student can paste lagrange's own output back in.
+
+use std::ops::Range;
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Pow};
+
+use super::error::{ParseError, ParseErrorKind};
+use super::names;
+
+/// Byte range in the input.
+pub type Span = Range<usize>;
+
+/// Largest decimal exponent accepted in a number literal (`1e400` is refused, not infinite).
+const MAX_DECIMAL_EXPONENT: i64 = 300;
+
+/// A token kind.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tok {
+    /// An exact number.
+    Num(BigRational),
+    /// A name (Greek spelled out, subscripts as digits) and how many combining dots follow it.
+    Name {
+        text: String,
+        dots: u8,
+    },
+    /// `'` after a name: one time derivative.
+    Prime,
+    /// A superscript integer exponent (`²`, `⁻¹`).
+    Super(i64),
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    Caret,
+    LParen,
+    RParen,
+    Comma,
+    Semi,
+    Eq,
+    /// `√`
+    Root,
+}
+
+impl Tok {
+    /// A short description for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Tok::Num(_) => "a number".into(),
+            Tok::Name { text, .. } => format!("`{text}`"),
+            Tok::Prime => "`'`".into(),
+            Tok::Super(_) => "an exponent".into(),
+            Tok::Plus => "`+`".into(),
+            Tok::Minus => "`-`".into(),
+            Tok::Star => "`*`".into(),
+            Tok::Slash => "`/`".into(),
+            Tok::Caret => "`^`".into(),
+            Tok::LParen => "`(`".into(),
+            Tok::RParen => "`)`".into(),
+            Tok::Comma => "`,`".into(),
+            Tok::Semi => "`;`".into(),
+            Tok::Eq => "`=`".into(),
+            Tok::Root => "`√`".into(),
+        }
+    }
+}
+
+/// A token and where it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Token {
+    pub tok: Tok,
+    pub span: Span,
+}
+
+/// Splits `src` into tokens.
+pub fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
+    let mut out = Vec::new();
+    let mut chars = src.char_indices().peekable();
+    while let Some(&(i, c)) = chars.peek() {
+        if c.is_whitespace() {
+            chars.next();
+            continue;
+        }
+        if c.is_ascii_digit()
+            || (c == '.' && src[i + 1..].starts_with(|d: char| d.is_ascii_digit()))
+        {
+            let (value, end) = number(src, i)?;
+            while chars.peek().is_some_and(|&(j, _)| j < end) {
+                chars.next();
+            }
+            out.push(Token {
+                tok: Tok::Num(value),
+                span: i..end,
+            });
+            continue;
+        }
+        if is_name_start(c) {
+            let (tok, end) = name(src, i);
+            while chars.peek().is_some_and(|&(j, _)| j < end) {
+                chars.next();
+            }
+            out.push(Token { tok, span: i..end });
+            continue;
+        }
+        if names::superscript_digit(c).is_some() || c == '⁻' || c == '⁺' {
+            let mut end = i;
+            let mut text = String::new();
+            while let Some(&(j, d)) = chars.peek() {
+                if let Some(v) = names::superscript_digit(d) {
+                    text.push(char::from_digit(v, 10).unwrap_or('0'));
+                } else if (d == '⁻' || d == '⁺') && j == i {
+                    if d == '⁻' {
+                        text.push('-');
+                    }
+                } else {
+                    break;
+                }
+                end = j + d.len_utf8();
+                chars.next();
+            }
+            let n: i64 = text
+                .parse()
+                .map_err(|_| ParseError::new(ParseErrorKind::BadNumber, i..end))?;
+            out.push(Token {
+                tok: Tok::Super(n),
+                span: i..end,
+            });
+            continue;
+        }
+        chars.next();
+        let len = c.len_utf8();
+        let mut span = i..i + len;
+        let tok = match c {
+            '+' => Tok::Plus,
+            '-' | '−' | '–' => Tok::Minus,
+            '*' if src[i + 1..].starts_with('*') => {
+                chars.next();
+                span = i..i + 2;
+                Tok::Caret
+            }
+            '*' | '·' | '×' | '⋅' => Tok::Star,
+            '/' | '÷' => Tok::Slash,
+            '^' => Tok::Caret,
+            '(' | '[' => Tok::LParen,
+            ')' | ']' => Tok::RParen,
+            ',' => Tok::Comma,
+            ';' => Tok::Semi,
+            '=' => Tok::Eq,
+            '\'' | '′' => Tok::Prime,
+            '″' => {
+                out.push(Token {
+                    tok: Tok::Prime,
+                    span: span.clone(),
+                });
+                Tok::Prime
+            }
+            '√' => Tok::Root,
+            'π' => Tok::Name {
+                text: "pi".into(),
+                dots: 0,
+            },
+            _ => {
+                if let Some((n, d)) = names::fraction_value(c) {
+                    Tok::Num(BigRational::new(BigInt::from(n), BigInt::from(d)))
+                } else {
+                    return Err(ParseError::new(ParseErrorKind::UnexpectedChar(c), span));
+                }
+            }
+        };
+        out.push(Token { tok, span });
+    }
+    Ok(out)
+}
+
+fn is_name_start(c: char) -> bool {
+    c.is_ascii_alphabetic()
+        || c == '_'
+        || names::greek_name(c).is_some()
+        || names::precomposed(c).is_some()
+}
+
+/// Reads a name starting at byte `start`. An ASCII name runs over letters, digits and `_`; a
+/// Greek letter is a name of its own, continued only by digits, subscripts and `_`. Combining
+/// dots (U+0307, U+0308) count derivatives; subscript digits become digits.
+fn name(src: &str, start: usize) -> (Tok, usize) {
+    let mut text = String::new();
+    let mut dots = 0u8;
+    let mut end = start;
+    let mut first = true;
+    let mut greek = false;
+    for (j, c) in src[start..].char_indices() {
+        let j = start + j;
+        let accepted = if first {
+            if let Some((b, d)) = names::precomposed(c) {
+                // A dotted letter is a name of its own: `ẋ` then digits or subscripts.
+                greek = true;
+                text.push(b);
+                dots = dots.saturating_add(d);
+            } else if let Some(g) = names::greek_name(c) {
+                greek = true;
+                text.push_str(g);
+            } else {
+                text.push(c);
+            }
+            true
+        } else if c == '\u{0307}' {
+            dots = dots.saturating_add(1);
+            true
+        } else if c == '\u{0308}' {
+            dots = dots.saturating_add(2);
+            true
+        } else if c == '\u{20DB}' {
+            dots = dots.saturating_add(3);
+            true
+        } else if let Some(d) = names::subscript_digit(c) {
+            text.push(char::from_digit(d, 10).unwrap_or('0'));
+            true
+        } else if c.is_ascii_digit() || c == '_' || (!greek && c.is_ascii_alphabetic()) {
+            text.push(c);
+            true
+        } else {
+            false
+        };
+        if !accepted {
+            break;
+        }
+        first = false;
+        end = j + c.len_utf8();
+    }
+    (Tok::Name { text, dots }, end)
+}
+
+/// Reads a decimal number exactly: `0.1` is 1/10, `1e-3` is 1/1000.
+fn number(src: &str, start: usize) -> Result<(BigRational, usize), ParseError> {
+    let bytes = src.as_bytes();
+    let mut i = start;
+    let mut digits = String::new();
+    let mut frac_len: i64 = 0;
+    while i < bytes.len() && bytes[i].is_ascii_digit() {
+        digits.push(bytes[i] as char);
+        i += 1;
+    }
+    if i < bytes.len() && bytes[i] == b'.' {
+        i += 1;
+        while i < bytes.len() && bytes[i].is_ascii_digit() {
+            digits.push(bytes[i] as char);
+            frac_len += 1;
+            i += 1;
+        }
+    }
+    let mut exp: i64 = 0;
+    if i < bytes.len() && (bytes[i] == b'e' || bytes[i] == b'E') {
+        let mut j = i + 1;
+        let neg = j < bytes.len() && bytes[j] == b'-';
+        if j < bytes.len() && (bytes[j] == b'-' || bytes[j] == b'+') {
+            j += 1;
+        }
+        if j < bytes.len() && bytes[j].is_ascii_digit() {
+            let k = j;
+            while j < bytes.len() && bytes[j].is_ascii_digit() {
+                j += 1;
+            }
+            let e: i64 = src[k..j].parse().unwrap_or(i64::MAX);
+            if e > MAX_DECIMAL_EXPONENT {
+                return Err(ParseError::new(ParseErrorKind::BadNumber, start..j));
+            }
+            exp = if neg { -e } else { e };
+            i = j;
+        }
+    }
+    if digits.len() > 1000 {
+        return Err(ParseError::new(ParseErrorKind::BadNumber, start..i));
+    }
+    let mantissa: BigInt = digits.parse().unwrap_or_default();
+    let shift = exp - frac_len;
+    let ten = BigRational::from_integer(BigInt::from(10));
+    let scale = if shift >= 0 {
+        ten.pow(shift as u32)
+    } else {
+        BigRational::one() / ten.pow((-shift) as u32)
+    };
+    Ok((BigRational::from_integer(mantissa) * scale, i))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kinds(src: &str) -> Vec<Tok> {
+        lex(src).unwrap().into_iter().map(|t| t.tok).collect()
+    }
+
+    fn name(t: &str, dots: u8) -> Tok {
+        Tok::Name {
+            text: t.into(),
+            dots,
+        }
+    }
+
+    fn num(n: i64, d: i64) -> Tok {
+        Tok::Num(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
+
+    #[test]
+    fn tokens() {
+        let cases: Vec<(&str, Vec<Tok>)> = vec![
+            ("0.5", vec![num(1, 2)]),
+            ("1e-3", vec![num(1, 1000)]),
+            (".25", vec![num(1, 4)]),
+            ("2m", vec![num(2, 1), name("m", 0)]),
+            ("2e", vec![num(2, 1), name("e", 0)]),
+            ("θ̇", vec![name("theta", 1)]),
+            ("θ̈₁", vec![name("theta1", 2)]),
+            ("θ₁̇", vec![name("theta1", 1)]),
+            ("mθ", vec![name("m", 0), name("theta", 0)]),
+            ("l²", vec![name("l", 0), Tok::Super(2)]),
+            ("T⁻²", vec![name("T", 0), Tok::Super(-2)]),
+            ("a·b", vec![name("a", 0), Tok::Star, name("b", 0)]),
+            ("x**2", vec![name("x", 0), Tok::Caret, num(2, 1)]),
+            ("a − b", vec![name("a", 0), Tok::Minus, name("b", 0)]),
+            ("½", vec![num(1, 2)]),
+            ("√2", vec![Tok::Root, num(2, 1)]),
+            ("π", vec![name("pi", 0)]),
+            ("q''", vec![name("q", 0), Tok::Prime, Tok::Prime]),
+            ("ẍ", vec![name("x", 2)]),
+            ("mẋ", vec![name("m", 0), name("x", 1)]),
+        ];
+        for (src, want) in cases {
+            assert_eq!(kinds(src), want, "{src}");
+        }
+    }
+
+    #[test]
+    fn spans_are_bytes() {
+        let toks = lex("θ + x").unwrap();
+        assert_eq!(toks[0].span, 0..2);
+        assert_eq!(toks[1].span, 3..4);
+        assert_eq!(toks[2].span, 5..6);
+    }
+
+    #[test]
+    fn bad_characters() {
+        let e = lex("x $ y").unwrap_err();
+        assert_eq!(e.kind, ParseErrorKind::UnexpectedChar('$'));
+        assert_eq!(e.span, 2..3);
+        assert_eq!(lex("1e999").unwrap_err().kind, ParseErrorKind::BadNumber);
+    }
+}

@@ -1,0 +1,30 @@
+//! The expression language: reading what students type, canonical expressions in an arena,
+//! evaluation, differentiation, simplification for people, printing and dimensions.
+//!
+//! This layer knows no physics beyond "a coordinate q has time derivatives q', q''".
+
+pub mod ast;
+pub mod build;
+pub mod context;
+pub mod diff;
+pub mod dimension;
+pub mod error;
+pub mod eval;
+pub mod lexer;
+pub mod lower;
+pub mod names;
+pub mod node;
+pub mod order;
+pub mod parser;
+pub mod pool;
+pub mod print;
+pub mod simplify;
+
+pub use context::Context;
+pub use dimension::{DimError, Dimension, Dimensions};
+pub use error::{ParseError, ParseErrorKind};
+pub use eval::{Program, Undefined};
+pub use lower::{Reading, read, read_equation, read_expr};
+pub use node::{Func, Id, Node, Sym};
+pub use pool::Pool;
+pub use print::Style;

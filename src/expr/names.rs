@@ -1,0 +1,217 @@
+//! Name tables shared by the lexer and the printers: Greek letters, sub- and superscript
+//! digits, vulgar fractions and the normal form of a symbol name.
+
+/// Greek letters and their spelled names. Order matters for printing: longer names first
+/// where one is a suffix of another is irrelevant because names are matched whole.
+pub const GREEK: &[(char, &str)] = &[
+    ('α', "alpha"),
+    ('β', "beta"),
+    ('γ', "gamma"),
+    ('δ', "delta"),
+    ('ε', "epsilon"),
+    ('ζ', "zeta"),
+    ('η', "eta"),
+    ('θ', "theta"),
+    ('ι', "iota"),
+    ('κ', "kappa"),
+    ('λ', "lambda"),
+    ('μ', "mu"),
+    ('ν', "nu"),
+    ('ξ', "xi"),
+    ('ρ', "rho"),
+    ('σ', "sigma"),
+    ('τ', "tau"),
+    ('υ', "upsilon"),
+    ('φ', "phi"),
+    ('χ', "chi"),
+    ('ψ', "psi"),
+    ('ω', "omega"),
+    ('Γ', "Gamma"),
+    ('Δ', "Delta"),
+    ('Θ', "Theta"),
+    ('Λ', "Lambda"),
+    ('Ξ', "Xi"),
+    ('Σ', "Sigma"),
+    ('Φ', "Phi"),
+    ('Ψ', "Psi"),
+    ('Ω', "Omega"),
+];
+
+/// Alternative code points read as a Greek letter.
+const GREEK_VARIANTS: &[(char, &str)] = &[
+    ('ϑ', "theta"),
+    ('ϕ', "phi"),
+    ('ϵ', "epsilon"),
+    ('ς', "sigma"),
+    ('µ', "mu"),
+];
+
+/// The spelled name of a Greek letter (`θ` → `theta`); π is not here (it is a constant).
+pub fn greek_name(c: char) -> Option<&'static str> {
+    GREEK
+        .iter()
+        .chain(GREEK_VARIANTS)
+        .find(|(g, _)| *g == c)
+        .map(|(_, n)| *n)
+}
+
+/// The Greek letter of a spelled name (`theta` → `θ`).
+pub fn greek_letter(name: &str) -> Option<char> {
+    GREEK.iter().find(|(_, n)| *n == name).map(|(g, _)| *g)
+}
+
+const SUPERSCRIPT: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+const SUBSCRIPT: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+
+/// Precomposed Latin letters with a dot above (one derivative) or a diaeresis (two), as
+/// keyboards and some fonts produce them: `ẋ` is `x` + U+0307.
+const PRECOMPOSED: &[(char, char, u8)] = &[
+    ('ȧ', 'a', 1),
+    ('ḃ', 'b', 1),
+    ('ċ', 'c', 1),
+    ('ḋ', 'd', 1),
+    ('ė', 'e', 1),
+    ('ḟ', 'f', 1),
+    ('ġ', 'g', 1),
+    ('ḣ', 'h', 1),
+    ('ṁ', 'm', 1),
+    ('ṅ', 'n', 1),
+    ('ȯ', 'o', 1),
+    ('ṗ', 'p', 1),
+    ('ṙ', 'r', 1),
+    ('ṡ', 's', 1),
+    ('ṫ', 't', 1),
+    ('ẇ', 'w', 1),
+    ('ẋ', 'x', 1),
+    ('ẏ', 'y', 1),
+    ('ż', 'z', 1),
+    ('Ẋ', 'X', 1),
+    ('Ẏ', 'Y', 1),
+    ('Ż', 'Z', 1),
+    ('ä', 'a', 2),
+    ('ë', 'e', 2),
+    ('ḧ', 'h', 2),
+    ('ï', 'i', 2),
+    ('ö', 'o', 2),
+    ('ẗ', 't', 2),
+    ('ü', 'u', 2),
+    ('ẅ', 'w', 2),
+    ('ẍ', 'x', 2),
+    ('ÿ', 'y', 2),
+    ('Ẍ', 'X', 2),
+];
+
+/// A precomposed dotted letter as (base letter, number of dots).
+pub fn precomposed(c: char) -> Option<(char, u8)> {
+    PRECOMPOSED
+        .iter()
+        .find(|(p, _, _)| *p == c)
+        .map(|&(_, b, d)| (b, d))
+}
+
+/// The digit of a superscript character.
+pub fn superscript_digit(c: char) -> Option<u32> {
+    SUPERSCRIPT.iter().position(|&s| s == c).map(|d| d as u32)
+}
+
+/// The digit of a subscript character.
+pub fn subscript_digit(c: char) -> Option<u32> {
+    SUBSCRIPT.iter().position(|&s| s == c).map(|d| d as u32)
+}
+
+/// An integer in superscript digits (`-2` → `⁻²`).
+pub fn superscript(n: i64) -> String {
+    let mut s = String::new();
+    if n < 0 {
+        s.push('⁻');
+    }
+    for d in n.unsigned_abs().to_string().bytes() {
+        s.push(SUPERSCRIPT[(d - b'0') as usize]);
+    }
+    s
+}
+
+/// Digits in subscript.
+pub fn subscript(digits: &str) -> String {
+    digits
+        .bytes()
+        .map(|d| SUBSCRIPT[(d - b'0') as usize])
+        .collect()
+}
+
+/// Unicode vulgar fractions and their values.
+pub const FRACTIONS: &[(char, i64, i64)] = &[
+    ('½', 1, 2),
+    ('⅓', 1, 3),
+    ('⅔', 2, 3),
+    ('¼', 1, 4),
+    ('¾', 3, 4),
+    ('⅕', 1, 5),
+    ('⅖', 2, 5),
+    ('⅗', 3, 5),
+    ('⅘', 4, 5),
+    ('⅙', 1, 6),
+    ('⅚', 5, 6),
+    ('⅛', 1, 8),
+    ('⅜', 3, 8),
+    ('⅝', 5, 8),
+    ('⅞', 7, 8),
+];
+
+/// The value of a vulgar-fraction character.
+pub fn fraction_value(c: char) -> Option<(i64, i64)> {
+    FRACTIONS
+        .iter()
+        .find(|(f, _, _)| *f == c)
+        .map(|&(_, n, d)| (n, d))
+}
+
+/// The vulgar-fraction character for n/d, if there is one.
+pub fn fraction_char(n: i64, d: i64) -> Option<char> {
+    FRACTIONS
+        .iter()
+        .find(|&&(_, a, b)| a == n && b == d)
+        .map(|&(f, _, _)| f)
+}
+
+/// The normal form of a symbol name: a trailing `_` before digits is dropped, so `m_1`,
+/// `m1` and `m₁` are one symbol.
+pub fn normalize(name: &str) -> String {
+    if let Some(i) = name.rfind('_') {
+        let tail = &name[i + 1..];
+        if i > 0 && !tail.is_empty() && tail.bytes().all(|b| b.is_ascii_digit()) {
+            return format!("{}{}", &name[..i], tail);
+        }
+    }
+    name.to_string()
+}
+
+/// Splits a name into its letters and its trailing digits (`theta12` → (`theta`, `12`)).
+pub fn split_digits(name: &str) -> (&str, &str) {
+    let k = name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+    name.split_at(k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normal_names() {
+        for (input, want) in [
+            ("m_1", "m1"),
+            ("m1", "m1"),
+            ("q_dot", "q_dot"),
+            ("_1", "_1"),
+        ] {
+            assert_eq!(normalize(input), want);
+        }
+    }
+
+    #[test]
+    fn scripts() {
+        assert_eq!(superscript(-12), "⁻¹²");
+        assert_eq!(subscript("20"), "₂₀");
+        assert_eq!(split_digits("theta12"), ("theta", "12"));
+    }
+}

@@ -1,0 +1,131 @@
+//! The node types of the expression arena: ids, symbols, functions and the node enum itself.
+//!
+//! A node refers to its children by [`Id`]; children are always created before their parents,
+//! so an `Id` is also a topological position (as in egg's `RecExpr`).
+
+use num_rational::BigRational;
+
+/// Index of a node in a [`Pool`](super::Pool). Equal ids in one pool mean equal expressions.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct Id(pub(crate) u32);
+
+impl Id {
+    /// The position of the node in its pool.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// An interned symbol name (a coordinate, a parameter or the time `t`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct Sym(pub(crate) u32);
+
+/// The elementary functions of the language. `sec`, `csc`, `cot`, `sqrt` and `ln` are not
+/// here: they are written in terms of these when built.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sinh,
+    Cosh,
+    Tanh,
+    Exp,
+    Log,
+    Abs,
+}
+
+impl Func {
+    /// Every function, in a fixed order.
+    pub const ALL: [Func; 12] = [
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Asin,
+        Func::Acos,
+        Func::Atan,
+        Func::Sinh,
+        Func::Cosh,
+        Func::Tanh,
+        Func::Exp,
+        Func::Log,
+        Func::Abs,
+    ];
+
+    /// The name used when printing in plain syntax.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Exp => "exp",
+            Func::Log => "log",
+            Func::Abs => "abs",
+        }
+    }
+
+    /// f(−x) = −f(x).
+    pub fn is_odd(self) -> bool {
+        matches!(
+            self,
+            Func::Sin | Func::Tan | Func::Asin | Func::Atan | Func::Sinh | Func::Tanh
+        )
+    }
+
+    /// f(−x) = f(x).
+    pub fn is_even(self) -> bool {
+        matches!(self, Func::Cos | Func::Cosh | Func::Abs)
+    }
+
+    /// The argument must be dimensionless (every function here except `abs`).
+    pub fn needs_dimensionless(self) -> bool {
+        !matches!(self, Func::Abs)
+    }
+
+    /// Numeric value in f64.
+    pub fn apply(self, x: f64) -> f64 {
+        match self {
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan => x.atan(),
+            Func::Sinh => x.sinh(),
+            Func::Cosh => x.cosh(),
+            Func::Tanh => x.tanh(),
+            Func::Exp => x.exp(),
+            Func::Log => x.ln(),
+            Func::Abs => x.abs(),
+        }
+    }
+}
+
+/// One node of the arena. Sums and products are n-ary, flattened and ordered; numbers are
+/// exact rationals. The constructors on [`Pool`](super::Pool) keep these invariants.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    /// An exact rational number.
+    Num(BigRational),
+    /// A symbol and its time-derivative order (`q` is 0, `q'` is 1, `q''` is 2).
+    Var(Sym, u8),
+    /// The constant π.
+    Pi,
+    /// A sum of at least two terms; a numeric term, if any, comes first.
+    Add(Box<[Id]>),
+    /// A product of at least two factors; a numeric coefficient, if any, comes first.
+    Mul(Box<[Id]>),
+    /// Base and exponent.
+    Pow(Id, Id),
+    /// An elementary function applied to one argument.
+    Func(Func, Id),
+}

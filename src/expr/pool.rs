@@ -1,0 +1,214 @@
+//! The arena: hash-consed nodes and interned symbol names.
+//!
+//! Every expression lives in a [`Pool`]. Building the same expression twice gives the same
+//! [`Id`], so structural equality is `==` on ids and large derivations share their common
+//! sub-expressions for free.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+use rustc_hash::FxHashMap;
+
+use super::node::{Id, Node, Sym};
+
+/// The name of the time symbol; always symbol 0 of a pool.
+pub const TIME: &str = "t";
+
+/// An arena of canonical expression nodes plus the symbol table they refer to.
+#[derive(Clone, Debug)]
+pub struct Pool {
+    nodes: Vec<Node>,
+    index: FxHashMap<Node, Id>,
+    names: Vec<String>,
+    sym_index: FxHashMap<String, Sym>,
+    zero: Id,
+    one: Id,
+    minus_one: Id,
+}
+
+impl Default for Pool {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Pool {
+    /// An empty pool holding only the constants 0, 1, −1 and the time symbol `t`.
+    pub fn new() -> Self {
+        let mut pool = Pool {
+            nodes: Vec::new(),
+            index: FxHashMap::default(),
+            names: Vec::new(),
+            sym_index: FxHashMap::default(),
+            zero: Id(0),
+            one: Id(0),
+            minus_one: Id(0),
+        };
+        pool.zero = pool.intern(Node::Num(BigRational::zero()));
+        pool.one = pool.intern(Node::Num(BigRational::one()));
+        pool.minus_one = pool.intern(Node::Num(-BigRational::one()));
+        pool.symbol(TIME);
+        pool
+    }
+
+    /// Adds `node` unless an equal node exists; returns its id. Callers guarantee that the
+    /// node is canonical (see `build.rs`).
+    pub(crate) fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = Id(u32::try_from(self.nodes.len()).expect("more than 2^32 expression nodes"));
+        self.nodes.push(node.clone());
+        self.index.insert(node, id);
+        id
+    }
+
+    /// The node behind an id.
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id.index()]
+    }
+
+    /// Number of distinct nodes in the pool.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the pool holds no nodes (never true: constants are pre-interned).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Interns a symbol name.
+    pub fn symbol(&mut self, name: &str) -> Sym {
+        if let Some(&s) = self.sym_index.get(name) {
+            return s;
+        }
+        let s = Sym(u32::try_from(self.names.len()).expect("more than 2^32 symbols"));
+        self.names.push(name.to_string());
+        self.sym_index.insert(name.to_string(), s);
+        s
+    }
+
+    /// The symbol with this name, if interned.
+    pub fn find_symbol(&self, name: &str) -> Option<Sym> {
+        self.sym_index.get(name).copied()
+    }
+
+    /// The name of a symbol.
+    pub fn name(&self, s: Sym) -> &str {
+        &self.names[s.0 as usize]
+    }
+
+    /// The time symbol `t`.
+    pub fn time(&self) -> Sym {
+        Sym(0)
+    }
+
+    /// 0.
+    pub fn zero(&self) -> Id {
+        self.zero
+    }
+
+    /// 1.
+    pub fn one(&self) -> Id {
+        self.one
+    }
+
+    /// −1.
+    pub fn minus_one(&self) -> Id {
+        self.minus_one
+    }
+
+    /// An exact rational number.
+    pub fn num(&mut self, value: BigRational) -> Id {
+        self.intern(Node::Num(value))
+    }
+
+    /// An integer.
+    pub fn int(&mut self, value: i64) -> Id {
+        self.num(BigRational::from_integer(BigInt::from(value)))
+    }
+
+    /// The rational `n / d` (`d` must not be zero).
+    pub fn ratio(&mut self, n: i64, d: i64) -> Id {
+        self.num(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
+
+    /// π.
+    pub fn pi(&mut self) -> Id {
+        self.intern(Node::Pi)
+    }
+
+    /// The `order`-th time derivative of symbol `s` (order 0 is the symbol itself).
+    pub fn var(&mut self, s: Sym, order: u8) -> Id {
+        self.intern(Node::Var(s, order))
+    }
+
+    /// The symbol named `name`, interning it if needed.
+    pub fn sym(&mut self, name: &str) -> Id {
+        let s = self.symbol(name);
+        self.var(s, 0)
+    }
+
+    /// The number, if `id` is one.
+    pub fn as_num(&self, id: Id) -> Option<&BigRational> {
+        match self.node(id) {
+            Node::Num(v) => Some(v),
+            _ => None,
+        }
+    }
+
+    /// Whether `id` is the number 0.
+    pub fn is_zero(&self, id: Id) -> bool {
+        id == self.zero
+    }
+
+    /// The children of a node, in order.
+    pub fn children(&self, id: Id) -> Vec<Id> {
+        match self.node(id) {
+            Node::Num(_) | Node::Var(..) | Node::Pi => Vec::new(),
+            Node::Add(c) | Node::Mul(c) => c.to_vec(),
+            Node::Pow(b, e) => vec![*b, *e],
+            Node::Func(_, a) => vec![*a],
+        }
+    }
+
+    /// Every distinct variable (symbol with derivative order) occurring in `id`, sorted by
+    /// symbol then order.
+    pub fn variables(&self, id: Id) -> Vec<(Sym, u8)> {
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut vars = Vec::new();
+        let mut stack = vec![id];
+        while let Some(n) = stack.pop() {
+            if !seen.insert(n) {
+                continue;
+            }
+            match self.node(n) {
+                Node::Var(s, o) => vars.push((*s, *o)),
+                _ => stack.extend(self.children(n)),
+            }
+        }
+        vars.sort();
+        vars.dedup();
+        vars
+    }
+
+    /// Whether the variable `(s, order)` occurs in `id`.
+    pub fn contains_var(&self, id: Id, s: Sym, order: u8) -> bool {
+        self.variables(id).contains(&(s, order))
+    }
+
+    /// Number of operations when printed as a tree (a rough size, like SymPy's `count_ops`):
+    /// each binary +, −, ×, ÷, ^ and each function counts one.
+    pub fn count_ops(&self, id: Id) -> usize {
+        match self.node(id) {
+            Node::Num(v) => usize::from(!v.is_integer()) + usize::from(v < &BigRational::zero()),
+            Node::Var(..) | Node::Pi => 0,
+            Node::Add(c) | Node::Mul(c) => {
+                c.len() - 1 + c.iter().map(|&x| self.count_ops(x)).sum::<usize>()
+            }
+            Node::Pow(b, e) => 1 + self.count_ops(*b) + self.count_ops(*e),
+            Node::Func(_, a) => 1 + self.count_ops(*a),
+        }
+    }
+}

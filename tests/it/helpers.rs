@@ -1,0 +1,53 @@
+//! Shared helpers: contexts for the notes' systems, reading, evaluating.
+
+use lagrange::expr::{Context, Id, Pool, Program, Reading, read, read_expr};
+
+/// Coordinates used across the syntax tests.
+pub fn mech_ctx() -> Context {
+    Context::new()
+        .with_coordinates(["theta", "theta1", "theta2", "x", "r"])
+        .with_parameters([
+            "m", "m1", "m2", "l", "l1", "l2", "g", "k", "a", "b", "omega", "alpha",
+        ])
+}
+
+/// Reads `src` as an expression in `ctx`, panicking with the error (tests only).
+pub fn expr(pool: &mut Pool, src: &str, ctx: &Context) -> Id {
+    match read_expr(src, ctx, pool) {
+        Ok(id) => id,
+        Err(e) => panic!("could not read {src:?}: {e}"),
+    }
+}
+
+/// Reads `src` in an open context and prints it in plain syntax.
+pub fn plain_open(src: &str) -> String {
+    let mut pool = Pool::new();
+    let e = expr(&mut pool, src, &Context::open());
+    pool.plain(e)
+}
+
+/// Reads `src` in the mechanics context and prints it in plain syntax.
+pub fn plain_mech(src: &str) -> String {
+    let mut pool = Pool::new();
+    match read(src, &mech_ctx(), &mut pool) {
+        Ok(Reading::Expr(e, _)) => pool.plain(e),
+        Ok(Reading::Equation { lhs, rhs, .. }) => {
+            format!("{} = {}", pool.plain(lhs), pool.plain(rhs))
+        }
+        Ok(other) => format!("{other:?}"),
+        Err(e) => panic!("could not read {src:?}: {e}"),
+    }
+}
+
+/// Evaluates `e` with named values for its variables (`x'` names a first derivative).
+#[allow(dead_code)]
+pub fn eval(pool: &Pool, e: Id, values: &[(&str, f64)]) -> Option<f64> {
+    let vars = pool.variables(e);
+    let mut inputs = Vec::new();
+    for &(s, o) in &vars {
+        let name = format!("{}{}", pool.name(s), "'".repeat(o as usize));
+        inputs.push(values.iter().find(|(n, _)| *n == name)?.1);
+    }
+    let p = Program::compile(pool, &[e], &vars).ok()?;
+    p.eval(&inputs).ok().map(|v| v[0])
+}

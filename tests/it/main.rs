@@ -1,0 +1,10 @@
+//! The integration-test binary: every test of the public library and the CLI, grouped by
+//! concept, sharing the helpers in `helpers.rs`.
+
+mod cli;
+mod diagnostics;
+mod dimensions;
+mod helpers;
+mod props;
+mod symbolic;
+mod syntax;
