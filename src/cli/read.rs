@@ -129,7 +129,7 @@ pub fn run(args: &ReadArgs, color: bool, out: &mut String) -> anyhow::Result<Exi
         join_or_none(&parameter_names)
     )?;
     let mut failed = false;
-    if !declared.is_empty() || !coords.is_empty() {
+    if !declared.is_empty() {
         match dimension_of(&pool, &reading, &dims) {
             Ok(Some(d)) => writeln!(out, "{} {d}", "dimension:  ".bold())?,
             Ok(None) => writeln!(
