@@ -553,17 +553,15 @@ impl Pool {
     }
 
     /// Whether `a` is written with a leading minus: a negative number, a product with a
-    /// negative coefficient, or a sum whose first term (in structural order) is negative.
+    /// negative coefficient, or a sum whose first term (in display order) is negative.
     pub fn is_negative_form(&self, a: Id) -> bool {
         match self.node(a) {
             Node::Num(v) => v.is_negative(),
             Node::Mul(ch) => self.as_num(ch[0]).is_some_and(|c| c.is_negative()),
             Node::Add(ch) => {
-                let lead = ch
-                    .iter()
-                    .copied()
-                    .filter(|&t| self.as_num(t).is_none())
-                    .min_by(|&x, &y| self.cmp_terms(x, y));
+                // The term printed first decides, so a stored sum reads as it prints:
+                // (2 − √2), not −(−2 + √2).
+                let lead = ch.iter().copied().min_by(|&x, &y| self.display_cmp_terms(x, y));
                 lead.is_some_and(|t| self.is_negative_form(t))
             }
             _ => false,

@@ -143,6 +143,17 @@ impl Pool {
         self.sum(out)
     }
 
+    /// Replaces variables by expressions (`theta'' → 0`, `m1 → m`).
+    pub fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
+        if map.is_empty() {
+            return e;
+        }
+        self.rewrite(e, &mut |pool, n| match pool.node(n) {
+            Node::Var(s, o) => map.get(&(*s, *o)).copied().unwrap_or(n),
+            _ => n,
+        })
+    }
+
     /// Whether `e` is positive wherever it is defined, given positive symbols.
     pub fn is_positive(&self, e: Id, positive: &FxHashSet<Sym>) -> bool {
         match self.node(e) {
@@ -196,32 +207,44 @@ impl Pool {
         }
     }
 
-    /// Rules `pythagoras` and `angle-difference`, applied to one sum.
+    /// Rules `pythagoras` and `angle-difference`, applied to one sum. Terms are indexed by
+    /// their factors, so each term finds its partner by lookup rather than by a pairwise
+    /// search (sums in an n-link pendulum have hundreds of terms).
     fn trig_identities(&mut self, n: Id) -> Id {
         let Node::Add(terms) = self.node(n).clone() else {
             return n;
         };
         let mut terms: Vec<Id> = terms.to_vec();
-        let mut changed = true;
-        let mut rounds = 0;
-        while changed && rounds < 64 {
-            changed = false;
-            rounds += 1;
-            'outer: for i in 0..terms.len() {
-                for j in 0..terms.len() {
-                    if i == j {
-                        continue;
-                    }
-                    if let Some(r) = self.combine_pair(terms[i], terms[j]) {
-                        let (a, b) = (i.max(j), i.min(j));
-                        terms.remove(a);
-                        terms.remove(b);
-                        terms.extend(r);
-                        changed = true;
-                        break 'outer;
-                    }
+        for _ in 0..8 {
+            let parts: Vec<(BigRational, Vec<Id>)> =
+                terms.iter().map(|&t| self.term_factors(t)).collect();
+            let mut index: FxHashMap<Vec<Id>, usize> = FxHashMap::default();
+            for (i, (_, f)) in parts.iter().enumerate() {
+                index.insert(sorted(f.clone()), i);
+            }
+            let mut used = vec![false; terms.len()];
+            let mut out: Vec<Id> = Vec::new();
+            let mut changed = false;
+            for i in 0..terms.len() {
+                if used[i] {
+                    continue;
+                }
+                if let Some((j, replacement)) = self.find_partner(i, &parts, &index, &used) {
+                    used[i] = true;
+                    used[j] = true;
+                    out.extend(replacement);
+                    changed = true;
                 }
             }
+            if !changed {
+                break;
+            }
+            for (i, &t) in terms.iter().enumerate() {
+                if !used[i] {
+                    out.push(t);
+                }
+            }
+            terms = out;
         }
         self.sum(terms)
     }
@@ -237,108 +260,179 @@ impl Pool {
         (c, f)
     }
 
-    /// Tries to merge two terms by a trig identity; returns the replacement terms.
-    fn combine_pair(&mut self, x: Id, y: Id) -> Option<Vec<Id>> {
-        let (cx, fx) = self.term_factors(x);
-        let (cy, fy) = self.term_factors(y);
-        // pythagoras: R·sin²a (coefficient cx) and R·cos²a (coefficient cy).
-        for (i, &f) in fx.iter().enumerate() {
+    /// Looks up a partner of term `i` for a trig identity; returns it and the replacement.
+    fn find_partner(
+        &mut self,
+        i: usize,
+        parts: &[(BigRational, Vec<Id>)],
+        index: &FxHashMap<Vec<Id>, usize>,
+        used: &[bool],
+    ) -> Option<(usize, Vec<Id>)> {
+        let (cx, fx) = parts[i].clone();
+        let lookup = |want: Vec<Id>| -> Option<usize> {
+            index
+                .get(&sorted(want))
+                .copied()
+                .filter(|&j| j != i && !used[j])
+        };
+        // pythagoras: R·sin²a with R·cos²a.
+        for (k, &f) in fx.iter().enumerate() {
             let Some(a) = self.trig_square(f, Func::Sin) else {
                 continue;
             };
-            let cos2 = {
-                let c = self.func(Func::Cos, a);
-                self.powi(c, 2)
+            let c = self.func(Func::Cos, a);
+            let cos2 = self.powi(c, 2);
+            let rest = without(&fx, k);
+            let mut want = rest.clone();
+            want.push(cos2);
+            let Some(j) = lookup(want) else { continue };
+            let cy = parts[j].0.clone();
+            // cx·R·sin² + cy·R·cos²: keep whichever square has the larger coefficient.
+            let (keep, square, other) = if cx.abs() >= cy.abs() {
+                (cy.clone(), f, cx.clone())
+            } else {
+                (cx.clone(), cos2, cy.clone())
             };
-            let rest_x: Vec<Id> = without(&fx, i);
-            if let Some(k) = fy.iter().position(|&g| g == cos2)
-                && same_factors(&rest_x, &without(&fy, k))
-            {
-                // cx·R·sin² + cy·R·cos²: keep whichever square has the larger coefficient.
-                let r = self.product(rest_x.clone());
-                let (keep, square, other) = if cx.abs() >= cy.abs() {
-                    (cy.clone(), f, cx.clone())
-                } else {
-                    (cx.clone(), cos2, cy.clone())
-                };
-                let t1 = self.scale(&keep, r);
-                let mut sq = rest_x;
-                sq.push(square);
-                let base = self.product(sq);
-                let diff = &other - &keep;
-                let t2 = self.scale(&diff, base);
-                return Some(vec![t1, t2]);
-            }
+            let r = self.product(rest.clone());
+            let t1 = self.scale(&keep, r);
+            let mut sq = rest;
+            sq.push(square);
+            let base = self.product(sq);
+            let diff = &other - &keep;
+            let t2 = self.scale(&diff, base);
+            return Some((j, vec![t1, t2]));
         }
-        // angle-difference and angle-sum.
-        let trig_pair =
-            |pool: &Pool, fs: &[Id], f1: Func, f2: Func| -> Vec<(usize, usize, Id, Id)> {
-                let mut out = Vec::new();
-                for (i, &p) in fs.iter().enumerate() {
-                    for (j, &q) in fs.iter().enumerate() {
-                        if i == j {
-                            continue;
-                        }
-                        if let (Node::Func(g1, a), Node::Func(g2, b)) = (pool.node(p), pool.node(q))
-                            && *g1 == f1
-                            && *g2 == f2
-                            && a != b
-                        {
-                            out.push((i, j, *a, *b));
-                        }
-                    }
+        // cos a cos b ± sin a sin b = cos(a ∓ b); sin a cos b ± cos a sin b = sin(a ± b).
+        for (k, &p) in fx.iter().enumerate() {
+            for (l, &q) in fx.iter().enumerate() {
+                if k == l {
+                    continue;
                 }
-                out
-            };
-        // cos a cos b ± sin a sin b
-        for (i, j, a, b) in trig_pair(self, &fx, Func::Cos, Func::Cos) {
-            let rest_x = without(&without(&fx, i.max(j)), i.min(j));
-            let sa = self.func(Func::Sin, a);
-            let sb = self.func(Func::Sin, b);
-            if let (Some(k), Some(l)) = (
-                fy.iter().position(|&g| g == sa),
-                fy.iter().position(|&g| g == sb),
-            ) && k != l
-                && same_factors(&rest_x, &without(&without(&fy, k.max(l)), k.min(l)))
-                && (cx == cy || cx == -cy.clone())
-            {
-                let arg = if cx == cy {
-                    self.sub(a, b)
-                } else {
-                    self.add(a, b)
+                let (Node::Func(g1, a), Node::Func(g2, b)) = (self.node(p).clone(), self.node(q).clone())
+                else {
+                    continue;
                 };
-                let c = self.func(Func::Cos, arg);
-                let mut f = rest_x;
-                f.push(c);
-                let p = self.product(f);
-                return Some(vec![self.scale(&cx, p)]);
-            }
-        }
-        // sin a cos b ± cos a sin b
-        for (i, j, a, b) in trig_pair(self, &fx, Func::Sin, Func::Cos) {
-            let rest_x = without(&without(&fx, i.max(j)), i.min(j));
-            let ca = self.func(Func::Cos, a);
-            let sb = self.func(Func::Sin, b);
-            if let (Some(k), Some(l)) = (
-                fy.iter().position(|&g| g == ca),
-                fy.iter().position(|&g| g == sb),
-            ) && k != l
-                && same_factors(&rest_x, &without(&without(&fy, k.max(l)), k.min(l)))
-                && (cx == cy || cx == -cy.clone())
-            {
-                let arg = if cx == cy {
-                    self.add(a, b)
+                if a == b || g2 != Func::Cos || !matches!(g1, Func::Cos | Func::Sin) {
+                    continue;
+                }
+                if g1 == Func::Cos && k > l {
+                    continue; // each unordered pair of cosines once
+                }
+                let rest = without(&without(&fx, k.max(l)), k.min(l));
+                let (pa, pb) = if g1 == Func::Cos {
+                    (self.func(Func::Sin, a), self.func(Func::Sin, b))
                 } else {
-                    self.sub(a, b)
+                    (self.func(Func::Cos, a), self.func(Func::Sin, b))
                 };
-                let s = self.func(Func::Sin, arg);
-                let mut f = rest_x;
-                f.push(s);
-                let p = self.product(f);
-                return Some(vec![self.scale(&cx, p)]);
+                let mut want = rest.clone();
+                want.push(pa);
+                want.push(pb);
+                if pa == pb {
+                    continue;
+                }
+                let Some(j) = lookup(want) else { continue };
+                let cy = &parts[j].0;
+                let same = *cy == cx;
+                if !same && *cy != -cx.clone() {
+                    continue;
+                }
+                let arg = match (g1, same) {
+                    (Func::Cos, true) | (Func::Sin, false) => self.sub(a, b),
+                    _ => self.add(a, b),
+                };
+                let g = if g1 == Func::Cos { Func::Cos } else { Func::Sin };
+                let t = self.func(g, arg);
+                let mut f = rest;
+                f.push(t);
+                let prod = self.product(f);
+                return Some((j, vec![self.scale(&cx, prod)]));
             }
         }
         None
+    }
+
+    /// Pulls the factors common to every term of a sum out in front, for display:
+    /// `2·m·l²·θ̈ + 2·m·g·l·sin θ` → `2·m·l·(l·θ̈ + g·sin θ)`. Not a canonical form.
+    pub fn factor_common(&mut self, e: Id) -> Id {
+        let Node::Add(terms) = self.node(e).clone() else {
+            return e;
+        };
+        let mut common: Option<Vec<(Id, BigRational)>> = None;
+        for &t in terms.iter() {
+            let (_, fs) = self.term_factors(t);
+            let mut mine: Vec<(Id, BigRational)> = Vec::new();
+            for f in fs {
+                let (b, ex) = match self.node(f) {
+                    Node::Pow(b, x) => match self.as_num(*x) {
+                        Some(v) => (*b, v.clone()),
+                        None => (f, BigRational::one()),
+                    },
+                    _ => (f, BigRational::one()),
+                };
+                mine.push((b, ex));
+            }
+            // A base is common when every term has it with exponents of one sign; it is
+            // pulled out with the exponent nearest zero (g/l from 2g/l + √2 g/l).
+            common = Some(match common {
+                None => mine,
+                Some(c) => c
+                    .into_iter()
+                    .filter_map(|(b, x)| {
+                        let y = mine.iter().find(|(mb, _)| *mb == b)?.1.clone();
+                        (y.is_positive() == x.is_positive())
+                            .then(|| (b, if y.abs() < x.abs() { y } else { x }))
+                    })
+                    .collect(),
+            });
+        }
+        // The sign is chosen on the factored sum, so that it is the one that reads first.
+        let (content, _) = self.content(e);
+        let content = content.abs();
+        let common = common.unwrap_or_default();
+        if common.is_empty() && content.is_one() {
+            return e;
+        }
+        let mut factors: Vec<Id> = common
+            .iter()
+            .map(|(b, x)| {
+                let xe = self.num(x.clone());
+                self.pow(*b, xe)
+            })
+            .collect();
+        let c = self.num(content);
+        factors.push(c);
+        let divisor = self.product(factors.clone());
+        let quotients: Vec<Id> = terms.iter().map(|&t| self.div(t, divisor)).collect();
+        let mut inner = self.sum(quotients);
+        if self.is_negative_form(inner) {
+            inner = self.neg(inner);
+            let m = self.minus_one();
+            factors.push(m);
+        }
+        let factors: Vec<Id> = {
+            let (nums, rest): (Vec<Id>, Vec<Id>) =
+                factors.into_iter().partition(|&f| self.as_num(f).is_some());
+            let c = nums
+                .iter()
+                .filter_map(|&f| self.as_num(f).cloned())
+                .fold(BigRational::one(), |a, b| a * b);
+            let mut v = vec![self.num(c)];
+            v.extend(rest);
+            v
+        };
+        // Built by hand: `product` would distribute a lone numeric factor over the sum.
+        let mut ch = factors;
+        ch.retain(|&f| f != self.one());
+        ch.push(inner);
+        let (coeff, rest): (Vec<Id>, Vec<Id>) = ch.into_iter().partition(|&f| self.as_num(f).is_some());
+        let mut all = coeff;
+        let mut rest = rest;
+        rest.sort_unstable();
+        all.extend(rest);
+        if all.len() == 1 {
+            return all[0];
+        }
+        self.intern(Node::Mul(all.into_boxed_slice()))
     }
 
     /// `Some(a)` when `f` is `g(a)²`.
@@ -362,9 +456,7 @@ fn without(v: &[Id], i: usize) -> Vec<Id> {
     w
 }
 
-fn same_factors(a: &[Id], b: &[Id]) -> bool {
-    let (mut a, mut b) = (a.to_vec(), b.to_vec());
-    a.sort_unstable();
-    b.sort_unstable();
-    a == b
+fn sorted(mut v: Vec<Id>) -> Vec<Id> {
+    v.sort_unstable();
+    v
 }

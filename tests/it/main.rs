@@ -5,6 +5,7 @@ mod cli;
 mod diagnostics;
 mod dimensions;
 mod helpers;
+mod mechanics;
 mod props;
 mod symbolic;
 mod syntax;

@@ -1,0 +1,81 @@
+//! Accelerations at a numeric state: M q'' = f solved with nalgebra (Cholesky, falling back
+//! to LU for an indefinite M), from one compiled program holding M and f.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::derive::Derivation;
+use super::error::MechError;
+use super::system::System;
+use crate::expr::Program;
+
+/// M and f compiled together; evaluates accelerations without re-reading expressions.
+#[derive(Clone, Debug)]
+pub struct Dynamics {
+    program: Program,
+    n: usize,
+    names: Vec<String>,
+}
+
+impl Dynamics {
+    /// Compiles M and f of `d` over the system's standard layout.
+    pub fn new(sys: &System, d: &Derivation) -> Result<Dynamics, MechError> {
+        let mut roots: Vec<_> = d.mass.iter().flatten().copied().collect();
+        roots.extend(d.forcing.iter().copied());
+        Ok(Dynamics {
+            program: sys.compile(&roots)?,
+            n: sys.n(),
+            names: sys.coordinates.iter().map(|c| c.name.clone()).collect(),
+        })
+    }
+
+    /// M and f at `point` (the standard layout; accelerations in it are ignored).
+    pub fn mass_and_forcing(
+        &self,
+        point: &[f64],
+        scratch: &mut [f64],
+    ) -> Result<(DMatrix<f64>, DVector<f64>), MechError> {
+        let n = self.n;
+        self.program
+            .run(point, scratch)
+            .map_err(|_| MechError::Undefined {
+                what: "the mass matrix or forcing".into(),
+            })?;
+        let m = DMatrix::from_fn(n, n, |r, c| self.program.output(r * n + c, scratch));
+        let f = DVector::from_fn(n, |r, _| self.program.output(n * n + r, scratch));
+        Ok((m, f))
+    }
+
+    /// A scratch buffer for [`accelerations`](Self::accelerations).
+    pub fn scratch(&self) -> Vec<f64> {
+        self.program.scratch()
+    }
+
+    /// q'' at `point`.
+    pub fn accelerations(&self, point: &[f64], scratch: &mut [f64]) -> Result<Vec<f64>, MechError> {
+        let (m, f) = self.mass_and_forcing(point, scratch)?;
+        solve(&m, &f, &self.names).map(|v| v.iter().copied().collect())
+    }
+}
+
+/// Solves M x = f: Cholesky when M is positive definite, LU otherwise; a singular M is an
+/// error naming the coordinate whose row vanishes (or all of them).
+pub fn solve(m: &DMatrix<f64>, f: &DVector<f64>, names: &[String]) -> Result<DVector<f64>, MechError> {
+    if let Some(ch) = m.clone().cholesky() {
+        return Ok(ch.solve(f));
+    }
+    let scale = m.amax();
+    if let Some(x) = m.clone().lu().solve(f)
+        && x.iter().all(|v| v.is_finite())
+        && m.clone().lu().determinant().abs() > 1e-12 * scale.powi(m.nrows() as i32)
+    {
+        return Ok(x);
+    }
+    for (i, name) in names.iter().enumerate() {
+        if m.row(i).amax() <= 1e-14 * scale.max(1e-300) {
+            return Err(MechError::NoKineticTerm { name: name.clone() });
+        }
+    }
+    Err(MechError::SingularMass {
+        names: names.iter().map(|n| format!("{n}'")).collect::<Vec<_>>().join(", "),
+    })
+}

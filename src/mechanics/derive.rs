@@ -1,0 +1,131 @@
+//! The Euler–Lagrange equations, coordinate by coordinate, keeping every step a tutor shows:
+//! pᵢ = ∂L/∂qᵢ', d/dt pᵢ, ∂L/∂qᵢ, and Eᵢ = d/dt pᵢ − ∂L/∂qᵢ − Qᵢ = 0. Also the mass matrix
+//! M = ∂²L/∂q'∂q' and the forcing f with M q'' = f.
+
+use rustc_hash::FxHashMap;
+
+use super::error::MechError;
+use super::system::System;
+use crate::expr::Id;
+
+/// The steps for one coordinate.
+#[derive(Clone, Debug)]
+pub struct CoordinateSteps {
+    /// pᵢ = ∂L/∂qᵢ'.
+    pub momentum: Id,
+    /// d/dt pᵢ.
+    pub momentum_dt: Id,
+    /// ∂L/∂qᵢ.
+    pub force: Id,
+    /// Qᵢ (0 when there is none).
+    pub generalized_force: Id,
+    /// Eᵢ, meaning Eᵢ = 0.
+    pub equation: Id,
+}
+
+/// A derivation: the steps, the mass matrix and the forcing.
+#[derive(Clone, Debug)]
+pub struct Derivation {
+    pub steps: Vec<CoordinateSteps>,
+    /// M, row-major n×n.
+    pub mass: Vec<Vec<Id>>,
+    /// f, with M q'' = f.
+    pub forcing: Vec<Id>,
+}
+
+impl Derivation {
+    /// The equations Eᵢ.
+    pub fn equations(&self) -> Vec<Id> {
+        self.steps.iter().map(|s| s.equation).collect()
+    }
+}
+
+impl System {
+    /// Derives the equations of motion. Fails when a coordinate has no kinetic term or the
+    /// mass matrix is singular everywhere.
+    pub fn derive(&mut self) -> Result<Derivation, MechError> {
+        let coords = self.coordinate_syms();
+        let l = self.lagrangian;
+        let mut steps = Vec::with_capacity(self.n());
+        for (i, c) in self.coordinates.clone().iter().enumerate() {
+            let p = self.pool.diff(l, c.sym, 1);
+            let dp = self.pool.dt(p, &coords);
+            let dl = self.pool.diff(l, c.sym, 0);
+            let q = self.forces[i];
+            let e1 = self.pool.sub(dp, dl);
+            let e = self.pool.sub(e1, q);
+            steps.push(CoordinateSteps {
+                momentum: self.simplify(p),
+                momentum_dt: self.simplify(dp),
+                force: self.simplify(dl),
+                generalized_force: q,
+                equation: self.simplify(e),
+            });
+        }
+        let mut mass = Vec::with_capacity(self.n());
+        for s in &steps {
+            let row: Vec<Id> = coords
+                .iter()
+                .map(|&c| {
+                    let d = self.pool.diff(s.momentum, c, 1);
+                    self.simplify(d)
+                })
+                .collect();
+            mass.push(row);
+        }
+        let zero = self.pool.zero();
+        let no_acceleration: FxHashMap<_, _> = coords.iter().map(|&c| ((c, 2), zero)).collect();
+        let forcing: Vec<Id> = steps
+            .iter()
+            .map(|s| {
+                let e0 = self.pool.substitute(s.equation, &no_acceleration);
+                let f = self.pool.neg(e0);
+                self.simplify(f)
+            })
+            .collect();
+        let d = Derivation {
+            steps,
+            mass,
+            forcing,
+        };
+        self.check_mass_matrix(&d)?;
+        Ok(d)
+    }
+
+    /// A zero row of M names the coordinate without a kinetic term; otherwise M must be
+    /// invertible at some sampled point.
+    fn check_mass_matrix(&self, d: &Derivation) -> Result<(), MechError> {
+        for (i, row) in d.mass.iter().enumerate() {
+            if row.iter().all(|&m| self.is_zero(m)) {
+                return Err(MechError::NoKineticTerm {
+                    name: self.coordinates[i].name.clone(),
+                });
+            }
+        }
+        let n = self.n();
+        let entries: Vec<Id> = d.mass.iter().flatten().copied().collect();
+        let prog = self.compile(&entries)?;
+        let mut sampler = super::sample::Sampler::new(0x5eed_0002);
+        let mut scratch = prog.scratch();
+        for _ in 0..24 {
+            let x = self.sample_point(&mut sampler);
+            if prog.run(&x, &mut scratch).is_err() {
+                continue;
+            }
+            let m = nalgebra::DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch));
+            let scale = m.amax().max(1e-300);
+            let det = m.clone().lu().determinant();
+            if det.abs() > 1e-10 * scale.powi(n as i32) {
+                return Ok(());
+            }
+        }
+        Err(MechError::SingularMass {
+            names: self
+                .coordinates
+                .iter()
+                .map(|c| format!("{}'", c.name))
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+    }
+}

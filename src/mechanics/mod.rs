@@ -1,0 +1,21 @@
+//! Mechanics: from a Lagrangian (or from bodies and potentials) to equations of motion,
+//! accelerations, conserved quantities, constraint forces, equilibria and normal modes.
+//!
+//! This layer knows no students and no terminal; it builds on [`crate::expr`] only.
+
+pub mod accel;
+pub mod bodies;
+pub mod constraints;
+pub mod derive;
+pub mod energy;
+pub mod equilibria;
+pub mod error;
+pub mod linalg;
+pub mod modes;
+pub mod sample;
+pub mod system;
+
+pub use bodies::{Body, Potential};
+pub use derive::{CoordinateSteps, Derivation};
+pub use error::MechError;
+pub use system::{Constraint, ConstraintKind, Coordinate, Parameter, System};

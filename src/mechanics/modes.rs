@@ -1,0 +1,339 @@
+//! Small oscillations about an equilibrium: M₀ = M(q₀) and K = −∂f/∂q at (q₀, q' = 0); the
+//! generalized eigenproblem K v = ω² M₀ v gives frequencies, mode shapes and growth rates.
+//! When velocity-linear terms survive at the equilibrium (rotating frames), the first-order
+//! 2n×2n problem is solved instead. Symbolically: det(K − ω² M₀) and, for one or two
+//! coordinates, its roots in closed form.
+
+use nalgebra::DMatrix;
+use rustc_hash::FxHashMap;
+
+use super::derive::Derivation;
+use super::equilibria::{Stability, Statics};
+use super::error::MechError;
+use super::linalg::det;
+use super::system::System;
+use crate::expr::{Id, Sym};
+
+/// One normal mode.
+#[derive(Clone, Debug)]
+pub struct Mode {
+    /// The eigenvalue ω² (negative for an unstable direction).
+    pub omega_squared: f64,
+    /// Shape, normalized so that the largest component is 1 (empty when not available).
+    pub shape: Vec<f64>,
+}
+
+/// The small-oscillation analysis at one point.
+#[derive(Clone, Debug)]
+pub struct Modes {
+    pub point: Vec<f64>,
+    pub stability: Stability,
+    /// Angular frequencies ω of the oscillating modes, ascending.
+    pub frequencies: Vec<f64>,
+    /// Growth rates of the unstable directions, ascending.
+    pub growth_rates: Vec<f64>,
+    pub modes: Vec<Mode>,
+    /// Velocity-linear terms survive, so the first-order problem was solved.
+    pub gyroscopic: bool,
+}
+
+impl Modes {
+    /// For two coordinates: "in phase" / "antiphase" with the amplitude ratio q₂/q₁.
+    pub fn describe(&self, names: &[String]) -> Vec<String> {
+        self.modes
+            .iter()
+            .map(|m| {
+                if m.shape.len() != 2 || m.shape[0].abs() < 1e-12 {
+                    return String::new();
+                }
+                let r = m.shape[1] / m.shape[0];
+                let kind = if r > 0.0 { "in phase" } else { "antiphase" };
+                format!("{kind}, {}/{} = {:.6}", names[1], names[0], r)
+            })
+            .collect()
+    }
+}
+
+impl System {
+    /// Normal modes about `q0` with parameter values `params`.
+    pub fn modes_at(&mut self, d: &Derivation, params: &[f64], q0: &[f64]) -> Result<Modes, MechError> {
+        let statics = Statics::new(self, d, params)?;
+        let n = self.n();
+        let (stability, vals, vecs) = statics.stability(q0)?;
+        // Velocity-linear terms at the equilibrium: C = ∂f/∂q' at (q₀, 0).
+        let c = self.velocity_coupling(d, params, q0)?;
+        if c.amax() > 1e-12 {
+            return self.first_order_modes(d, params, q0, c, stability);
+        }
+        let mut modes = Vec::with_capacity(n);
+        let mut frequencies = Vec::new();
+        let mut growth_rates = Vec::new();
+        for (k, &w2) in vals.iter().enumerate() {
+            let col: Vec<f64> = (0..n).map(|r| vecs[(r, k)]).collect();
+            modes.push(Mode {
+                omega_squared: w2,
+                shape: normalize_shape(&col),
+            });
+            if w2 > 0.0 {
+                frequencies.push(w2.sqrt());
+            } else if w2 < 0.0 {
+                growth_rates.push((-w2).sqrt());
+            }
+        }
+        frequencies.sort_by(f64::total_cmp);
+        growth_rates.sort_by(f64::total_cmp);
+        Ok(Modes {
+            point: q0.to_vec(),
+            stability,
+            frequencies,
+            growth_rates,
+            modes,
+            gyroscopic: false,
+        })
+    }
+
+    fn velocity_coupling(&mut self, d: &Derivation, params: &[f64], q0: &[f64]) -> Result<DMatrix<f64>, MechError> {
+        let n = self.n();
+        let coords = self.coordinate_syms();
+        let mut roots = Vec::with_capacity(n * n);
+        for &f in &d.forcing {
+            for &c in &coords {
+                roots.push(self.pool.diff(f, c, 1));
+            }
+        }
+        let prog = self.compile(&roots)?;
+        let x = self.rest_point(params, q0);
+        let mut scratch = prog.scratch();
+        prog.run(&x, &mut scratch).map_err(|_| MechError::Undefined {
+            what: "the linearized equations".into(),
+        })?;
+        Ok(DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch)))
+    }
+
+    /// The standard-layout point at rest at `q0`.
+    fn rest_point(&self, params: &[f64], q0: &[f64]) -> Vec<f64> {
+        let mut x = vec![0.0; 1 + 3 * self.n()];
+        for (i, &v) in q0.iter().enumerate() {
+            x[1 + 3 * i] = v;
+        }
+        x.extend_from_slice(params);
+        x
+    }
+
+    /// The first-order problem ẋ = A x, x = (δq, δq'), A = [[0, I], [M⁻¹(−K), M⁻¹C]].
+    fn first_order_modes(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q0: &[f64],
+        c: DMatrix<f64>,
+        _static_stability: Stability,
+    ) -> Result<Modes, MechError> {
+        let n = self.n();
+        let coords = self.coordinate_syms();
+        let mut roots: Vec<Id> = d.mass.iter().flatten().copied().collect();
+        for &f in &d.forcing {
+            for &q in &coords {
+                roots.push(self.pool.diff(f, q, 0));
+            }
+        }
+        let prog = self.compile(&roots)?;
+        let x = self.rest_point(params, q0);
+        let mut scratch = prog.scratch();
+        prog.run(&x, &mut scratch).map_err(|_| MechError::Undefined {
+            what: "the linearized equations".into(),
+        })?;
+        let m = DMatrix::from_fn(n, n, |r, cc| prog.output(r * n + cc, &scratch));
+        let fq = DMatrix::from_fn(n, n, |r, cc| prog.output(n * n + r * n + cc, &scratch));
+        let minv = m
+            .try_inverse()
+            .ok_or_else(|| MechError::Invalid("the mass matrix is singular here".into()))?;
+        let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
+        for i in 0..n {
+            a[(i, n + i)] = 1.0;
+        }
+        let lower_left = &minv * fq;
+        let lower_right = &minv * c;
+        for i in 0..n {
+            for j in 0..n {
+                a[(n + i, j)] = lower_left[(i, j)];
+                a[(n + i, n + j)] = lower_right[(i, j)];
+            }
+        }
+        let eig = a.complex_eigenvalues();
+        let scale = eig.iter().fold(0.0f64, |s, z| s.max(z.norm())).max(1e-300);
+        let mut frequencies = Vec::new();
+        let mut growth_rates = Vec::new();
+        for z in eig.iter() {
+            if z.re > 1e-9 * scale {
+                growth_rates.push(z.re);
+            } else if z.im > 1e-9 * scale {
+                frequencies.push(z.im);
+            }
+        }
+        frequencies.sort_by(f64::total_cmp);
+        growth_rates.sort_by(f64::total_cmp);
+        let stability = if !growth_rates.is_empty() {
+            Stability::Unstable
+        } else if frequencies.len() == n {
+            Stability::Stable
+        } else {
+            Stability::Marginal
+        };
+        Ok(Modes {
+            point: q0.to_vec(),
+            stability,
+            frequencies,
+            growth_rates,
+            modes: Vec::new(),
+            gyroscopic: true,
+        })
+    }
+
+    /// Symbolic small oscillations about `at` (one expression per coordinate).
+    pub fn symbolic_modes(&mut self, d: &Derivation, at: &[Id]) -> Result<SymbolicModes, MechError> {
+        let n = self.n();
+        let coords = self.coordinate_syms();
+        let zero = self.pool.zero();
+        let mut map: FxHashMap<_, _> = FxHashMap::default();
+        for (&c, &v) in coords.iter().zip(at) {
+            map.insert((c, 0), v);
+            map.insert((c, 1), zero);
+            map.insert((c, 2), zero);
+        }
+        let mut mass = vec![vec![zero; n]; n];
+        let mut stiffness = vec![vec![zero; n]; n];
+        for i in 0..n {
+            for j in 0..n {
+                let m = self.pool.substitute(d.mass[i][j], &map);
+                mass[i][j] = self.simplify(m);
+                let dfdq = self.pool.diff(d.forcing[i], coords[j], 0);
+                let k = self.pool.neg(dfdq);
+                let k = self.pool.substitute(k, &map);
+                stiffness[i][j] = self.simplify(k);
+            }
+        }
+        let omega = self.omega_symbol();
+        let x = self.pool.symbol("__omega_squared");
+        let xv = self.pool.var(x, 0);
+        let kmx: Vec<Vec<Id>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| {
+                        let t = self.pool.mul(xv, mass[i][j]);
+                        self.pool.sub(stiffness[i][j], t)
+                    })
+                    .collect()
+            })
+            .collect();
+        let p = det(&mut self.pool, &kmx);
+        let p = self.simplify(p);
+        let ov = self.pool.var(omega, 0);
+        let w2 = self.pool.powi(ov, 2);
+        let display_map: FxHashMap<_, _> = [((x, 0), w2)].into_iter().collect();
+        let shown = self.pool.substitute(p, &display_map);
+        let characteristic = self.pool.factor_common(shown);
+        let roots = match n {
+            1 | 2 => Some(self.quadratic_roots(p, x)),
+            _ => None,
+        };
+        Ok(SymbolicModes {
+            mass,
+            stiffness,
+            characteristic,
+            omega,
+            omega_squared: roots.unwrap_or_default(),
+        })
+    }
+
+    /// A symbol for ω that is not a parameter of the system.
+    fn omega_symbol(&mut self) -> Sym {
+        let name = if self.parameters.iter().any(|p| p.name == "omega") {
+            "Omega"
+        } else {
+            "omega"
+        };
+        self.pool.symbol(name)
+    }
+
+    /// Roots in x of the polynomial p (degree 1 or 2), simplified and factored for display.
+    fn quadratic_roots(&mut self, p: Id, x: Sym) -> Vec<Id> {
+        let zero = self.pool.zero();
+        let at0: FxHashMap<_, _> = [((x, 0), zero)].into_iter().collect();
+        let c = self.pool.substitute(p, &at0);
+        let p1 = self.pool.diff(p, x, 0);
+        let b = self.pool.substitute(p1, &at0);
+        let p2 = self.pool.diff(p1, x, 0);
+        let a2 = self.pool.substitute(p2, &at0);
+        let half = self.pool.ratio(1, 2);
+        let a = self.pool.mul(half, a2);
+        let (a, b, c) = (self.simplify(a), self.simplify(b), self.simplify(c));
+        let mut out = Vec::new();
+        if self.pool.is_zero(a) {
+            if !self.pool.is_zero(b) {
+                let nc = self.pool.neg(c);
+                let r = self.pool.div(nc, b);
+                out.push(self.tidy(r));
+            }
+            return out;
+        }
+        // (−b ± √(b² − 4ac)) / 2a
+        let b2 = self.pool.powi(b, 2);
+        let four = self.pool.int(4);
+        let ac4 = self.pool.product([four, a, c]);
+        let disc = self.pool.sub(b2, ac4);
+        let disc = self.simplify(disc);
+        let root = self.pool.sqrt(disc);
+        let root = self.simplify(root);
+        let two = self.pool.int(2);
+        let den = self.pool.mul(two, a);
+        let nb = self.pool.neg(b);
+        for sign in [-1, 1] {
+            let s = self.pool.int(sign);
+            let sr = self.pool.mul(s, root);
+            let num = self.pool.add(nb, sr);
+            let r = self.pool.div(num, den);
+            out.push(self.tidy(r));
+        }
+        out
+    }
+
+    /// Simplified, then with common factors pulled out: (2 + √2)·g/l.
+    fn tidy(&mut self, e: Id) -> Id {
+        let s = self.simplify(e);
+        self.pool.factor_common(s)
+    }
+}
+
+/// The symbolic small-oscillation results.
+#[derive(Clone, Debug)]
+pub struct SymbolicModes {
+    pub mass: Vec<Vec<Id>>,
+    pub stiffness: Vec<Vec<Id>>,
+    /// det(K − ω² M₀), in the symbol `omega`.
+    pub characteristic: Id,
+    /// The symbol used for ω.
+    pub omega: Sym,
+    /// ω² in closed form (for one or two coordinates), ascending where comparable.
+    pub omega_squared: Vec<Id>,
+}
+
+fn normalize_shape(v: &[f64]) -> Vec<f64> {
+    let k = v
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map_or(0, |(i, _)| i);
+    let big = v.get(k).copied().unwrap_or(1.0);
+    if big == 0.0 {
+        return v.to_vec();
+    }
+    // Largest component 1; then make the first nonzero component positive.
+    let mut s: Vec<f64> = v.iter().map(|x| x / big).collect();
+    if let Some(first) = s.iter().find(|x| x.abs() > 1e-12)
+        && *first < 0.0
+    {
+        s.iter_mut().for_each(|x| *x = -*x);
+    }
+    s
+}

@@ -1,0 +1,440 @@
+//! A mechanical system: coordinates, parameters, the Lagrangian (given, or derived from
+//! bodies), optional generalized forces and constraints. The system owns the expression pool
+//! everything about it lives in.
+
+use rustc_hash::FxHashMap;
+
+use super::bodies::{Body, Potential, kinetic_energy, potential_energy};
+use super::error::MechError;
+use super::sample::Sampler;
+use crate::expr::{
+    Context, Dimension, Id, Pool, Program, Sym, read_expr,
+};
+
+/// A generalized coordinate.
+#[derive(Clone, Debug)]
+pub struct Coordinate {
+    pub name: String,
+    pub sym: Sym,
+    /// An angle: values are compared modulo 2π.
+    pub periodic: bool,
+    /// Where equilibria are searched and values are sampled.
+    pub range: (f64, f64),
+}
+
+/// A parameter (a constant of the system).
+#[derive(Clone, Debug)]
+pub struct Parameter {
+    pub name: String,
+    pub sym: Sym,
+    pub dimension: Option<Dimension>,
+    /// Sampling range (positive).
+    pub range: (f64, f64),
+}
+
+/// Holonomic (on positions) or nonholonomic (on velocities, not integrable).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConstraintKind {
+    Holonomic,
+    Nonholonomic,
+}
+
+/// A constraint `expr = 0`.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    pub expr: Id,
+    pub kind: ConstraintKind,
+}
+
+/// A system ready for analysis.
+#[derive(Clone, Debug)]
+pub struct System {
+    pub pool: Pool,
+    pub coordinates: Vec<Coordinate>,
+    pub parameters: Vec<Parameter>,
+    pub lagrangian: Id,
+    /// T and V when known (from bodies, or given separately).
+    pub kinetic: Option<Id>,
+    pub potential: Option<Id>,
+    /// Generalized non-conservative forces Qᵢ, one per coordinate (0 when absent).
+    pub forces: Vec<Id>,
+    pub constraints: Vec<Constraint>,
+}
+
+/// Default sampling range of a non-periodic coordinate.
+pub const DEFAULT_COORDINATE_RANGE: (f64, f64) = (-2.0, 2.0);
+/// Default sampling range of a parameter.
+pub const DEFAULT_PARAMETER_RANGE: (f64, f64) = (0.5, 2.0);
+/// Sampling range of velocities and accelerations.
+pub const RATE_RANGE: (f64, f64) = (-2.0, 2.0);
+
+impl System {
+    /// A system with `coordinates` whose Lagrangian is typed text. Every other symbol is a
+    /// parameter. Angles (names like theta, phi, alpha, psi, …) are taken as periodic.
+    pub fn from_lagrangian(text: &str, coordinates: &[&str]) -> Result<System, MechError> {
+        let mut sys = System::empty(coordinates);
+        let ctx = sys.open_context();
+        sys.lagrangian = sys.read(text, "the Lagrangian", &ctx)?;
+        sys.collect_parameters();
+        Ok(sys)
+    }
+
+    /// A system with T and V given separately (L = T − V).
+    pub fn from_energies(t: &str, v: &str, coordinates: &[&str]) -> Result<System, MechError> {
+        let mut sys = System::empty(coordinates);
+        let ctx = sys.open_context();
+        let t = sys.read(t, "the kinetic energy", &ctx)?;
+        let v = sys.read(v, "the potential energy", &ctx)?;
+        sys.kinetic = Some(t);
+        sys.potential = Some(v);
+        sys.lagrangian = sys.pool.sub(t, v);
+        sys.collect_parameters();
+        Ok(sys)
+    }
+
+    /// A system from bodies and potentials, already built in `pool`.
+    pub fn from_bodies(
+        mut pool: Pool,
+        coordinates: Vec<Coordinate>,
+        bodies: &[Body],
+        potentials: &[Potential],
+    ) -> System {
+        let t = kinetic_energy(&mut pool, &coordinates, bodies);
+        let v = potential_energy(&mut pool, bodies, potentials);
+        let positive: Vec<Sym> = Vec::new();
+        let t = pool.simplify(t, &positive);
+        let v = pool.simplify(v, &positive);
+        let l = pool.sub(t, v);
+        let n = coordinates.len();
+        let zero = pool.zero();
+        let mut sys = System {
+            pool,
+            coordinates,
+            parameters: Vec::new(),
+            lagrangian: l,
+            kinetic: Some(t),
+            potential: Some(v),
+            forces: vec![zero; n],
+            constraints: Vec::new(),
+        };
+        sys.collect_parameters();
+        sys
+    }
+
+    /// A system from an already-built Lagrangian in `pool` (used by the problem bank).
+    pub fn from_parts(pool: Pool, coordinates: Vec<Coordinate>, lagrangian: Id) -> System {
+        let n = coordinates.len();
+        let zero = pool.zero();
+        let mut sys = System {
+            pool,
+            coordinates,
+            parameters: Vec::new(),
+            lagrangian,
+            kinetic: None,
+            potential: None,
+            forces: vec![zero; n],
+            constraints: Vec::new(),
+        };
+        sys.collect_parameters();
+        sys
+    }
+
+    fn empty(coordinates: &[&str]) -> System {
+        let mut pool = Pool::new();
+        let coords: Vec<Coordinate> = coordinates
+            .iter()
+            .map(|c| {
+                let name = crate::expr::names::normalize(c.trim());
+                Coordinate {
+                    sym: pool.symbol(&name),
+                    periodic: looks_like_angle(&name),
+                    range: if looks_like_angle(&name) {
+                        (-std::f64::consts::PI, std::f64::consts::PI)
+                    } else {
+                        DEFAULT_COORDINATE_RANGE
+                    },
+                    name,
+                }
+            })
+            .collect();
+        let zero = pool.zero();
+        let n = coords.len();
+        System {
+            pool,
+            coordinates: coords,
+            parameters: Vec::new(),
+            lagrangian: zero,
+            kinetic: None,
+            potential: None,
+            forces: vec![zero; n],
+            constraints: Vec::new(),
+        }
+    }
+
+    /// The reading context: coordinates declared, any other name a parameter.
+    pub fn open_context(&self) -> Context {
+        Context::open()
+            .with_coordinates(self.coordinates.iter().map(|c| c.name.as_str()))
+            .with_parameters(self.parameters.iter().map(|p| p.name.as_str()))
+    }
+
+    /// The closed context: only this system's names.
+    pub fn context(&self) -> Context {
+        Context::new()
+            .with_coordinates(self.coordinates.iter().map(|c| c.name.as_str()))
+            .with_parameters(self.parameters.iter().map(|p| p.name.as_str()))
+    }
+
+    /// Reads text in `ctx` into this system's pool.
+    pub fn read(&mut self, text: &str, what: &str, ctx: &Context) -> Result<Id, MechError> {
+        read_expr(text, ctx, &mut self.pool).map_err(|error| MechError::Parse {
+            what: what.to_string(),
+            source_text: text.to_string(),
+            error,
+        })
+    }
+
+    /// Sets the generalized forces from text, `Q1; Q2; …` (fewer entries are zero).
+    pub fn set_forces(&mut self, text: &str) -> Result<(), MechError> {
+        let ctx = self.open_context();
+        let parts: Vec<&str> = text.split(';').collect();
+        if parts.len() > self.coordinates.len() {
+            return Err(MechError::Invalid(format!(
+                "{} generalized forces given for {} coordinates",
+                parts.len(),
+                self.coordinates.len()
+            )));
+        }
+        for (i, p) in parts.iter().enumerate() {
+            if !p.trim().is_empty() {
+                self.forces[i] = self.read(p, &format!("the force on {}", self.coordinates[i].name), &ctx)?;
+            }
+        }
+        self.collect_parameters();
+        Ok(())
+    }
+
+    /// Adds a constraint `text = 0` (or `lhs = rhs`). It is holonomic when it involves no
+    /// velocity, nonholonomic when it is linear in the velocities.
+    pub fn add_constraint(&mut self, text: &str) -> Result<(), MechError> {
+        let ctx = self.open_context();
+        let (lhs, rhs) = crate::expr::read_equation(text, &ctx, &mut self.pool).map_err(|error| {
+            MechError::Parse {
+                what: "a constraint".into(),
+                source_text: text.to_string(),
+                error,
+            }
+        })?;
+        let e = self.pool.sub(lhs, rhs);
+        let vars = self.pool.variables(e);
+        let max_order = vars.iter().map(|v| v.1).max().unwrap_or(0);
+        let kind = match max_order {
+            0 => ConstraintKind::Holonomic,
+            1 => ConstraintKind::Nonholonomic,
+            _ => {
+                return Err(MechError::Invalid(
+                    "a constraint may involve positions and velocities, not accelerations".into(),
+                ));
+            }
+        };
+        if kind == ConstraintKind::Nonholonomic {
+            // Must be affine in the velocities: every second velocity derivative vanishes.
+            for c in &self.coordinates.clone() {
+                let d1 = self.pool.diff(e, c.sym, 1);
+                for c2 in &self.coordinates.clone() {
+                    let d2 = self.pool.diff(d1, c2.sym, 1);
+                    if !self.is_zero(d2) {
+                        return Err(MechError::Invalid(
+                            "a velocity constraint must be linear in the velocities".into(),
+                        ));
+                    }
+                }
+            }
+        }
+        self.constraints.push(Constraint { expr: e, kind });
+        self.collect_parameters();
+        Ok(())
+    }
+
+    /// Registers every non-coordinate symbol as a parameter (keeping existing ones).
+    pub fn collect_parameters(&mut self) {
+        let mut roots = vec![self.lagrangian];
+        roots.extend(self.forces.iter().copied());
+        roots.extend(self.constraints.iter().map(|c| c.expr));
+        roots.extend(self.kinetic);
+        roots.extend(self.potential);
+        let time = self.pool.time();
+        let mut names: Vec<(String, Sym)> = Vec::new();
+        for r in roots {
+            for (s, _) in self.pool.variables(r) {
+                if s == time || self.coordinates.iter().any(|c| c.sym == s) {
+                    continue;
+                }
+                let n = self.pool.name(s).to_string();
+                if !names.iter().any(|(m, _)| *m == n) {
+                    names.push((n, s));
+                }
+            }
+        }
+        names.sort_by(|a, b| crate::expr::order::natural_cmp(&a.0, &b.0));
+        for (name, sym) in names {
+            if !self.parameters.iter().any(|p| p.sym == sym) {
+                self.parameters.push(Parameter {
+                    name,
+                    sym,
+                    dimension: None,
+                    range: DEFAULT_PARAMETER_RANGE,
+                });
+            }
+        }
+    }
+
+    /// Number of coordinates.
+    pub fn n(&self) -> usize {
+        self.coordinates.len()
+    }
+
+    /// Coordinate symbols.
+    pub fn coordinate_syms(&self) -> Vec<Sym> {
+        self.coordinates.iter().map(|c| c.sym).collect()
+    }
+
+    /// Parameter symbols (treated as positive by the simplifier).
+    pub fn parameter_syms(&self) -> Vec<Sym> {
+        self.parameters.iter().map(|p| p.sym).collect()
+    }
+
+    /// Simplifies for display, with parameters taken as positive.
+    pub fn simplify(&mut self, e: Id) -> Id {
+        let positive = self.parameter_syms();
+        self.pool.simplify(e, &positive)
+    }
+
+    /// The standard input layout of compiled programs: t, then each coordinate's q, q', q'',
+    /// then each parameter.
+    pub fn layout(&self) -> Vec<(Sym, u8)> {
+        let mut v = vec![(self.pool.time(), 0)];
+        for c in &self.coordinates {
+            for o in 0..3 {
+                v.push((c.sym, o));
+            }
+        }
+        for p in &self.parameters {
+            v.push((p.sym, 0));
+        }
+        v
+    }
+
+    /// Compiles expressions over the standard layout.
+    pub fn compile(&self, roots: &[Id]) -> Result<Program, MechError> {
+        Program::compile(&self.pool, roots, &self.layout())
+            .map_err(|u| MechError::Invalid(format!("`{}` is not a symbol of this system", u.name)))
+    }
+
+    /// A random point in the standard layout.
+    pub fn sample_point(&self, s: &mut Sampler) -> Vec<f64> {
+        let mut v = vec![s.uniform(0.0, 2.0)];
+        for c in &self.coordinates {
+            v.push(s.uniform(c.range.0, c.range.1));
+            v.push(s.uniform(RATE_RANGE.0, RATE_RANGE.1));
+            v.push(s.uniform(RATE_RANGE.0, RATE_RANGE.1));
+        }
+        for p in &self.parameters {
+            v.push(s.uniform(p.range.0, p.range.1));
+        }
+        v
+    }
+
+    /// Whether `e` vanishes identically, decided at 12 seeded random points (points where
+    /// it is undefined are skipped).
+    pub fn is_zero(&self, e: Id) -> bool {
+        if self.pool.is_zero(e) {
+            return true;
+        }
+        let Ok(p) = self.compile(&[e]) else {
+            return false;
+        };
+        let terms: Vec<Id> = match self.pool.node(e) {
+            crate::expr::Node::Add(t) => t.to_vec(),
+            _ => vec![e],
+        };
+        let Ok(tp) = self.compile(&terms) else {
+            return false;
+        };
+        let mut sampler = Sampler::new(0x5eed_0001);
+        let mut scratch = p.scratch();
+        let mut tscratch = tp.scratch();
+        let mut checked = 0;
+        for _ in 0..48 {
+            let x = self.sample_point(&mut sampler);
+            if p.run(&x, &mut scratch).is_err() || tp.run(&x, &mut tscratch).is_err() {
+                continue;
+            }
+            let scale = (0..terms.len())
+                .map(|k| tp.output(k, &tscratch).abs())
+                .fold(0.0, f64::max);
+            if p.output(0, &scratch).abs() > 1e-9 * (1.0 + scale) {
+                return false;
+            }
+            checked += 1;
+            if checked >= 12 {
+                break;
+            }
+        }
+        checked > 0
+    }
+
+    /// Values for the parameters from `name = expr` pairs; an expression may use the other
+    /// parameters (`m1 = m`), and those that remain become the system's new parameters.
+    pub fn substitute_parameters(&mut self, values: &[(String, String)]) -> Result<(), MechError> {
+        let ctx = self.open_context();
+        let mut map: FxHashMap<(Sym, u8), Id> = FxHashMap::default();
+        for (name, text) in values {
+            let name = crate::expr::names::normalize(name.trim());
+            let Some(p) = self.parameters.iter().find(|p| p.name == name) else {
+                if self.coordinates.iter().any(|c| c.name == name) {
+                    return Err(MechError::Invalid(format!(
+                        "`{name}` is a coordinate; give its value with --at"
+                    )));
+                }
+                return Err(MechError::Invalid(format!(
+                    "`{name}` is not a parameter of this system"
+                )));
+            };
+            let sym = p.sym;
+            let v = self.read(text, &format!("the value of {name}"), &ctx)?;
+            map.insert((sym, 0), v);
+        }
+        self.lagrangian = self.pool.substitute(self.lagrangian, &map);
+        self.kinetic = self.kinetic.map(|t| self.pool.substitute(t, &map));
+        self.potential = self.potential.map(|v| self.pool.substitute(v, &map));
+        self.forces = self
+            .forces
+            .clone()
+            .into_iter()
+            .map(|f| self.pool.substitute(f, &map))
+            .collect();
+        self.constraints = self
+            .constraints
+            .clone()
+            .into_iter()
+            .map(|c| Constraint {
+                expr: self.pool.substitute(c.expr, &map),
+                kind: c.kind,
+            })
+            .collect();
+        self.parameters.retain(|p| !map.contains_key(&(p.sym, 0)));
+        self.collect_parameters();
+        Ok(())
+    }
+}
+
+/// Names that are conventionally angles, and so periodic.
+pub fn looks_like_angle(name: &str) -> bool {
+    let (letters, _) = crate::expr::names::split_digits(name);
+    matches!(
+        letters,
+        "theta" | "phi" | "psi" | "alpha" | "beta" | "gamma" | "varphi" | "chi" | "angle"
+    ) || letters.starts_with("theta")
+        || letters.starts_with("phi")
+}
