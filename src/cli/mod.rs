@@ -1,7 +1,10 @@
 //! Argument definitions (clap) and dispatch. Clap types stay in the binary; the library
 //! never sees them.
 
+mod derive;
+mod modes;
 mod read;
+mod system_args;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;
@@ -31,6 +34,11 @@ enum Command {
     /// Show how an input is read: plain, Unicode and LaTeX forms, symbols, dimension, and
     /// optionally a derivative.
     Read(read::ReadArgs),
+    /// Derive the Euler–Lagrange equations of a Lagrangian, with every step, the mass matrix,
+    /// the energy function, conserved momenta and constraint multipliers.
+    Derive(derive::DeriveArgs),
+    /// Find equilibria, their stability, normal-mode frequencies and shapes.
+    Modes(modes::ModesArgs),
 }
 
 /// Parses arguments and runs the command.
@@ -47,6 +55,8 @@ pub fn run() -> anyhow::Result<ExitCode> {
     let mut out = String::new();
     let code = match cli.command {
         Command::Read(args) => read::run(&args, color, &mut out),
+        Command::Derive(args) => derive::run(&args, color, &mut out),
+        Command::Modes(args) => modes::run(&args, color, &mut out),
     };
     emit(&out)?;
     code

@@ -89,8 +89,10 @@ impl Pool {
     /// The canonical sum of `terms`.
     pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
         let mut constant = BigRational::zero();
-        let mut keys: Vec<Id> = Vec::new();
-        let mut coeffs: FxHashMap<Id, BigRational> = FxHashMap::default();
+        // Terms and their coefficients; an index is built only for long sums, short ones
+        // are scanned (most sums have a handful of terms).
+        let mut keys: Vec<(Id, BigRational)> = Vec::new();
+        let mut index: Option<FxHashMap<Id, usize>> = None;
         let mut stack: Vec<Id> = terms.into_iter().collect();
         stack.reverse();
         while let Some(t) = stack.pop() {
@@ -99,7 +101,7 @@ impl Pool {
             }
             match self.node(t) {
                 Node::Num(v) => {
-                    constant += v;
+                    add_coeff(&mut constant, v);
                     continue;
                 }
                 Node::Add(ch) => {
@@ -109,21 +111,28 @@ impl Pool {
                 _ => {}
             }
             let (c, k) = self.split_coeff(t);
-            match coeffs.get_mut(&k) {
-                Some(acc) => *acc += c,
+            let found = match &index {
+                Some(ix) => ix.get(&k).copied(),
+                None => keys.iter().position(|(x, _)| *x == k),
+            };
+            match found {
+                Some(i) => add_coeff(&mut keys[i].1, &c),
                 None => {
-                    keys.push(k);
-                    coeffs.insert(k, c);
+                    keys.push((k, c));
+                    if let Some(ix) = index.as_mut() {
+                        ix.insert(k, keys.len() - 1);
+                    } else if keys.len() > 16 {
+                        index = Some(keys.iter().enumerate().map(|(i, (x, _))| (*x, i)).collect());
+                    }
                 }
             }
         }
         let mut out = Vec::with_capacity(keys.len() + 1);
-        for k in keys {
-            let c = &coeffs[&k];
+        for (k, c) in keys {
             if c.is_zero() {
                 continue;
             }
-            let term = self.with_coeff(c.clone(), k);
+            let term = self.with_coeff(c, k);
             out.push(term);
         }
         out.sort_unstable();
@@ -176,9 +185,9 @@ impl Pool {
     /// The canonical product of `factors`.
     pub fn product(&mut self, factors: impl IntoIterator<Item = Id>) -> Id {
         let mut coeff = BigRational::one();
-        let mut bases: Vec<Id> = Vec::new();
-        // For each base: its exponents, and the factor it came from when there is only one.
-        let mut exps: FxHashMap<Id, (Vec<Id>, Id)> = FxHashMap::default();
+        // For each base: its first exponent, the factor it came from, and any further
+        // exponents. Products are short, so bases are found by scanning.
+        let mut bases: Vec<(Id, Id, Id, Vec<Id>)> = Vec::new();
         let mut stack: Vec<Id> = factors.into_iter().collect();
         stack.reverse();
         let one = self.one();
@@ -188,7 +197,7 @@ impl Pool {
             }
             let (b, e) = match self.node(f) {
                 Node::Num(v) => {
-                    coeff *= v;
+                    mul_coeff(&mut coeff, v);
                     continue;
                 }
                 Node::Mul(ch) => {
@@ -199,7 +208,7 @@ impl Pool {
                 Node::Add(_) => {
                     // A sum as a factor is kept primitive: (−2x − 2y)·z = −2·(x + y)·z.
                     let (c, p) = self.content(f);
-                    coeff *= c;
+                    mul_coeff(&mut coeff, &c);
                     (p, one)
                 }
                 _ => (f, one),
@@ -209,12 +218,9 @@ impl Pool {
             } else {
                 f
             };
-            match exps.get_mut(&b) {
-                Some((v, _)) => v.push(e),
-                None => {
-                    bases.push(b);
-                    exps.insert(b, (vec![e], f));
-                }
+            match bases.iter_mut().find(|x| x.0 == b) {
+                Some(x) => x.3.push(e),
+                None => bases.push((b, e, f, Vec::new())),
             }
         }
         if coeff.is_zero() {
@@ -222,18 +228,19 @@ impl Pool {
         }
         let mut out = Vec::with_capacity(bases.len());
         let mut again = false;
-        for b in bases {
-            let (es, original) = exps.remove(&b).unwrap_or((Vec::new(), b));
+        for (b, first, original, more) in bases {
             // A lone factor is already canonical; only merged exponents need `pow` again
             // (calling it on a lone `2^(1/2)` would rebuild the same product forever).
-            let p = if es.len() == 1 {
+            let p = if more.is_empty() {
                 original
             } else {
+                let mut es = more;
+                es.push(first);
                 let e = self.sum(es);
                 self.pow(b, e)
             };
             match self.node(p) {
-                Node::Num(v) => coeff *= v,
+                Node::Num(v) => mul_coeff(&mut coeff, v),
                 Node::Mul(_) => {
                     again = true;
                     out.push(p);
@@ -407,6 +414,15 @@ impl Pool {
     /// (−2/3)·(2x + 3y). The content's sign makes the primitive sum's leading term positive
     /// (the same choice as [`is_negative_form`](Self::is_negative_form)).
     pub fn content(&mut self, add: Id) -> (BigRational, Id) {
+        if let Some(r) = self.contents.get(&add) {
+            return r.clone();
+        }
+        let r = self.content_uncached(add);
+        self.contents.insert(add, r.clone());
+        r
+    }
+
+    fn content_uncached(&mut self, add: Id) -> (BigRational, Id) {
         let Node::Add(terms) = self.node(add) else {
             return (BigRational::one(), add);
         };
@@ -561,8 +577,14 @@ impl Pool {
             Node::Add(ch) => {
                 // The term printed first decides, so a stored sum reads as it prints:
                 // (2 − √2), not −(−2 + √2).
-                let lead = ch.iter().copied().min_by(|&x, &y| self.display_cmp_terms(x, y));
-                lead.is_some_and(|t| self.is_negative_form(t))
+                if let Some(&v) = self.negative_sum.borrow().get(&a) {
+                    return v;
+                }
+                let v = self
+                    .display_first_term(ch)
+                    .is_some_and(|t| self.is_negative_form(t));
+                self.negative_sum.borrow_mut().insert(a, v);
+                v
             }
             _ => false,
         }
@@ -592,6 +614,34 @@ impl Pool {
             Node::Mul(ch) => ch.to_vec(),
             _ => vec![t],
         }
+    }
+}
+
+/// acc ← acc · v, skipping the gcd normalization where it cannot change anything.
+fn mul_coeff(acc: &mut BigRational, v: &BigRational) {
+    if v.is_one() {
+        return;
+    }
+    if acc.is_one() {
+        *acc = v.clone();
+    } else if acc.is_integer() && v.is_integer() {
+        *acc = BigRational::from_integer(acc.numer() * v.numer());
+    } else {
+        *acc *= v;
+    }
+}
+
+/// acc ← acc + v, likewise.
+fn add_coeff(acc: &mut BigRational, v: &BigRational) {
+    if v.is_zero() {
+        return;
+    }
+    if acc.is_zero() {
+        *acc = v.clone();
+    } else if acc.is_integer() && v.is_integer() {
+        *acc = BigRational::from_integer(acc.numer() + v.numer());
+    } else {
+        *acc += v;
     }
 }
 

@@ -44,7 +44,7 @@ impl Pool {
         while let Some(n) = stack.pop() {
             if seen.insert(n) {
                 reach.push(n);
-                stack.extend(self.children(n));
+                self.push_children(n, &mut stack);
             }
         }
         reach.sort_unstable();

@@ -58,7 +58,7 @@ impl Program {
         while let Some(n) = stack.pop() {
             if seen.insert(n) {
                 reach.push(n);
-                stack.extend(pool.children(n));
+                pool.push_children(n, &mut stack);
             }
         }
         reach.sort_unstable();

@@ -11,6 +11,11 @@ use rustc_hash::FxHashMap;
 
 use super::node::{Id, Node, Sym};
 
+fn hash_node(node: &Node) -> u64 {
+    use std::hash::BuildHasher;
+    rustc_hash::FxBuildHasher.hash_one(node)
+}
+
 /// The name of the time symbol; always symbol 0 of a pool.
 pub const TIME: &str = "t";
 
@@ -18,12 +23,30 @@ pub const TIME: &str = "t";
 #[derive(Clone, Debug)]
 pub struct Pool {
     nodes: Vec<Node>,
-    index: FxHashMap<Node, Id>,
+    /// Ids by the hash of their node; equality is checked against `nodes`, so nodes are
+    /// stored once.
+    index: hashbrown::HashTable<Id>,
     names: Vec<String>,
     sym_index: FxHashMap<String, Sym>,
     zero: Id,
     one: Id,
     minus_one: Id,
+    /// Memo tables of the simplification passes (results depend only on the node, or for
+    /// `roots` on the set of positive symbols stored alongside).
+    pub(crate) caches: Caches,
+    /// Memo of [`content`](Pool::content) by sum.
+    pub(crate) contents: FxHashMap<Id, (num_rational::BigRational, Id)>,
+    /// Memo of the sign test of sums (the printed-first term is costly to find).
+    pub(crate) negative_sum: std::cell::RefCell<FxHashMap<Id, bool>>,
+}
+
+/// Per-node memo tables of the rewrite passes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Caches {
+    pub expand: FxHashMap<Id, Id>,
+    pub trig: FxHashMap<Id, Id>,
+    pub roots: FxHashMap<Id, Id>,
+    pub roots_positive: Vec<Sym>,
 }
 
 impl Default for Pool {
@@ -37,12 +60,15 @@ impl Pool {
     pub fn new() -> Self {
         let mut pool = Pool {
             nodes: Vec::new(),
-            index: FxHashMap::default(),
+            index: hashbrown::HashTable::new(),
             names: Vec::new(),
             sym_index: FxHashMap::default(),
             zero: Id(0),
             one: Id(0),
             minus_one: Id(0),
+            caches: Caches::default(),
+            contents: FxHashMap::default(),
+            negative_sum: std::cell::RefCell::new(FxHashMap::default()),
         };
         pool.zero = pool.intern(Node::Num(BigRational::zero()));
         pool.one = pool.intern(Node::Num(BigRational::one()));
@@ -54,12 +80,16 @@ impl Pool {
     /// Adds `node` unless an equal node exists; returns its id. Callers guarantee that the
     /// node is canonical (see `build.rs`).
     pub(crate) fn intern(&mut self, node: Node) -> Id {
-        if let Some(&id) = self.index.get(&node) {
+        let hash = hash_node(&node);
+        let nodes = &self.nodes;
+        if let Some(&id) = self.index.find(hash, |&id| nodes[id.index()] == node) {
             return id;
         }
         let id = Id(u32::try_from(self.nodes.len()).expect("more than 2^32 expression nodes"));
-        self.nodes.push(node.clone());
-        self.index.insert(node, id);
+        self.nodes.push(node);
+        let nodes = &self.nodes;
+        self.index
+            .insert_unique(hash, id, |&i| hash_node(&nodes[i.index()]));
         id
     }
 
@@ -173,6 +203,19 @@ impl Pool {
         }
     }
 
+    /// Pushes the children of a node onto `out` (no allocation, for traversals).
+    pub fn push_children(&self, id: Id, out: &mut Vec<Id>) {
+        match self.node(id) {
+            Node::Num(_) | Node::Var(..) | Node::Pi => {}
+            Node::Add(c) | Node::Mul(c) => out.extend_from_slice(c),
+            Node::Pow(b, e) => {
+                out.push(*b);
+                out.push(*e);
+            }
+            Node::Func(_, a) => out.push(*a),
+        }
+    }
+
     /// Every distinct variable (symbol with derivative order) occurring in `id`, sorted by
     /// symbol then order.
     pub fn variables(&self, id: Id) -> Vec<(Sym, u8)> {
@@ -185,7 +228,7 @@ impl Pool {
             }
             match self.node(n) {
                 Node::Var(s, o) => vars.push((*s, *o)),
-                _ => stack.extend(self.children(n)),
+                _ => self.push_children(n, &mut stack),
             }
         }
         vars.sort();

@@ -63,51 +63,73 @@ impl Pool {
         )
     }
 
-    /// The display order of terms in a sum: highest time derivative first, constants last.
+    /// The display order of terms in a sum: highest time derivative first, then like a
+    /// polynomial (higher degree first, then by variable name and its degree), constants
+    /// last. So `m·l²·θ̈ + m·g·l·sin θ`, `a² + 2·a·b + b²`, `l²·ω⁴ − 4·g·l·ω² + 2·g²`.
     pub fn display_cmp_terms(&self, a: Id, b: Id) -> Ordering {
-        self.term_key(a)
-            .cmp(&self.term_key(b))
-            .then_with(|| {
-                let (na, nb) = (self.lead_name(a), self.lead_name(b));
-                match (na, nb) {
-                    (Some(x), Some(y)) => natural_cmp(x, y),
-                    _ => Ordering::Equal,
-                }
+        let (ka, kb) = (self.term_key(a), self.term_key(b));
+        self.display_cmp_keyed(a, &ka, b, &kb)
+    }
+
+    /// The term printed first in a sum (each term's key computed once).
+    pub fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
+        let keyed: Vec<(Id, TermKey<'_>)> = terms.iter().map(|&t| (t, self.term_key(t))).collect();
+        keyed
+            .iter()
+            .min_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb))
+            .map(|(t, _)| *t)
+    }
+
+    fn display_cmp_keyed(&self, a: Id, ka: &TermKey<'_>, b: Id, kb: &TermKey<'_>) -> Ordering {
+        let ((ka, na), (kb, nb)) = (ka, kb);
+        ka.0.cmp(&kb.0)
+            .then(ka.1.cmp(&kb.1))
+            .then(ka.2.cmp(&kb.2))
+            .then_with(|| match (na, nb) {
+                (Some(x), Some(y)) => natural_cmp(x, y),
+                _ => Ordering::Equal,
             })
+            .then(ka.3.cmp(&kb.3))
             .then_with(|| self.cmp_terms(a, b))
     }
 
-    /// (highest derivative order, descending; constants last; degree in that variable,
-    /// descending), so `θ̇₁²` comes before `θ̇₁·θ̇₂`.
-    fn term_key(&self, t: Id) -> (Reverse<u8>, bool, Reverse<i64>) {
+    /// (highest derivative order ↓, constant?, total degree in variables of that order ↓,
+    /// degree in the lead variable ↓) and the lead variable's name.
+    fn term_key(&self, t: Id) -> TermKey<'_> {
         let vars = self.variables(t);
         let max = vars.iter().map(|v| v.1).max().unwrap_or(0);
         let lead = vars
             .iter()
             .filter(|v| v.1 == max)
-            .min_by(|a, b| natural_cmp(self.name(a.0), self.name(b.0)));
-        let degree = lead.map_or(0, |&(s, o)| {
+            .min_by(|a, b| natural_cmp(self.name(a.0), self.name(b.0)))
+            .copied();
+        let degree_of = |pred: &dyn Fn(u32, u8) -> bool| -> i64 {
             self.factors_without_coeff(t)
                 .iter()
                 .map(|&f| match self.node(f) {
-                    Node::Var(x, p) if (*x, *p) == (s, o) => 1,
-                    Node::Pow(b, e) if matches!(self.node(*b), Node::Var(x, p) if (*x, *p) == (s, o)) => {
-                        self.as_num(*e).and_then(|v| v.to_integer().to_i64()).unwrap_or(1)
-                    }
+                    Node::Var(x, p) if pred(x.0, *p) => 1,
+                    Node::Pow(b, e) => match self.node(*b) {
+                        Node::Var(x, p) if pred(x.0, *p) => self
+                            .as_num(*e)
+                            .and_then(|v| v.to_integer().to_i64())
+                            .unwrap_or(1),
+                        _ => 0,
+                    },
                     _ => 0,
                 })
                 .sum()
-        });
-        (Reverse(max), vars.is_empty(), Reverse(degree))
-    }
-
-    fn lead_name(&self, t: Id) -> Option<&str> {
-        let vars = self.variables(t);
-        let max = vars.iter().map(|v| v.1).max()?;
-        vars.iter()
-            .filter(|v| v.1 == max)
-            .map(|v| self.name(v.0))
-            .min_by(|a, b| natural_cmp(a, b))
+        };
+        let total = degree_of(&|_, p| p == max);
+        let lead_degree = lead.map_or(0, |(s, o)| degree_of(&|x, p| x == s.0 && p == o));
+        (
+            (
+                Reverse(max),
+                vars.is_empty(),
+                Reverse(total),
+                Reverse(lead_degree),
+            ),
+            lead.map(|(s, _)| self.name(s)),
+        )
     }
 
     fn is_constant_sum(&self, s: Id) -> bool {
@@ -115,7 +137,7 @@ impl Pool {
         while let Some(n) = stack.pop() {
             match self.node(n) {
                 Node::Func(..) | Node::Var(_, 1..) => return false,
-                _ => stack.extend(self.children(n)),
+                _ => self.push_children(n, &mut stack),
             }
         }
         true
@@ -159,6 +181,12 @@ impl Pool {
             .then_with(|| order::cmp(self, a, b))
     }
 }
+
+/// The sort key of a term in a sum, and the name of its lead variable.
+type TermKey<'a> = (
+    (Reverse<u8>, bool, Reverse<i64>, Reverse<i64>),
+    Option<&'a str>,
+);
 
 /// Masses come first in a product (`m g l`, not `g l m`), as physicists write them.
 fn mass_first(name: &str) -> u8 {

@@ -25,12 +25,24 @@ const MAX_EXPANDED_TERMS: usize = 4096;
 impl Pool {
     /// Simplifies for display. `positive` lists symbols known to be positive (parameters).
     pub fn simplify(&mut self, e: Id, positive: &[Sym]) -> Id {
+        let mut sorted_positive = positive.to_vec();
+        sorted_positive.sort_unstable();
+        if self.caches.roots_positive != sorted_positive {
+            self.caches.roots.clear();
+            self.caches.roots_positive = sorted_positive;
+        }
         let positive: FxHashSet<Sym> = positive.iter().copied().collect();
         let mut cur = e;
         for _ in 0..4 {
             let x = self.expand(cur);
-            let x = self.rewrite(x, &mut |pool, n| pool.positive_roots(n, &positive));
-            let x = self.rewrite(x, &mut |pool, n| pool.trig_identities(n));
+            let mut roots = std::mem::take(&mut self.caches.roots);
+            let x = self.rewrite_cached(x, &mut roots, true, &mut |pool, n| {
+                pool.positive_roots(n, &positive)
+            });
+            self.caches.roots = roots;
+            let mut trig = std::mem::take(&mut self.caches.trig);
+            let x = self.rewrite_cached(x, &mut trig, true, &mut |pool, n| pool.trig_identities(n));
+            self.caches.trig = trig;
             if x == cur {
                 break;
             }
@@ -41,18 +53,41 @@ impl Pool {
 
     /// Rebuilds `e` bottom-up, applying `rule` to every rebuilt node.
     pub fn rewrite(&mut self, e: Id, rule: &mut dyn FnMut(&mut Pool, Id) -> Id) -> Id {
+        let mut cache = FxHashMap::default();
+        self.rewrite_cached(e, &mut cache, false, rule)
+    }
+
+    /// [`rewrite`](Self::rewrite) with a memo table: a node already in `cache` is neither
+    /// visited nor rebuilt again (the rule must depend on the node only). For an
+    /// `idempotent` pass every result is also recorded as its own fixed point, so running
+    /// the pass again on its output costs one lookup.
+    fn rewrite_cached(
+        &mut self,
+        e: Id,
+        cache: &mut FxHashMap<Id, Id>,
+        idempotent: bool,
+        rule: &mut dyn FnMut(&mut Pool, Id) -> Id,
+    ) -> Id {
+        if let Some(&r) = cache.get(&e) {
+            return r;
+        }
         let mut reach: Vec<Id> = Vec::new();
         let mut seen = FxHashSet::default();
         let mut stack = vec![e];
         while let Some(n) = stack.pop() {
             if seen.insert(n) {
                 reach.push(n);
-                stack.extend(self.children(n));
+                if !cache.contains_key(&n) {
+                    self.push_children(n, &mut stack);
+                }
             }
         }
         reach.sort_unstable();
-        let mut new: FxHashMap<Id, Id> = FxHashMap::default();
+        let new = cache;
         for n in reach {
+            if new.contains_key(&n) {
+                continue;
+            }
             let rebuilt = match self.node(n).clone() {
                 Node::Num(_) | Node::Var(..) | Node::Pi => n,
                 Node::Add(ch) => {
@@ -68,13 +103,19 @@ impl Pool {
             };
             let r = rule(self, rebuilt);
             new.insert(n, r);
+            if idempotent {
+                new.insert(r, r);
+            }
         }
         new[&e]
     }
 
     /// Multiplies out products of sums and small powers of sums (rule `expand`).
     pub fn expand(&mut self, e: Id) -> Id {
-        self.rewrite(e, &mut |pool, n| pool.expand_node(n))
+        let mut cache = std::mem::take(&mut self.caches.expand);
+        let r = self.rewrite_cached(e, &mut cache, true, &mut |pool, n| pool.expand_node(n));
+        self.caches.expand = cache;
+        r
     }
 
     fn expand_node(&mut self, n: Id) -> Id {
@@ -308,7 +349,8 @@ impl Pool {
                 if k == l {
                     continue;
                 }
-                let (Node::Func(g1, a), Node::Func(g2, b)) = (self.node(p).clone(), self.node(q).clone())
+                let (Node::Func(g1, a), Node::Func(g2, b)) =
+                    (self.node(p).clone(), self.node(q).clone())
                 else {
                     continue;
                 };
@@ -340,7 +382,11 @@ impl Pool {
                     (Func::Cos, true) | (Func::Sin, false) => self.sub(a, b),
                     _ => self.add(a, b),
                 };
-                let g = if g1 == Func::Cos { Func::Cos } else { Func::Sin };
+                let g = if g1 == Func::Cos {
+                    Func::Cos
+                } else {
+                    Func::Sin
+                };
                 let t = self.func(g, arg);
                 let mut f = rest;
                 f.push(t);
@@ -349,6 +395,59 @@ impl Pool {
             }
         }
         None
+    }
+
+    /// Rule `collect`: terms that differ only in constant factors are combined, with the
+    /// constants factored: `m₁·l₁²·θ̈₁ + m₂·l₁²·θ̈₁` → `(m₁ + m₂)·l₁²·θ̈₁`. `constant` says which
+    /// symbols are constants (parameters). Applied to the top-level sum only.
+    pub fn collect(&mut self, e: Id, constant: &[Sym]) -> Id {
+        let Node::Add(terms) = self.node(e).clone() else {
+            return e;
+        };
+        let is_constant = |pool: &Pool, f: Id| -> bool {
+            let base = match pool.node(f) {
+                Node::Pow(b, e) if pool.as_num(*e).is_some() => *b,
+                _ => f,
+            };
+            match pool.node(base) {
+                Node::Num(_) | Node::Pi => true,
+                Node::Var(s, o) => *o == 0 && constant.contains(s),
+                _ => pool
+                    .variables(f)
+                    .iter()
+                    .all(|&(s, o)| o == 0 && constant.contains(&s)),
+            }
+        };
+        let mut keys: Vec<Id> = Vec::new();
+        let mut groups: FxHashMap<Id, Vec<Id>> = FxHashMap::default();
+        for &t in terms.iter() {
+            let (c, fs) = self.term_factors(t);
+            let (consts, rest): (Vec<Id>, Vec<Id>) =
+                fs.into_iter().partition(|&f| is_constant(self, f));
+            let key = self.product(rest);
+            let cn = self.num(c);
+            let mut cf = consts;
+            cf.push(cn);
+            let coeff = self.product(cf);
+            groups.entry(key).or_insert_with(|| {
+                keys.push(key);
+                Vec::new()
+            });
+            if let Some(g) = groups.get_mut(&key) {
+                g.push(coeff);
+            }
+        }
+        if keys.len() == terms.len() {
+            return e;
+        }
+        let mut out = Vec::with_capacity(keys.len());
+        for k in keys {
+            let cs = groups.remove(&k).unwrap_or_default();
+            let c = self.sum(cs);
+            let c = self.factor_common(c);
+            out.push(self.mul(c, k));
+        }
+        self.sum(out)
     }
 
     /// Pulls the factors common to every term of a sum out in front, for display:
@@ -424,7 +523,8 @@ impl Pool {
         let mut ch = factors;
         ch.retain(|&f| f != self.one());
         ch.push(inner);
-        let (coeff, rest): (Vec<Id>, Vec<Id>) = ch.into_iter().partition(|&f| self.as_num(f).is_some());
+        let (coeff, rest): (Vec<Id>, Vec<Id>) =
+            ch.into_iter().partition(|&f| self.as_num(f).is_some());
         let mut all = coeff;
         let mut rest = rest;
         rest.sort_unstable();

@@ -59,7 +59,11 @@ impl Dynamics {
 
 /// Solves M x = f: Cholesky when M is positive definite, LU otherwise; a singular M is an
 /// error naming the coordinate whose row vanishes (or all of them).
-pub fn solve(m: &DMatrix<f64>, f: &DVector<f64>, names: &[String]) -> Result<DVector<f64>, MechError> {
+pub fn solve(
+    m: &DMatrix<f64>,
+    f: &DVector<f64>,
+    names: &[String],
+) -> Result<DVector<f64>, MechError> {
     if let Some(ch) = m.clone().cholesky() {
         return Ok(ch.solve(f));
     }
@@ -76,6 +80,10 @@ pub fn solve(m: &DMatrix<f64>, f: &DVector<f64>, names: &[String]) -> Result<DVe
         }
     }
     Err(MechError::SingularMass {
-        names: names.iter().map(|n| format!("{n}'")).collect::<Vec<_>>().join(", "),
+        names: names
+            .iter()
+            .map(|n| format!("{n}'"))
+            .collect::<Vec<_>>()
+            .join(", "),
     })
 }

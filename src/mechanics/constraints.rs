@@ -82,9 +82,10 @@ impl System {
         roots.extend(rows.r.iter().copied());
         let prog = self.compile(&roots)?;
         let mut scratch = prog.scratch();
-        prog.run(point, &mut scratch).map_err(|_| MechError::Undefined {
-            what: "the constrained equations".into(),
-        })?;
+        prog.run(point, &mut scratch)
+            .map_err(|_| MechError::Undefined {
+                what: "the constrained equations".into(),
+            })?;
         let out = |k: usize| prog.output(k, &scratch);
         let size = n + m;
         let mut s = DMatrix::<f64>::zeros(size, size);
@@ -106,11 +107,16 @@ impl System {
         let x = s.lu().solve(&rhs).ok_or_else(|| {
             MechError::Invalid("the constraints are not independent at this state".into())
         })?;
-        Ok((x.iter().take(n).copied().collect(), x.iter().skip(n).copied().collect()))
+        Ok((
+            x.iter().take(n).copied().collect(),
+            x.iter().skip(n).copied().collect(),
+        ))
     }
 
     /// The multipliers in closed form (Cramer's rule on the augmented system), for systems
-    /// with at most four unknowns; each as (numerator, denominator), both expanded.
+    /// with at most four unknowns.
+    // Assembling a block matrix writes row i and column i together; an index reads best.
+    #[allow(clippy::needless_range_loop)]
     pub fn multipliers_symbolic(
         &mut self,
         d: &Derivation,

@@ -48,27 +48,36 @@ impl System {
         let l = self.lagrangian;
         let mut steps = Vec::with_capacity(self.n());
         for (i, c) in self.coordinates.clone().iter().enumerate() {
+            // Each step is built from the simplified previous one, so the simplifier's memo
+            // tables carry over and nothing is expanded twice.
             let p = self.pool.diff(l, c.sym, 1);
+            let p = self.simplify(p);
             let dp = self.pool.dt(p, &coords);
+            let dp = self.simplify(dp);
             let dl = self.pool.diff(l, c.sym, 0);
+            let dl = self.simplify(dl);
             let q = self.forces[i];
             let e1 = self.pool.sub(dp, dl);
             let e = self.pool.sub(e1, q);
             steps.push(CoordinateSteps {
-                momentum: self.simplify(p),
-                momentum_dt: self.simplify(dp),
-                force: self.simplify(dl),
+                momentum: p,
+                momentum_dt: dp,
+                force: dl,
                 generalized_force: q,
                 equation: self.simplify(e),
             });
         }
+        // M and f come from already simplified (expanded) expressions: differentiating by a
+        // velocity or setting q'' = 0 cannot create products of sums or new trig pairs, so
+        // collecting the constants is all the tidying they need.
+        let positive = self.parameter_syms();
         let mut mass = Vec::with_capacity(self.n());
         for s in &steps {
             let row: Vec<Id> = coords
                 .iter()
                 .map(|&c| {
                     let d = self.pool.diff(s.momentum, c, 1);
-                    self.simplify(d)
+                    self.pool.collect(d, &positive)
                 })
                 .collect();
             mass.push(row);
@@ -80,7 +89,7 @@ impl System {
             .map(|s| {
                 let e0 = self.pool.substitute(s.equation, &no_acceleration);
                 let f = self.pool.neg(e0);
-                self.simplify(f)
+                self.pool.collect(f, &positive)
             })
             .collect();
         let d = Derivation {
@@ -113,9 +122,25 @@ impl System {
                 continue;
             }
             let m = nalgebra::DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch));
-            let scale = m.amax().max(1e-300);
-            let det = m.clone().lu().determinant();
-            if det.abs() > 1e-10 * scale.powi(n as i32) {
+            // A kinetic energy is positive definite: Cholesky settles it. Otherwise (an
+            // indefinite but invertible M) compare the extreme singular values; a determinant
+            // test would misjudge large, well-posed but ill-conditioned systems.
+            if let Some(ch) = m.clone().cholesky() {
+                // Rounding can let an exactly singular M factor with a tiny pivot.
+                let d = ch.l().diagonal();
+                let (lo, hi) = d
+                    .iter()
+                    .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+                if hi > 0.0 && (lo / hi).powi(2) > 1e-13 {
+                    return Ok(());
+                }
+                continue;
+            }
+            let sv = m.singular_values();
+            let (lo, hi) = sv
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+            if hi > 0.0 && lo > 1e-12 * hi {
                 return Ok(());
             }
         }

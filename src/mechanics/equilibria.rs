@@ -82,7 +82,9 @@ impl Statics {
         let mut base = vec![0.0; 1 + 3 * n];
         base.extend_from_slice(params);
         if params.len() != sys.parameters.len() {
-            return Err(MechError::Invalid("wrong number of parameter values".into()));
+            return Err(MechError::Invalid(
+                "wrong number of parameter values".into(),
+            ));
         }
         Ok(Statics { program, n, base })
     }
@@ -100,7 +102,9 @@ impl Statics {
         let n = self.n;
         let g = DVector::from_fn(n, |i, _| self.program.output(i, scratch));
         let j = DMatrix::from_fn(n, n, |r, c| self.program.output(n + r * n + c, scratch));
-        let m = DMatrix::from_fn(n, n, |r, c| self.program.output(n + n * n + r * n + c, scratch));
+        let m = DMatrix::from_fn(n, n, |r, c| {
+            self.program.output(n + n * n + r * n + c, scratch)
+        });
         Some((g, j, m))
     }
 
@@ -193,7 +197,11 @@ impl System {
             }
             let dup = found.iter().any(|p| {
                 p.iter().zip(&q).zip(&periodic).all(|((a, b), &per)| {
-                    let d = if per { wrap_angle(a - b).abs() } else { (a - b).abs() };
+                    let d = if per {
+                        wrap_angle(a - b).abs()
+                    } else {
+                        (a - b).abs()
+                    };
                     d < 1e-6 * (1.0 + a.abs())
                 })
             });

@@ -9,7 +9,7 @@ pub enum MechError {
     Parse {
         what: String,
         source_text: String,
-        error: ParseError,
+        error: Box<ParseError>,
     },
     #[error("`{name}` is not a coordinate of this system")]
     UnknownCoordinate { name: String },
@@ -34,7 +34,9 @@ impl MechError {
             MechError::Parse { error, .. } => error.help(),
             MechError::UnknownCoordinate { .. } => "list it in --coords".into(),
             MechError::NoKineticTerm { name } => {
-                format!("give {name} a kinetic term such as 1/2*m*{name}'^2, or drop it from the coordinates")
+                format!(
+                    "give {name} a kinetic term such as 1/2*m*{name}'^2, or drop it from the coordinates"
+                )
             }
             MechError::SingularMass { .. } => {
                 "choose independent coordinates, or add the missing kinetic terms".into()

@@ -56,7 +56,12 @@ impl Modes {
 
 impl System {
     /// Normal modes about `q0` with parameter values `params`.
-    pub fn modes_at(&mut self, d: &Derivation, params: &[f64], q0: &[f64]) -> Result<Modes, MechError> {
+    pub fn modes_at(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q0: &[f64],
+    ) -> Result<Modes, MechError> {
         let statics = Statics::new(self, d, params)?;
         let n = self.n();
         let (stability, vals, vecs) = statics.stability(q0)?;
@@ -92,7 +97,12 @@ impl System {
         })
     }
 
-    fn velocity_coupling(&mut self, d: &Derivation, params: &[f64], q0: &[f64]) -> Result<DMatrix<f64>, MechError> {
+    fn velocity_coupling(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q0: &[f64],
+    ) -> Result<DMatrix<f64>, MechError> {
         let n = self.n();
         let coords = self.coordinate_syms();
         let mut roots = Vec::with_capacity(n * n);
@@ -104,10 +114,13 @@ impl System {
         let prog = self.compile(&roots)?;
         let x = self.rest_point(params, q0);
         let mut scratch = prog.scratch();
-        prog.run(&x, &mut scratch).map_err(|_| MechError::Undefined {
-            what: "the linearized equations".into(),
-        })?;
-        Ok(DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch)))
+        prog.run(&x, &mut scratch)
+            .map_err(|_| MechError::Undefined {
+                what: "the linearized equations".into(),
+            })?;
+        Ok(DMatrix::from_fn(n, n, |r, c| {
+            prog.output(r * n + c, &scratch)
+        }))
     }
 
     /// The standard-layout point at rest at `q0`.
@@ -140,9 +153,10 @@ impl System {
         let prog = self.compile(&roots)?;
         let x = self.rest_point(params, q0);
         let mut scratch = prog.scratch();
-        prog.run(&x, &mut scratch).map_err(|_| MechError::Undefined {
-            what: "the linearized equations".into(),
-        })?;
+        prog.run(&x, &mut scratch)
+            .map_err(|_| MechError::Undefined {
+                what: "the linearized equations".into(),
+            })?;
         let m = DMatrix::from_fn(n, n, |r, cc| prog.output(r * n + cc, &scratch));
         let fq = DMatrix::from_fn(n, n, |r, cc| prog.output(n * n + r * n + cc, &scratch));
         let minv = m
@@ -191,7 +205,11 @@ impl System {
     }
 
     /// Symbolic small oscillations about `at` (one expression per coordinate).
-    pub fn symbolic_modes(&mut self, d: &Derivation, at: &[Id]) -> Result<SymbolicModes, MechError> {
+    pub fn symbolic_modes(
+        &mut self,
+        d: &Derivation,
+        at: &[Id],
+    ) -> Result<SymbolicModes, MechError> {
         let n = self.n();
         let coords = self.coordinate_syms();
         let zero = self.pool.zero();

@@ -7,9 +7,7 @@ use rustc_hash::FxHashMap;
 use super::bodies::{Body, Potential, kinetic_energy, potential_energy};
 use super::error::MechError;
 use super::sample::Sampler;
-use crate::expr::{
-    Context, Dimension, Id, Pool, Program, Sym, read_expr,
-};
+use crate::expr::{Context, Dimension, Id, Pool, Program, Sym, read_expr};
 
 /// A generalized coordinate.
 #[derive(Clone, Debug)]
@@ -190,7 +188,7 @@ impl System {
         read_expr(text, ctx, &mut self.pool).map_err(|error| MechError::Parse {
             what: what.to_string(),
             source_text: text.to_string(),
-            error,
+            error: Box::new(error),
         })
     }
 
@@ -207,7 +205,11 @@ impl System {
         }
         for (i, p) in parts.iter().enumerate() {
             if !p.trim().is_empty() {
-                self.forces[i] = self.read(p, &format!("the force on {}", self.coordinates[i].name), &ctx)?;
+                self.forces[i] = self.read(
+                    p,
+                    &format!("the force on {}", self.coordinates[i].name),
+                    &ctx,
+                )?;
             }
         }
         self.collect_parameters();
@@ -218,13 +220,14 @@ impl System {
     /// velocity, nonholonomic when it is linear in the velocities.
     pub fn add_constraint(&mut self, text: &str) -> Result<(), MechError> {
         let ctx = self.open_context();
-        let (lhs, rhs) = crate::expr::read_equation(text, &ctx, &mut self.pool).map_err(|error| {
-            MechError::Parse {
-                what: "a constraint".into(),
-                source_text: text.to_string(),
-                error,
-            }
-        })?;
+        let (lhs, rhs) =
+            crate::expr::read_equation(text, &ctx, &mut self.pool).map_err(|error| {
+                MechError::Parse {
+                    what: "a constraint".into(),
+                    source_text: text.to_string(),
+                    error: Box::new(error),
+                }
+            })?;
         let e = self.pool.sub(lhs, rhs);
         let vars = self.pool.variables(e);
         let max_order = vars.iter().map(|v| v.1).max().unwrap_or(0);
@@ -304,10 +307,12 @@ impl System {
         self.parameters.iter().map(|p| p.sym).collect()
     }
 
-    /// Simplifies for display, with parameters taken as positive.
+    /// Simplifies for display, with parameters taken as positive, and collects terms that
+    /// differ only in parameters.
     pub fn simplify(&mut self, e: Id) -> Id {
         let positive = self.parameter_syms();
-        self.pool.simplify(e, &positive)
+        let s = self.pool.simplify(e, &positive);
+        self.pool.collect(s, &positive)
     }
 
     /// The standard input layout of compiled programs: t, then each coordinate's q, q', q'',

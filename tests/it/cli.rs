@@ -82,3 +82,247 @@ fn usage_errors_exit_2() {
     let (code, _, _) = lagrange(&["no-such-command"]);
     assert_eq!(code, 2);
 }
+
+const DOUBLE_PENDULUM: &str = "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + m2*l1*l2*theta1'*theta2'*cos(theta1-theta2) + (m1+m2)*g*l1*cos(theta1) + m2*g*l2*cos(theta2)";
+
+#[test]
+fn derive_prints_every_step() {
+    let (code, out, err) = lagrange(&[
+        "derive",
+        "--lagrangian",
+        "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)",
+        "--coords",
+        "theta",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    insta::assert_snapshot!("derive_simple_pendulum", out);
+    let (code, out, _) = lagrange(&[
+        "derive",
+        "--lagrangian",
+        DOUBLE_PENDULUM,
+        "--coords",
+        "theta1,theta2",
+    ]);
+    assert_eq!(code, 0);
+    insta::assert_snapshot!("derive_double_pendulum", out);
+}
+
+#[test]
+fn derive_json_has_the_documented_fields() {
+    let (code, out, _) = lagrange(&[
+        "derive",
+        "--lagrangian",
+        DOUBLE_PENDULUM,
+        "--coords",
+        "theta1,theta2",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "coordinates",
+        "parameters",
+        "equations",
+        "mass_matrix",
+        "forcing",
+        "momenta",
+        "energy_function",
+        "energy_conserved",
+        "energy_is_total",
+        "cyclic",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(v["coordinates"], serde_json::json!(["theta1", "theta2"]));
+    assert_eq!(v["mass_matrix"].as_array().unwrap().len(), 2);
+    assert_eq!(v["energy_conserved"], true);
+    // Every expression is plain syntax that lagrange reads back.
+    let eq = v["equations"][0].as_str().unwrap();
+    let (code, _, _) = lagrange(&["read", eq, "--coords", "theta1,theta2"]);
+    assert_eq!(code, 0);
+}
+
+#[test]
+fn derive_bead_wire_energy_is_not_t_plus_v() {
+    let (code, out, _) = lagrange(&[
+        "derive",
+        "--kinetic",
+        "1/2*m*(r'^2 + r^2*omega^2)",
+        "--potential",
+        "0",
+        "--coords",
+        "r",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["energy_conserved"], true);
+    assert_eq!(v["energy_is_total"], false);
+}
+
+#[test]
+fn derive_with_constraint_and_format_latex() {
+    let (code, out, err) = lagrange(&[
+        "derive",
+        "--lagrangian",
+        "1/2*m*(x'^2 + y'^2) - m*g*y",
+        "--coords",
+        "x,y",
+        "--constraint",
+        "x^2 + y^2 = l^2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("λ1 = "), "{out}");
+    let (code, out, _) = lagrange(&[
+        "derive",
+        "--lagrangian",
+        "1/2*m*x'^2 - 1/2*k*x^2",
+        "--coords",
+        "x",
+        "--format",
+        "latex",
+    ]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("\\begin{align*}"), "{out}");
+    assert!(out.contains("\\ddot{x}"), "{out}");
+}
+
+#[test]
+fn modes_numeric_and_symbolic() {
+    let (code, out, err) = lagrange(&[
+        "modes",
+        "--lagrangian",
+        DOUBLE_PENDULUM,
+        "--coords",
+        "theta1,theta2",
+        "--params",
+        "m1=m,m2=m,l1=l,l2=l",
+        "--at",
+        "theta1=0,theta2=0",
+        "--symbolic",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("ω² = (2 − √2)·g/l"), "{out}");
+    assert!(out.contains("ω² = (2 + √2)·g/l"), "{out}");
+    let (code, out, _) = lagrange(&[
+        "modes",
+        "--lagrangian",
+        DOUBLE_PENDULUM,
+        "--coords",
+        "theta1,theta2",
+        "--params",
+        "m1=1,m2=1,l1=1,l2=1,g=9.81",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let eqs = v["equilibria"].as_array().unwrap();
+    assert_eq!(eqs.len(), 4, "{out}");
+    let bottom = &eqs[0];
+    assert_eq!(bottom["stable"], true);
+    let f: Vec<f64> = bottom["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!((f[0] - ((2.0 - 2f64.sqrt()) * 9.81f64).sqrt()).abs() < 1e-9);
+    assert!((f[1] - ((2.0 + 2f64.sqrt()) * 9.81f64).sqrt()).abs() < 1e-9);
+}
+
+#[test]
+fn bad_mechanics_input_exits_2_with_one_clear_line() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "derive",
+                "--lagrangian",
+                "1/2*m*x'^2 - k*y^2",
+                "--coords",
+                "x,y",
+            ],
+            "L does not depend on y' quadratically",
+        ),
+        (
+            &[
+                "derive",
+                "--lagrangian",
+                "1/2*m*(x' + y')^2",
+                "--coords",
+                "x,y",
+            ],
+            "mass matrix is singular",
+        ),
+        (
+            &["derive", "--lagrangian", "1/2*m*x'^2 +* k", "--coords", "x"],
+            "expected a value",
+        ),
+        (
+            &[
+                "modes",
+                "--lagrangian",
+                "1/2*m*x'^2 - 1/2*k*x^2",
+                "--coords",
+                "x",
+                "--params",
+                "m=1",
+            ],
+            "parameter `k` has no value",
+        ),
+        (
+            &[
+                "modes",
+                "--lagrangian",
+                "1/2*m*x'^2 - 1/2*k*x^2",
+                "--coords",
+                "x",
+                "--params",
+                "m=1, k=abc+",
+            ],
+            "expected a value",
+        ),
+        (
+            &[
+                "modes",
+                "--lagrangian",
+                "1/2*m*x'^2 - 1/2*k*x^2",
+                "--coords",
+                "x",
+                "--params",
+                "m=1, k=1",
+                "--at",
+                "y=0",
+            ],
+            "`y` is not a coordinate",
+        ),
+        (
+            &[
+                "modes",
+                "--lagrangian",
+                "1/2*m*x'^2 - F*x",
+                "--coords",
+                "x",
+                "--params",
+                "m=1, F=1",
+            ],
+            "no equilibrium",
+        ),
+        (
+            &[
+                "modes",
+                "--lagrangian",
+                "1/2*m*x'^2",
+                "--coords",
+                "x",
+                "--params",
+                "m",
+            ],
+            "should look like name=value",
+        ),
+    ];
+    for (args, want) in cases {
+        let (code, out, err) = lagrange(args);
+        assert_eq!(code, 2, "{args:?}: {out}{err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}

@@ -54,7 +54,7 @@ fn from_points(
         })
         .collect();
     let ctx = Context::open().with_coordinates(coords.iter().map(|c| c.0));
-    let mut rd = |s: &str, pool: &mut Pool| read_expr(s, &ctx, pool).unwrap();
+    let rd = |s: &str, pool: &mut Pool| read_expr(s, &ctx, pool).unwrap();
     let bodies: Vec<Body> = points
         .iter()
         .map(|(m, pos)| Body::Point {
@@ -76,22 +76,37 @@ const PI: f64 = std::f64::consts::PI;
 
 #[test]
 fn simple_pendulum() {
-    let mut sys = System::from_lagrangian("1/2*m*l^2*theta'^2 + m*g*l*cos(theta)", &["theta"]).unwrap();
+    let mut sys =
+        System::from_lagrangian("1/2*m*l^2*theta'^2 + m*g*l*cos(theta)", &["theta"]).unwrap();
     let d = sys.derive().unwrap();
     same(&mut sys, d.steps[0].momentum, "m*l^2*theta'");
     same(&mut sys, d.steps[0].force, "-m*g*l*sin(theta)");
-    same(&mut sys, d.steps[0].equation, "m*l^2*theta'' + m*g*l*sin(theta)");
+    same(
+        &mut sys,
+        d.steps[0].equation,
+        "m*l^2*theta'' + m*g*l*sin(theta)",
+    );
     same(&mut sys, d.mass[0][0], "m*l^2");
     same(&mut sys, d.forcing[0], "-m*g*l*sin(theta)");
     let e = sys.energy(&d);
-    same(&mut sys, e.function, "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)");
+    same(
+        &mut sys,
+        e.function,
+        "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)",
+    );
     assert!(e.conserved && e.is_total && e.cyclic.is_empty());
     let p = values(&sys, &[("m", 1.3), ("l", 0.7), ("g", 9.81)]);
     let eq = sys.equilibria(&d, &p).unwrap();
     let pts: Vec<(f64, Stability)> = eq.points.iter().map(|(q, s)| (q[0], *s)).collect();
     assert_eq!(pts.len(), 2, "{pts:?}");
-    assert!(close(pts[0].0, 0.0) && pts[0].1 == Stability::Stable, "{pts:?}");
-    assert!(close(pts[1].0, PI) && pts[1].1 == Stability::Unstable, "{pts:?}");
+    assert!(
+        close(pts[0].0, 0.0) && pts[0].1 == Stability::Stable,
+        "{pts:?}"
+    );
+    assert!(
+        close(pts[1].0, PI) && pts[1].1 == Stability::Unstable,
+        "{pts:?}"
+    );
     let modes = sys.modes_at(&d, &p, &[0.0]).unwrap();
     assert!(close(modes.frequencies[0], (9.81f64 / 0.7).sqrt()));
     let at_top = sys.modes_at(&d, &p, &[PI]).unwrap();
@@ -133,7 +148,13 @@ fn double_pendulum() -> System {
         &[("theta1", true, (-PI, PI)), ("theta2", true, (-PI, PI))],
         &[
             ("m1", &["l1*sin(theta1)", "-l1*cos(theta1)"]),
-            ("m2", &["l1*sin(theta1) + l2*sin(theta2)", "-l1*cos(theta1) - l2*cos(theta2)"]),
+            (
+                "m2",
+                &[
+                    "l1*sin(theta1) + l2*sin(theta2)",
+                    "-l1*cos(theta1) - l2*cos(theta2)",
+                ],
+            ),
         ],
         Some(("g", 1)),
     )
@@ -182,23 +203,41 @@ fn double_pendulum_modes() {
     assert_eq!(sm.omega_squared.len(), 2);
     same(&mut sys, sm.omega_squared[0], "(2 - sqrt(2))*g/l");
     same(&mut sys, sm.omega_squared[1], "(2 + sqrt(2))*g/l");
-    let shown: Vec<String> = sm.omega_squared.iter().map(|&w| sys.pool.unicode(w)).collect();
+    let shown: Vec<String> = sm
+        .omega_squared
+        .iter()
+        .map(|&w| sys.pool.unicode(w))
+        .collect();
     assert_eq!(shown, vec!["(2 − √2)·g/l", "(2 + √2)·g/l"]);
     let p = values(&sys, &[("m", 0.8), ("l", 1.2), ("g", 9.81)]);
     let modes = sys.modes_at(&d, &p, &[0.0, 0.0]).unwrap();
     let gl = 9.81 / 1.2;
-    assert!(close(modes.frequencies[0], ((2.0 - 2f64.sqrt()) * gl).sqrt()));
-    assert!(close(modes.frequencies[1], ((2.0 + 2f64.sqrt()) * gl).sqrt()));
+    assert!(close(
+        modes.frequencies[0],
+        ((2.0 - 2f64.sqrt()) * gl).sqrt()
+    ));
+    assert!(close(
+        modes.frequencies[1],
+        ((2.0 + 2f64.sqrt()) * gl).sqrt()
+    ));
     let r0 = modes.modes[0].shape[1] / modes.modes[0].shape[0];
     let r1 = modes.modes[1].shape[1] / modes.modes[1].shape[0];
     assert!(close(r0, 2f64.sqrt()), "slow mode in phase, ratio √2: {r0}");
-    assert!(close(r1, -(2f64.sqrt())), "fast mode antiphase, ratio −√2: {r1}");
+    assert!(
+        close(r1, -(2f64.sqrt())),
+        "fast mode antiphase, ratio −√2: {r1}"
+    );
     let names = vec!["theta1".to_string(), "theta2".to_string()];
     assert!(modes.describe(&names)[0].starts_with("in phase"));
     assert!(modes.describe(&names)[1].starts_with("antiphase"));
     // The notes' characteristic equation ω⁴ − 4(g/l)ω² + 2(g/l)² = 0, up to a factor m²l⁴.
     let ctx = sys.open_context();
-    let want = read_expr("m^2*l^4*(omega^4 - 4*g/l*omega^2 + 2*g^2/l^2)", &ctx, &mut sys.pool).unwrap();
+    let want = read_expr(
+        "m^2*l^4*(omega^4 - 4*g/l*omega^2 + 2*g^2/l^2)",
+        &ctx,
+        &mut sys.pool,
+    )
+    .unwrap();
     let (a, b) = (sys.pool.expand(sm.characteristic), sys.pool.expand(want));
     assert_eq!(a, b, "{}", sys.pool.unicode(sm.characteristic));
 }
@@ -214,14 +253,21 @@ fn atwood_machine() {
     let a = dynamics.accelerations(&point, &mut scratch).unwrap();
     assert!(close(a[0], (3.0 - 1.0) / (3.0 + 1.0) * 9.81));
     // Tension by a multiplier: both heights as coordinates, string constraint y1 + y2 = c.
-    let mut sys = System::from_lagrangian("1/2*m1*y1'^2 + 1/2*m2*y2'^2 - m1*g*y1 - m2*g*y2", &["y1", "y2"]).unwrap();
+    let mut sys = System::from_lagrangian(
+        "1/2*m1*y1'^2 + 1/2*m2*y2'^2 - m1*g*y1 - m2*g*y2",
+        &["y1", "y2"],
+    )
+    .unwrap();
     sys.add_constraint("y1 + y2 = c").unwrap();
     let d = sys.derive().unwrap();
     let rows = sys.constraint_rows();
     let lambda = sys.multipliers_symbolic(&d, &rows).unwrap();
     same(&mut sys, lambda[0], "2*m1*m2*g/(m1 + m2)");
     let mut point = vec![0.0; 7];
-    point.extend(values(&sys, &[("c", 1.0), ("g", 9.81), ("m1", 3.0), ("m2", 1.0)]));
+    point.extend(values(
+        &sys,
+        &[("c", 1.0), ("g", 9.81), ("m1", 3.0), ("m2", 1.0)],
+    ));
     let (acc, lam) = sys.multipliers_at(&d, &rows, &point).unwrap();
     assert!(close(lam[0], 2.0 * 3.0 * 1.0 * 9.81 / 4.0));
     assert!(close(acc[0], -acc[1]));
@@ -246,7 +292,11 @@ fn pendulum_rod_tension_from_a_multiplier() {
         assert!(close(tension, want.abs()), "{tension} vs {want}");
     }
     let symbolic = sys.multipliers_symbolic(&d, &rows).unwrap();
-    same(&mut sys, symbolic[0], "m*(g*y - x'^2 - y'^2)/(2*(x^2 + y^2))");
+    same(
+        &mut sys,
+        symbolic[0],
+        "m*(g*y - x'^2 - y'^2)/(2*(x^2 + y^2))",
+    );
 }
 
 #[test]
@@ -255,7 +305,10 @@ fn rolling_disk_nonholonomic() {
     let mut sys = System::from_lagrangian("1/2*M*x'^2 + 1/4*M*R^2*phi'^2", &["x", "phi"]).unwrap();
     sys.set_forces("F; 0").unwrap();
     sys.add_constraint("x' - R*phi' = 0").unwrap();
-    assert_eq!(sys.constraints[0].kind, lagrange::mechanics::ConstraintKind::Nonholonomic);
+    assert_eq!(
+        sys.constraints[0].kind,
+        lagrange::mechanics::ConstraintKind::Nonholonomic
+    );
     let d = sys.derive().unwrap();
     let rows = sys.constraint_rows();
     let mut point = vec![0.0; 7];
@@ -301,7 +354,8 @@ fn bead_on_rotating_parabola() {
 
 #[test]
 fn spring_on_incline() {
-    let mut sys = System::from_lagrangian("1/2*m*x'^2 - 1/2*k*x^2 + m*g*x*sin(alpha)", &["x"]).unwrap();
+    let mut sys =
+        System::from_lagrangian("1/2*m*x'^2 - 1/2*k*x^2 + m*g*x*sin(alpha)", &["x"]).unwrap();
     let d = sys.derive().unwrap();
     let ctx = sys.open_context();
     let x0 = read_expr("m*g*sin(alpha)/k", &ctx, &mut sys.pool).unwrap();
@@ -310,7 +364,10 @@ fn spring_on_incline() {
     assert!(!sys.verify_equilibrium(&d, &[wrong]).unwrap());
     let sm = sys.symbolic_modes(&d, &[x0]).unwrap();
     same(&mut sys, sm.omega_squared[0], "k/m");
-    let p = values(&sys, &[("alpha", 0.4), ("g", 9.81), ("k", 20.0), ("m", 1.5)]);
+    let p = values(
+        &sys,
+        &[("alpha", 0.4), ("g", 9.81), ("k", 20.0), ("m", 1.5)],
+    );
     let eq = sys.equilibria(&d, &p).unwrap();
     assert_eq!(eq.points.len(), 1);
     assert!(close(eq.points[0].0[0], 1.5 * 9.81 * f64::sin(0.4) / 20.0));
@@ -334,8 +391,14 @@ fn charged_particle_in_a_field_is_gyroscopic() {
     let want = [base - c, base + c];
     // Eigenvalues ±iω₋, ±iω₊: two frequencies.
     assert_eq!(modes.frequencies.len(), 2, "{modes:?}");
-    assert!(modes.frequencies.iter().any(|&f| close(f, want[0])), "{modes:?}");
-    assert!(modes.frequencies.iter().any(|&f| close(f, want[1])), "{modes:?}");
+    assert!(
+        modes.frequencies.iter().any(|&f| close(f, want[0])),
+        "{modes:?}"
+    );
+    assert!(
+        modes.frequencies.iter().any(|&f| close(f, want[1])),
+        "{modes:?}"
+    );
 }
 
 #[test]
@@ -345,7 +408,8 @@ fn damping_breaks_energy_conservation_and_cyclic_coordinates_conserve_momentum()
     let d = sys.derive().unwrap();
     same(&mut sys, d.steps[0].equation, "m*x'' + k*x + b*x'");
     assert!(!sys.energy(&d).conserved);
-    let mut sys = System::from_lagrangian("1/2*m*(r'^2 + r^2*phi'^2) + k/r", &["r", "phi"]).unwrap();
+    let mut sys =
+        System::from_lagrangian("1/2*m*(r'^2 + r^2*phi'^2) + k/r", &["r", "phi"]).unwrap();
     let d = sys.derive().unwrap();
     let e = sys.energy(&d);
     assert_eq!(e.cyclic, vec![1]);
@@ -367,7 +431,12 @@ fn degenerate_systems_are_named() {
         MechError::NoKineticTerm { name: "y".into() }
     );
     let mut sys = System::from_lagrangian("1/2*m*(x' + y')^2", &["x", "y"]).unwrap();
-    assert!(matches!(sys.derive().unwrap_err(), MechError::SingularMass { .. }));
-    let err = sys.substitute_parameters(&[("zz".into(), "1".into())]).unwrap_err();
+    assert!(matches!(
+        sys.derive().unwrap_err(),
+        MechError::SingularMass { .. }
+    ));
+    let err = sys
+        .substitute_parameters(&[("zz".into(), "1".into())])
+        .unwrap_err();
     assert!(err.to_string().contains("not a parameter"), "{err}");
 }
