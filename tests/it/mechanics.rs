@@ -440,3 +440,87 @@ fn degenerate_systems_are_named() {
         .unwrap_err();
     assert!(err.to_string().contains("not a parameter"), "{err}");
 }
+
+#[test]
+fn rotor_and_spring_bodies() {
+    use lagrange::mechanics::bodies::Anchor;
+    // Atwood machine with a pulley of inertia I and radius R: a = (m1 − m2) g / (m1 + m2 + I/R²).
+    let mut pool = Pool::new();
+    let x = Coordinate {
+        name: "x".into(),
+        sym: pool.symbol("x"),
+        periodic: false,
+        range: (-2.0, 2.0),
+    };
+    let ctx = Context::open().with_coordinates(["x"]);
+    let mut rd = |s: &str| read_expr(s, &ctx, &mut pool).unwrap();
+    let bodies = vec![
+        Body::Point {
+            mass: rd("m1"),
+            position: vec![rd("0"), rd("-x")],
+        },
+        Body::Point {
+            mass: rd("m2"),
+            position: vec![rd("1"), rd("x")],
+        },
+        Body::Rotor {
+            inertia: rd("I"),
+            angle: rd("x/R"),
+        },
+    ];
+    let g = rd("g");
+    let mut sys = System::from_bodies(pool, vec![x], &bodies, &[Potential::Gravity { g, axis: 1 }]);
+    let d = sys.derive().unwrap();
+    let dynamics = lagrange::mechanics::accel::Dynamics::new(&sys, &d).unwrap();
+    let mut point = vec![0.0; 4];
+    point.extend(values(
+        &sys,
+        &[
+            ("I", 0.3),
+            ("R", 0.2),
+            ("g", 9.81),
+            ("m1", 3.0),
+            ("m2", 1.0),
+        ],
+    ));
+    let mut scratch = dynamics.scratch();
+    let a = dynamics.accelerations(&point, &mut scratch).unwrap();
+    assert!(close(a[0], 2.0 * 9.81 / (4.0 + 0.3 / 0.04)), "{a:?}");
+
+    // A mass on a spring (natural length L0) to a fixed anchor, along a line: equilibria at
+    // ±L0 (stable) and the anchor itself (unstable), ω = √(k/m).
+    let mut pool = Pool::new();
+    let x = Coordinate {
+        name: "x".into(),
+        sym: pool.symbol("x"),
+        periodic: false,
+        range: (-3.0, 3.0),
+    };
+    let ctx = Context::open().with_coordinates(["x"]);
+    let mut rd = |s: &str| read_expr(s, &ctx, &mut pool).unwrap();
+    let bodies = vec![Body::Point {
+        mass: rd("m"),
+        position: vec![rd("x"), rd("0")],
+    }];
+    let spring = Potential::Spring {
+        k: rd("k"),
+        natural: rd("L0"),
+        a: Anchor::Body(0),
+        b: Anchor::Fixed(vec![rd("0"), rd("0")]),
+    };
+    let mut sys = System::from_bodies(pool, vec![x], &bodies, &[spring]);
+    let v = sys.potential.unwrap();
+    same(&mut sys, v, "1/2*k*(abs(x) - L0)^2");
+    let d = sys.derive().unwrap();
+    let p = values(&sys, &[("L0", 1.5), ("k", 8.0), ("m", 2.0)]);
+    let eq = sys.equilibria(&d, &p).unwrap();
+    let xs: Vec<f64> = eq.points.iter().map(|(q, _)| q[0]).collect();
+    assert_eq!(
+        xs.len(),
+        2,
+        "{xs:?} (x = 0 is a kink of |x|, not a smooth equilibrium)"
+    );
+    assert!(close(xs[0], -1.5) && close(xs[1], 1.5), "{xs:?}");
+    let modes = sys.modes_at(&d, &p, &[1.5]).unwrap();
+    assert!(close(modes.frequencies[0], 2.0));
+}
