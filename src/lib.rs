@@ -5,10 +5,14 @@
 //!   simplify, print, dimensions;
 //! - [`mechanics`]: Euler–Lagrange equations, accelerations, conserved quantities,
 //!   constraint forces, equilibria and normal modes;
+//! - [`check`]: numeric equivalence of answers (sampling, relations, accelerations);
+//! - [`bank`]: the problem format, loading, verification and the embedded bank;
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face.
 //!
 //! `src/main.rs` is a thin command-line face over this library.
 
+pub mod bank;
+pub mod check;
 pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;

@@ -279,14 +279,5 @@ fn modes_report(args: &ModesArgs) -> Result<String, MechError> {
 }
 
 fn fmt_num(x: f64) -> String {
-    // Angles at equilibria are often multiples of π/2; say so.
-    let pi = std::f64::consts::PI;
-    for (k, name) in [(1.0, "π"), (-1.0, "−π"), (0.5, "π/2"), (-0.5, "−π/2")] {
-        if (x - k * pi).abs() < 1e-9 {
-            return name.to_string();
-        }
-    }
-    let s = format!("{x:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-    if s == "-0" { "0".into() } else { s }
+    lagrange::check::compare::fmt_value(x)
 }

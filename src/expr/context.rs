@@ -205,6 +205,10 @@ fn closest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<
         if c == name {
             continue;
         }
+        // A difference of case only (`M` for `m`) is the likeliest slip of all.
+        if c.eq_ignore_ascii_case(name) {
+            return Some(c.to_string());
+        }
         let d = strsim::damerau_levenshtein(name, c);
         if d <= limit && best.is_none_or(|(bd, _)| d < bd) {
             best = Some((d, c));

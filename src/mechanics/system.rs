@@ -391,7 +391,10 @@ impl System {
 
     /// Values for the parameters from `name = expr` pairs; an expression may use the other
     /// parameters (`m1 = m`), and those that remain become the system's new parameters.
-    pub fn substitute_parameters(&mut self, values: &[(String, String)]) -> Result<(), MechError> {
+    pub fn substitute_parameters(
+        &mut self,
+        values: &[(String, String)],
+    ) -> Result<FxHashMap<(Sym, u8), Id>, MechError> {
         let ctx = self.open_context();
         let mut map: FxHashMap<(Sym, u8), Id> = FxHashMap::default();
         for (name, text) in values {
@@ -430,7 +433,7 @@ impl System {
             .collect();
         self.parameters.retain(|p| !map.contains_key(&(p.sym, 0)));
         self.collect_parameters();
-        Ok(())
+        Ok(map)
     }
 }
 

@@ -1,0 +1,37 @@
+//! A finding: something wrong with a problem file, located by file, part and line.
+
+use std::fmt;
+
+/// One problem found in a problem file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Finding {
+    pub file: String,
+    /// The problem id, when the file got far enough to have one.
+    pub problem: Option<String>,
+    /// The part id, when the finding is about a part.
+    pub part: Option<String>,
+    /// 1-based line in the file.
+    pub line: usize,
+    /// A stable code, e.g. `wrong-eom`.
+    pub code: &'static str,
+    pub message: String,
+}
+
+impl fmt::Display for Finding {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}: ", self.file, self.line)?;
+        if let Some(p) = &self.part {
+            write!(f, "part `{p}`: ")?;
+        }
+        write!(f, "{} [{}]", self.message, self.code)
+    }
+}
+
+/// The 1-based line of byte `offset` in `text`.
+pub fn line_of(text: &str, offset: usize) -> usize {
+    text.as_bytes()[..offset.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}

@@ -1,0 +1,534 @@
+//! A loaded problem: its system (built by the mechanics engine from the Lagrangian or the
+//! bodies), dimensions, assumptions and parts.
+
+use crate::check::Assumption;
+use crate::expr::{Context, Dimension, Dimensions, Id, Pool, read_expr};
+use crate::mechanics::System;
+use crate::mechanics::bodies::{Anchor, Body, Potential};
+use crate::mechanics::system::{Coordinate, Parameter};
+
+use super::finding::{Finding, line_of};
+use super::schema::{AnchorSpec, AnswerSpec, PartSpec, ProblemFile};
+
+/// The kinds of part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PartKind {
+    Expression,
+    Lagrangian,
+    Equation,
+    Equations,
+    Equilibria,
+    Frequencies,
+    Values,
+    ConstraintForce,
+}
+
+impl PartKind {
+    fn parse(s: &str) -> Option<PartKind> {
+        Some(match s {
+            "expression" => PartKind::Expression,
+            "lagrangian" => PartKind::Lagrangian,
+            "equation" => PartKind::Equation,
+            "equations" => PartKind::Equations,
+            "equilibria" => PartKind::Equilibria,
+            "frequencies" => PartKind::Frequencies,
+            "values" => PartKind::Values,
+            "constraint-force" => PartKind::ConstraintForce,
+            _ => return None,
+        })
+    }
+
+    /// The name used in problem files.
+    pub fn name(self) -> &'static str {
+        match self {
+            PartKind::Expression => "expression",
+            PartKind::Lagrangian => "lagrangian",
+            PartKind::Equation => "equation",
+            PartKind::Equations => "equations",
+            PartKind::Equilibria => "equilibria",
+            PartKind::Frequencies => "frequencies",
+            PartKind::Values => "values",
+            PartKind::ConstraintForce => "constraint-force",
+        }
+    }
+}
+
+/// The physical quantity an expression part asks for, which verification derives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    Kinetic,
+    Potential,
+    Lagrangian,
+    /// The momentum conjugate to coordinate i.
+    Momentum(usize),
+    EnergyFunction,
+    /// The multiplier of constraint j.
+    Multiplier(usize),
+    /// The acceleration of coordinate i.
+    Acceleration(usize),
+    /// Nothing the engine derives (checked against the reference answer only).
+    None,
+}
+
+/// A part of a problem.
+#[derive(Clone, Debug)]
+pub struct Part {
+    pub id: String,
+    pub kind: PartKind,
+    pub prompt: String,
+    /// Reference answer items (one for a single expression or equation).
+    pub answers: Vec<String>,
+    pub hints: Vec<String>,
+    pub points: f64,
+    pub substitute: Vec<(String, String)>,
+    pub at: Vec<(String, String)>,
+    pub up_to_constant: bool,
+    pub wrong: Vec<String>,
+    pub tolerance: f64,
+    pub stability: Vec<String>,
+    pub quantity: Quantity,
+    pub dimension: Option<Dimension>,
+    /// Line of the part in its file.
+    pub line: usize,
+}
+
+/// A problem ready to check answers against.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    pub file: String,
+    pub id: String,
+    pub title: String,
+    pub source: String,
+    pub statement: String,
+    pub system: System,
+    pub dims: Dimensions,
+    pub assumptions: Vec<Assumption>,
+    pub parts: Vec<Part>,
+    /// L as written in the file, when it gives one.
+    pub stated_lagrangian: Option<Id>,
+    /// Line of the `lagrangian` key (or of the first body).
+    pub lagrangian_line: usize,
+}
+
+impl Problem {
+    /// The part with this id.
+    pub fn part(&self, id: &str) -> Option<&Part> {
+        self.parts.iter().find(|p| p.id == id)
+    }
+
+    /// The closed reading context of the problem (its coordinates and parameters).
+    pub fn context(&self) -> Context {
+        self.system.context()
+    }
+}
+
+/// Builds a problem from a parsed file. Every error is a finding with a line.
+pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding> {
+    let id = pf.id.get_ref().clone();
+    let fail = |line: usize, code: &'static str, message: String| Finding {
+        file: file.to_string(),
+        problem: Some(id.clone()),
+        part: None,
+        line,
+        code,
+        message,
+    };
+    let id_line = line_of(text, pf.id.span().start);
+    if pf.coordinates.is_empty() {
+        return Err(fail(
+            id_line,
+            "no-coordinates",
+            "the problem declares no coordinate".into(),
+        ));
+    }
+    let mut pool = Pool::new();
+    let mut dims = Dimensions::new();
+    let mut coordinates = Vec::new();
+    for c in &pf.coordinates {
+        let name = crate::expr::names::normalize(&c.name);
+        let d = match &c.dimension {
+            Some(d) => Dimension::parse(d).map_err(|e| fail(id_line, "bad-dimension", e))?,
+            None if c.periodic => Dimension::NONE,
+            None => Dimension::new(0, 1, 0),
+        };
+        dims.set(&name, d);
+        let range = match c.range {
+            Some([a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
+            Some(r) => {
+                return Err(fail(
+                    id_line,
+                    "bad-range",
+                    format!(
+                        "coordinate `{name}` has range {r:?}; it needs [low, high] with low < high"
+                    ),
+                ));
+            }
+            None if c.periodic => (-std::f64::consts::PI, std::f64::consts::PI),
+            None => crate::mechanics::system::DEFAULT_COORDINATE_RANGE,
+        };
+        coordinates.push(Coordinate {
+            sym: pool.symbol(&name),
+            name,
+            periodic: c.periodic,
+            range,
+        });
+    }
+    let mut parameters = Vec::new();
+    for (name, p) in &pf.parameters {
+        let name = crate::expr::names::normalize(name);
+        let d = Dimension::parse(&p.dimension)
+            .map_err(|e| fail(id_line, "bad-dimension", format!("parameter `{name}`: {e}")))?;
+        let [lo, hi] = p.range;
+        if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+            return Err(fail(
+                id_line,
+                "bad-range",
+                format!(
+                    "parameter `{name}` has range [{lo}, {hi}]; it needs a positive range [low, high]"
+                ),
+            ));
+        }
+        dims.set(&name, d);
+        parameters.push(Parameter {
+            sym: pool.symbol(&name),
+            name,
+            dimension: Some(d),
+            range: (lo, hi),
+        });
+    }
+    let ctx = Context::new()
+        .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
+        .with_parameters(parameters.iter().map(|p| p.name.as_str()));
+    let read = |pool: &mut Pool, src: &str, line: usize, what: &str| -> Result<Id, Finding> {
+        read_expr(src, &ctx, pool).map_err(|e| {
+            fail(
+                line,
+                if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
+                    "undeclared-symbol"
+                } else {
+                    "unreadable"
+                },
+                format!("{what} `{src}`: {e} ({})", e.help()),
+            )
+        })
+    };
+    let mut bodies = Vec::new();
+    for b in &pf.bodies {
+        let line = line_of(text, b.span().start);
+        let b = b.get_ref();
+        match b.kind.as_str() {
+            "point" => {
+                let (Some(m), Some(pos)) = (&b.mass, &b.position) else {
+                    return Err(fail(
+                        line,
+                        "bad-body",
+                        "a point body needs `mass` and `position`".into(),
+                    ));
+                };
+                if !(2..=3).contains(&pos.len()) {
+                    return Err(fail(
+                        line,
+                        "bad-body",
+                        "a position has 2 or 3 components".into(),
+                    ));
+                }
+                let mass = read(&mut pool, m, line, "mass")?;
+                let position = pos
+                    .iter()
+                    .map(|x| read(&mut pool, x, line, "position"))
+                    .collect::<Result<_, _>>()?;
+                bodies.push(Body::Point { mass, position });
+            }
+            "rotor" => {
+                let (Some(i), Some(a)) = (&b.inertia, &b.angle) else {
+                    return Err(fail(
+                        line,
+                        "bad-body",
+                        "a rotor needs `inertia` and `angle`".into(),
+                    ));
+                };
+                let inertia = read(&mut pool, i, line, "inertia")?;
+                let angle = read(&mut pool, a, line, "angle")?;
+                bodies.push(Body::Rotor { inertia, angle });
+            }
+            other => {
+                return Err(fail(
+                    line,
+                    "bad-body",
+                    format!("unknown body kind `{other}` (use point or rotor)"),
+                ));
+            }
+        }
+    }
+    let mut potentials = Vec::new();
+    for p in &pf.potentials {
+        let line = line_of(text, p.span().start);
+        let p = p.get_ref();
+        match p.kind.as_str() {
+            "gravity" => {
+                let g = read(&mut pool, p.g.as_deref().unwrap_or("g"), line, "gravity")?;
+                let axis = match p.axis.as_deref().unwrap_or("y") {
+                    "x" => 0,
+                    "y" => 1,
+                    "z" => 2,
+                    other => {
+                        return Err(fail(
+                            line,
+                            "bad-potential",
+                            format!("gravity axis `{other}` (use x, y or z)"),
+                        ));
+                    }
+                };
+                potentials.push(Potential::Gravity { g, axis });
+            }
+            "spring" => {
+                let k = read(
+                    &mut pool,
+                    p.k.as_deref().unwrap_or("k"),
+                    line,
+                    "spring constant",
+                )?;
+                let natural = read(
+                    &mut pool,
+                    p.natural.as_deref().unwrap_or("0"),
+                    line,
+                    "natural length",
+                )?;
+                let anchor = |a: &Option<AnchorSpec>, pool: &mut Pool| -> Result<Anchor, Finding> {
+                    match a {
+                        Some(AnchorSpec::Body(i)) if *i >= 1 && *i <= bodies.len() => {
+                            Ok(Anchor::Body(i - 1))
+                        }
+                        Some(AnchorSpec::Body(i)) => Err(fail(
+                            line,
+                            "bad-potential",
+                            format!("spring end {i} is not a body number"),
+                        )),
+                        Some(AnchorSpec::Point(v)) => Ok(Anchor::Fixed(
+                            v.iter()
+                                .map(|x| read(pool, x, line, "anchor"))
+                                .collect::<Result<_, _>>()?,
+                        )),
+                        None => Err(fail(
+                            line,
+                            "bad-potential",
+                            "a spring needs `from` and `to`".into(),
+                        )),
+                    }
+                };
+                let a = anchor(&p.from, &mut pool)?;
+                let b = anchor(&p.to, &mut pool)?;
+                potentials.push(Potential::Spring { k, natural, a, b });
+            }
+            "explicit" => {
+                let Some(v) = &p.v else {
+                    return Err(fail(
+                        line,
+                        "bad-potential",
+                        "an explicit potential needs `V`".into(),
+                    ));
+                };
+                potentials.push(Potential::Explicit(read(&mut pool, v, line, "potential")?));
+            }
+            other => {
+                return Err(fail(
+                    line,
+                    "bad-potential",
+                    format!("unknown potential kind `{other}` (use gravity, spring or explicit)"),
+                ));
+            }
+        }
+    }
+    let stated = match &pf.lagrangian {
+        Some(l) => Some(read(
+            &mut pool,
+            l.get_ref(),
+            line_of(text, l.span().start),
+            "the Lagrangian",
+        )?),
+        None => None,
+    };
+    let lagrangian_line = pf
+        .lagrangian
+        .as_ref()
+        .map(|l| line_of(text, l.span().start))
+        .or_else(|| pf.bodies.first().map(|b| line_of(text, b.span().start)))
+        .unwrap_or(id_line);
+    let mut system = if !bodies.is_empty() {
+        System::from_bodies(pool, coordinates, &bodies, &potentials)
+    } else if let Some(l) = stated {
+        System::from_parts(pool, coordinates, l)
+    } else {
+        return Err(fail(
+            id_line,
+            "no-system",
+            "give `lagrangian`, or `bodies` (and `potentials`)".into(),
+        ));
+    };
+    // Declared parameters keep their ranges and dimensions; only they may appear.
+    let mut declared = parameters;
+    for p in &system.parameters {
+        if !declared.iter().any(|d| d.sym == p.sym) {
+            declared.push(p.clone());
+        }
+    }
+    system.parameters = declared;
+    let ctx = system.context();
+    for (i, f) in pf.forces.iter().enumerate() {
+        if i >= system.n() {
+            return Err(fail(
+                id_line,
+                "bad-force",
+                "more forces than coordinates".into(),
+            ));
+        }
+        system.forces[i] = read_expr(f, &ctx, &mut system.pool)
+            .map_err(|e| fail(id_line, "unreadable", format!("force `{f}`: {e}")))?;
+    }
+    for c in &pf.constraints {
+        system
+            .add_constraint(c)
+            .map_err(|e| fail(id_line, "bad-constraint", format!("constraint `{c}`: {e}")))?;
+    }
+    let mut assumptions = Vec::new();
+    for a in &pf.assume {
+        assumptions.push(
+            Assumption::parse(a, &ctx, &mut system)
+                .map_err(|e| fail(id_line, "bad-assumption", e))?,
+        );
+    }
+    let mut parts = Vec::new();
+    for sp in &pf.parts {
+        let line = line_of(text, sp.span().start);
+        parts.push(
+            build_part(sp.get_ref(), line, &system).map_err(|(code, m)| Finding {
+                part: Some(sp.get_ref().id.clone()),
+                ..fail(line, code, m)
+            })?,
+        );
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for p in &parts {
+        if !seen.insert(p.id.clone()) {
+            return Err(Finding {
+                part: Some(p.id.clone()),
+                ..fail(
+                    p.line,
+                    "duplicate-part",
+                    format!("two parts are called `{}`", p.id),
+                )
+            });
+        }
+    }
+    Ok(Problem {
+        file: file.to_string(),
+        id,
+        title: pf.title,
+        source: pf.source,
+        statement: pf.statement,
+        system,
+        dims,
+        assumptions,
+        parts,
+        stated_lagrangian: stated,
+        lagrangian_line,
+    })
+}
+
+fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'static str, String)> {
+    let kind = PartKind::parse(&sp.kind).ok_or_else(|| {
+        ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force)", sp.kind))
+    })?;
+    let answers = match &sp.answer {
+        AnswerSpec::One(s) => vec![s.clone()],
+        AnswerSpec::Many(v) => v.clone(),
+    };
+    if answers.is_empty() {
+        return Err(("no-answer", "the part has an empty answer".into()));
+    }
+    let coordinate = match &sp.coordinate {
+        None => 0,
+        Some(c) => sys
+            .coordinates
+            .iter()
+            .position(|x| x.name == crate::expr::names::normalize(c))
+            .ok_or_else(|| ("bad-coordinate", format!("`{c}` is not a coordinate")))?,
+    };
+    let q = sp.quantity.as_deref().unwrap_or(match sp.id.as_str() {
+        "kinetic" => "kinetic",
+        "potential" => "potential",
+        "lagrangian" => "lagrangian",
+        "momentum" => "momentum",
+        "energy-function" => "energy-function",
+        "tension" | "constraint-force" => "multiplier",
+        _ => "none",
+    });
+    let quantity = match q {
+        "kinetic" => Quantity::Kinetic,
+        "potential" => Quantity::Potential,
+        "lagrangian" => Quantity::Lagrangian,
+        "momentum" => Quantity::Momentum(coordinate),
+        "energy-function" => Quantity::EnergyFunction,
+        "multiplier" => Quantity::Multiplier(sp.multiplier.unwrap_or(1).saturating_sub(1)),
+        "acceleration" => Quantity::Acceleration(coordinate),
+        "none" => Quantity::None,
+        other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
+    };
+    if let Quantity::Multiplier(j) = quantity
+        && j >= sys.constraints.len()
+    {
+        return Err((
+            "bad-quantity",
+            format!(
+                "the problem has {} constraint(s); there is no multiplier {}",
+                sys.constraints.len(),
+                j + 1
+            ),
+        ));
+    }
+    let up_to_constant = match sp.up_to.as_deref() {
+        None => false,
+        Some("constant") => true,
+        Some(other) => {
+            return Err((
+                "bad-up-to",
+                format!("up_to = \"{other}\" (only \"constant\")"),
+            ));
+        }
+    };
+    let dimension = sp
+        .dimension
+        .as_deref()
+        .map(Dimension::parse)
+        .transpose()
+        .map_err(|e| ("bad-dimension", e))?;
+    for s in &sp.stability {
+        if !matches!(s.as_str(), "stable" | "unstable" | "marginal") {
+            return Err((
+                "bad-stability",
+                format!("stability `{s}` (use stable, unstable or marginal)"),
+            ));
+        }
+    }
+    Ok(Part {
+        id: sp.id.clone(),
+        kind,
+        prompt: sp.prompt.clone(),
+        answers,
+        hints: sp.hints.clone(),
+        points: sp.points.unwrap_or(1.0),
+        substitute: sp
+            .substitute
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect(),
+        at: sp.at.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
+        up_to_constant,
+        wrong: sp.wrong.clone(),
+        tolerance: sp.tolerance.unwrap_or(crate::check::compare::TOLERANCE),
+        stability: sp.stability.clone(),
+        quantity,
+        dimension,
+        line,
+    })
+}

@@ -1,0 +1,190 @@
+//! The TOML schema of a problem file, as serde reads it. Unknown keys are errors. See
+//! `docs/problem-format.md` for the field-by-field description.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A whole problem file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProblemFile {
+    pub id: Spanned<String>,
+    pub title: String,
+    #[serde(default)]
+    pub source: String,
+    #[serde(default)]
+    pub statement: String,
+    pub coordinates: Vec<CoordinateSpec>,
+    #[serde(default)]
+    pub parameters: BTreeMap<String, ParameterSpec>,
+    #[serde(default)]
+    pub lagrangian: Option<Spanned<String>>,
+    #[serde(default)]
+    pub assume: Vec<String>,
+    /// Generalized non-conservative forces, one per coordinate.
+    #[serde(default)]
+    pub forces: Vec<String>,
+    /// Constraints `f = 0` (holonomic) or linear in the velocities (nonholonomic).
+    #[serde(default)]
+    pub constraints: Vec<String>,
+    #[serde(default)]
+    pub bodies: Vec<Spanned<BodySpec>>,
+    #[serde(default)]
+    pub potentials: Vec<Spanned<PotentialSpec>>,
+    pub parts: Vec<Spanned<PartSpec>>,
+}
+
+/// A generalized coordinate.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoordinateSpec {
+    pub name: String,
+    #[serde(default)]
+    pub periodic: bool,
+    /// Sampling and equilibrium-search range (default [−π, π] for periodic ones, [−2, 2]
+    /// otherwise).
+    pub range: Option<[f64; 2]>,
+    /// Dimension, e.g. "L" (default: dimensionless if periodic, L otherwise).
+    pub dimension: Option<String>,
+    pub description: Option<String>,
+}
+
+/// A parameter.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterSpec {
+    pub dimension: String,
+    /// Positive sampling range.
+    pub range: [f64; 2],
+    pub description: Option<String>,
+}
+
+/// A body: `kind = "point"` (mass, position) or `kind = "rotor"` (inertia, angle).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    pub kind: String,
+    pub mass: Option<String>,
+    pub position: Option<Vec<String>>,
+    pub inertia: Option<String>,
+    pub angle: Option<String>,
+}
+
+/// One end of a spring: a body number (1-based) or a fixed point.
+#[derive(Debug)]
+pub enum AnchorSpec {
+    Body(usize),
+    Point(Vec<String>),
+}
+
+impl<'de> Deserialize<'de> for AnchorSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = AnchorSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a body number (1, 2, …) or a point [\"x\", \"y\"]")
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<AnchorSpec, E> {
+                usize::try_from(v)
+                    .map(AnchorSpec::Body)
+                    .map_err(|_| E::invalid_value(serde::de::Unexpected::Signed(v), &self))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<AnchorSpec, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<String>()? {
+                    v.push(x);
+                }
+                Ok(AnchorSpec::Point(v))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// A potential: `gravity` (g, axis), `spring` (k, natural, from, to) or `explicit` (V).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PotentialSpec {
+    pub kind: String,
+    pub g: Option<String>,
+    /// "x", "y" or "z": gravity points down this axis.
+    pub axis: Option<String>,
+    pub k: Option<String>,
+    pub natural: Option<String>,
+    pub from: Option<AnchorSpec>,
+    pub to: Option<AnchorSpec>,
+    #[serde(rename = "V")]
+    pub v: Option<String>,
+}
+
+/// A reference answer: one string, or a list for systems and lists.
+#[derive(Debug, Clone)]
+pub enum AnswerSpec {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl<'de> Deserialize<'de> for AnswerSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = AnswerSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a string or a list of strings")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<AnswerSpec, E> {
+                Ok(AnswerSpec::One(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<AnswerSpec, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<String>()? {
+                    v.push(x);
+                }
+                Ok(AnswerSpec::Many(v))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// A part of a problem.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartSpec {
+    pub id: String,
+    pub kind: String,
+    pub prompt: String,
+    pub answer: AnswerSpec,
+    #[serde(default)]
+    pub hints: Vec<String>,
+    pub points: Option<f64>,
+    #[serde(default)]
+    pub substitute: BTreeMap<String, String>,
+    #[serde(default)]
+    pub at: BTreeMap<String, String>,
+    pub up_to: Option<String>,
+    #[serde(default)]
+    pub wrong: Vec<String>,
+    pub tolerance: Option<f64>,
+    /// For equilibria: "stable", "unstable" or "marginal", one per answer item.
+    #[serde(default)]
+    pub stability: Vec<String>,
+    /// What physical quantity the answer is (default from the part id): kinetic, potential,
+    /// lagrangian, momentum, energy-function, multiplier, acceleration.
+    pub quantity: Option<String>,
+    /// The coordinate a momentum or acceleration belongs to (default: the first).
+    pub coordinate: Option<String>,
+    /// Which constraint's multiplier (1-based, default 1).
+    pub multiplier: Option<usize>,
+    /// The dimension the answer must have, where the kind does not imply one.
+    pub dimension: Option<String>,
+}

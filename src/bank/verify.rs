@@ -1,0 +1,796 @@
+//! Verification: every stated answer of a problem is proved against the physics before a
+//! student sees it — dimensions, the Lagrangian from bodies against the stated one, equations
+//! of motion through their accelerations, equilibria (none missing, none spurious, stated
+//! stability), frequencies from the eigen-solver, and the energy function, momenta, T, V and
+//! constraint forces; and every `wrong` example must indeed be wrong.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::finding::Finding;
+use super::problem::{Part, PartKind, Problem, Quantity};
+use crate::check::compare::{Relation, close, fmt_value, relate, values};
+use crate::check::{Assumption, PointSet};
+use crate::expr::{Context, Dimension, Id, Node, Reading, read, read_equation, read_expr};
+use crate::mechanics::accel::Dynamics;
+use crate::mechanics::equilibria::{Stability, wrap_angle};
+use crate::mechanics::sample::seed_from;
+use crate::mechanics::{Derivation, System};
+
+/// Sample points for expressions and equations.
+const POINTS: usize = 24;
+/// Parameter samples for equilibria (each runs a multi-start search).
+const EQUILIBRIUM_SAMPLES: usize = 6;
+/// Parameter samples for frequencies.
+const FREQUENCY_SAMPLES: usize = 20;
+
+/// Verifies a problem; an empty list means every stated answer holds.
+pub fn verify(problem: &Problem) -> Vec<Finding> {
+    let mut out = Vec::new();
+    let whole = |line: usize, code: &'static str, message: String| Finding {
+        file: problem.file.clone(),
+        problem: Some(problem.id.clone()),
+        part: None,
+        line,
+        code,
+        message,
+    };
+    let sys = &problem.system;
+    let energy = Dimension::energy();
+    for (what, e) in [
+        ("L", Some(sys.lagrangian)),
+        ("T", sys.kinetic),
+        ("V", sys.potential),
+    ] {
+        let Some(e) = e else { continue };
+        match sys.pool.dimension(e, &problem.dims) {
+            Ok(Some(d)) if d != energy && !sys.pool.is_zero(e) => out.push(whole(
+                problem.lagrangian_line,
+                "dimension",
+                format!(
+                    "{what} = {} has dimension {d}, not an energy (M L² T⁻²)",
+                    sys.pool.unicode(e)
+                ),
+            )),
+            Err(err) => out.push(whole(
+                problem.lagrangian_line,
+                "dimension",
+                format!("{what}: {err}"),
+            )),
+            _ => {}
+        }
+    }
+    if let Some(stated) = problem.stated_lagrangian
+        && stated != sys.lagrangian
+    {
+        let mut s = sys.clone();
+        match PointSet::draw(
+            &s,
+            &problem.assumptions,
+            seed_from(&[&problem.id, "lagrangian"]),
+            POINTS,
+        )
+        .and_then(|pts| relate(&s, stated, s.lagrangian, &pts, 1e-9))
+        {
+            Ok(Relation::Equal | Relation::UpToConstant(_)) => {}
+            Ok(_) => {
+                let derived = s.simplify(s.lagrangian);
+                out.push(whole(
+                    problem.lagrangian_line,
+                    "lagrangian-mismatch",
+                    format!(
+                        "the stated L = {} is not the L of the bodies, {}",
+                        s.pool.unicode(stated),
+                        s.pool.unicode(derived)
+                    ),
+                ));
+            }
+            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e)),
+        }
+    }
+    for part in &problem.parts {
+        if let Err(f) = verify_part(problem, part) {
+            out.push(f);
+        }
+    }
+    out
+}
+
+/// A part's system (with its substitutions), its derivation and sample points.
+pub struct Prepared {
+    pub system: System,
+    pub derivation: Derivation,
+    pub assumptions: Vec<Assumption>,
+    pub points: PointSet,
+    pub context: Context,
+}
+
+/// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
+pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
+    let mut system = problem.system.clone();
+    let map = system
+        .substitute_parameters(&part.substitute)
+        .map_err(|e| e.to_string())?;
+    let assumptions: Vec<Assumption> = problem
+        .assumptions
+        .iter()
+        .map(|a| Assumption {
+            lhs: system.pool.substitute(a.lhs, &map),
+            rhs: system.pool.substitute(a.rhs, &map),
+            ..a.clone()
+        })
+        .collect();
+    let derivation = system.derive().map_err(|e| e.to_string())?;
+    let points = PointSet::draw(
+        &system,
+        &assumptions,
+        seed_from(&[&problem.id, &part.id]),
+        POINTS,
+    )?;
+    let context = system.context();
+    Ok(Prepared {
+        system,
+        derivation,
+        assumptions,
+        points,
+        context,
+    })
+}
+
+fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
+    let fail = |code: &'static str, message: String| Finding {
+        file: problem.file.clone(),
+        problem: Some(problem.id.clone()),
+        part: Some(part.id.clone()),
+        line: part.line,
+        code,
+        message,
+    };
+    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e))?;
+    match part.kind {
+        PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
+            verify_expression(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+        }
+        PartKind::Equation | PartKind::Equations => {
+            verify_equations(part, &mut p).map_err(|(c, m)| fail(c, m))
+        }
+        PartKind::Equilibria => {
+            verify_equilibria(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+        }
+        PartKind::Frequencies => {
+            verify_frequencies(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+        }
+        PartKind::Values => Ok(()),
+    }
+}
+
+type Check = Result<(), (&'static str, String)>;
+
+fn read_one(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
+    read_expr(src, &p.context, &mut p.system.pool).map_err(|e| {
+        let code = if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
+            "undeclared-symbol"
+        } else {
+            "unreadable"
+        };
+        (code, format!("`{src}`: {e} ({})", e.help()))
+    })
+}
+
+/// The dimension an answer of this quantity must have.
+fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
+    if part.dimension.is_some() {
+        return part.dimension;
+    }
+    let coord_dim = |i: usize| problem.dims.get(&problem.system.coordinates[i].name);
+    let t = Dimension::new(0, 0, 1);
+    match part.quantity {
+        Quantity::Kinetic
+        | Quantity::Potential
+        | Quantity::Lagrangian
+        | Quantity::EnergyFunction => Some(Dimension::energy()),
+        Quantity::Momentum(i) => coord_dim(i).map(|d| Dimension::energy() * t / d),
+        Quantity::Acceleration(i) => coord_dim(i).map(|d| d / (t * t)),
+        _ => None,
+    }
+}
+
+fn check_dimension(problem: &Problem, p: &Prepared, e: Id, want: Option<Dimension>) -> Check {
+    match p.system.pool.dimension(e, &problem.dims) {
+        Err(err) => Err(("dimension", format!("{}: {err}", p.system.pool.unicode(e)))),
+        Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => Err((
+            "dimension",
+            format!(
+                "{} has dimension {d}, but this part asks for {}",
+                p.system.pool.unicode(e),
+                want.unwrap_or(Dimension::NONE)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The truth of an expression part: a symbolic expression, or numbers per point.
+enum Truth {
+    Expr(Id),
+    Numbers(Vec<Option<f64>>),
+}
+
+fn truth(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+) -> Result<Option<Truth>, (&'static str, String)> {
+    let sys = &mut p.system;
+    let d = &p.derivation;
+    Ok(Some(match part.quantity {
+        Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or((
+            "no-truth",
+            "a kinetic part needs bodies (or T and V) to check against".to_string(),
+        ))?),
+        Quantity::Potential => Truth::Expr(sys.potential.ok_or((
+            "no-truth",
+            "a potential part needs bodies (or T and V) to check against".to_string(),
+        ))?),
+        Quantity::Lagrangian => Truth::Expr(sys.lagrangian),
+        Quantity::Momentum(i) => Truth::Expr(d.steps[i].momentum),
+        Quantity::EnergyFunction => Truth::Expr(sys.energy(d).function),
+        Quantity::Multiplier(j) | Quantity::Acceleration(j) => {
+            let rows = sys.constraint_rows();
+            let dynamics = Dynamics::new(sys, d).map_err(|e| ("unusable", e.to_string()))?;
+            let mut scratch = dynamics.scratch();
+            let nums = p
+                .points
+                .points
+                .iter()
+                .map(|x| {
+                    if sys.constraints.is_empty() {
+                        dynamics.accelerations(x, &mut scratch).ok().map(|a| a[j])
+                    } else {
+                        sys.multipliers_at(d, &rows, x).ok().map(|(a, l)| {
+                            if matches!(part.quantity, Quantity::Multiplier(_)) {
+                                l[j]
+                            } else {
+                                a[j]
+                            }
+                        })
+                    }
+                })
+                .collect();
+            Truth::Numbers(nums)
+        }
+        Quantity::None => {
+            let _ = problem;
+            return Ok(None);
+        }
+    }))
+}
+
+/// Whether `answer` matches the truth (exactly, or up to a constant where allowed).
+fn matches_truth(
+    part: &Part,
+    p: &mut Prepared,
+    answer: Id,
+    truth: &Truth,
+) -> Result<bool, (&'static str, String)> {
+    match truth {
+        Truth::Expr(t) => {
+            let r = relate(&p.system, answer, *t, &p.points, part.tolerance)
+                .map_err(|e| ("sampling", e))?;
+            Ok(match r {
+                Relation::Equal => true,
+                Relation::UpToConstant(_) => {
+                    part.up_to_constant || part.kind == PartKind::Lagrangian
+                }
+                _ => false,
+            })
+        }
+        Truth::Numbers(nums) => {
+            let vals = values(&p.system, &[answer], &p.points).map_err(|e| ("sampling", e))?;
+            let scale = nums.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+            Ok(nums.iter().zip(&vals).all(|(t, v)| match (t, v) {
+                (Some(t), Some(v)) => close(v[0], *t, scale, part.tolerance),
+                (None, _) => true,
+                (Some(_), None) => false,
+            }))
+        }
+    }
+}
+
+fn show_truth(p: &mut Prepared, t: &Truth) -> String {
+    match t {
+        Truth::Expr(e) => {
+            let s = p.system.simplify(*e);
+            p.system.pool.unicode(s)
+        }
+        Truth::Numbers(n) => format!(
+            "{:.6} at the first sample",
+            n.iter().flatten().next().copied().unwrap_or(f64::NAN)
+        ),
+    }
+}
+
+fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let answer = read_one(p, &part.answers[0])?;
+    check_dimension(problem, p, answer, expected_dimension(problem, part))?;
+    let Some(t) = truth(problem, part, p)? else {
+        return Ok(());
+    };
+    if !matches_truth(part, p, answer, &t)? {
+        return Err((
+            "wrong-answer",
+            format!(
+                "the stated answer {} is not what the physics gives: {}",
+                p.system.pool.unicode(answer),
+                show_truth(p, &t)
+            ),
+        ));
+    }
+    for w in &part.wrong {
+        let Ok(id) = read_expr(w, &p.context, &mut p.system.pool) else {
+            continue;
+        };
+        if matches_truth(part, p, id, &t)? {
+            return Err((
+                "wrong-accepted",
+                format!("the `wrong` example `{w}` is in fact correct"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The residuals `lhs − rhs` of an answer's equations.
+fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, (&'static str, String)> {
+    let mut out = Vec::new();
+    for it in items {
+        for piece in it.split(';').filter(|s| !s.trim().is_empty()) {
+            let (l, r) = read_equation(piece, &p.context, &mut p.system.pool)
+                .map_err(|e| ("unreadable", format!("`{piece}`: {e}")))?;
+            out.push(p.system.pool.sub(l, r));
+        }
+    }
+    Ok(out)
+}
+
+/// True accelerations at every point.
+fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, (&'static str, String)> {
+    let sys = &p.system;
+    if !sys.constraints.is_empty() {
+        let mut s = sys.clone();
+        let rows = s.constraint_rows();
+        return Ok(p
+            .points
+            .points
+            .iter()
+            .map(|x| {
+                s.multipliers_at(&p.derivation, &rows, x)
+                    .ok()
+                    .map(|(a, _)| a)
+            })
+            .collect());
+    }
+    let dynamics = Dynamics::new(sys, &p.derivation).map_err(|e| ("unusable", e.to_string()))?;
+    let mut scratch = dynamics.scratch();
+    Ok(p.points
+        .points
+        .iter()
+        .map(|x| dynamics.accelerations(x, &mut scratch).ok())
+        .collect())
+}
+
+/// Whether the equations `res` determine the true accelerations (`equations`), or hold at
+/// them (`equation`). Returns a description of the failure.
+pub fn equations_hold(
+    p: &mut Prepared,
+    res: &[Id],
+    system: bool,
+) -> Result<Option<String>, (&'static str, String)> {
+    let n = p.system.n();
+    let truth = true_accelerations(p)?;
+    let coords = p.system.coordinate_syms();
+    // A and b with R = A q'' + b.
+    let mut roots = Vec::new();
+    for &r in res {
+        for &c in &coords {
+            roots.push(p.system.pool.diff(r, c, 2));
+        }
+    }
+    roots.extend(res.iter().copied());
+    let vals = values(&p.system, &roots, &p.points).map_err(|e| ("sampling", e))?;
+    let m = res.len();
+    for (k, (t, v)) in truth.iter().zip(&vals).enumerate() {
+        let (Some(t), Some(v)) = (t, v) else { continue };
+        let a = DMatrix::from_fn(m, n, |i, j| v[i * n + j]);
+        let acc_terms: Vec<f64> = (0..m)
+            .map(|i| (0..n).map(|j| a[(i, j)] * t[j]).sum())
+            .collect();
+        if system {
+            if m != n {
+                return Ok(Some(format!("{m} equations for {n} coordinates")));
+            }
+            // b = R − A q'' at the sampled q''.
+            let x = &p.points.points[k];
+            let b = DVector::from_fn(n, |i, _| {
+                v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>()
+            });
+            let Some(sol) = a.clone().lu().solve(&(-b)) else {
+                return Ok(Some(
+                    "the equations do not determine the accelerations".into(),
+                ));
+            };
+            let scale = t.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+            if !sol.iter().zip(t).all(|(x, y)| close(*x, *y, scale, 1e-7)) {
+                return Ok(Some(format!(
+                    "they give q'' = {:?} where the physics gives {:?}",
+                    sol.as_slice(),
+                    t
+                )));
+            }
+        } else {
+            let x = &p.points.points[k];
+            for i in 0..m {
+                let b = v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>();
+                let r = acc_terms[i] + b;
+                let scale = acc_terms[i].abs() + b.abs();
+                if r.abs() > 1e-7 * (scale + 1e-300) {
+                    return Ok(Some(format!(
+                        "it does not hold for the true accelerations (residual {r:.3e})"
+                    )));
+                }
+            }
+            if (0..m).any(|i| (0..n).all(|j| a[(i, j)] == 0.0)) {
+                return Ok(Some("it contains no acceleration".into()));
+            }
+        }
+    }
+    Ok(None)
+}
+
+fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
+    let res = residuals(p, &part.answers)?;
+    let system = part.kind == PartKind::Equations;
+    if let Some(why) = equations_hold(p, &res, system)? {
+        let shown: Vec<String> = res
+            .iter()
+            .map(|&r| format!("{} = 0", p.system.pool.unicode(r)))
+            .collect();
+        let derived: Vec<String> = p
+            .derivation
+            .steps
+            .iter()
+            .map(|s| {
+                let f = p.system.pool.factor_common(s.equation);
+                format!("{} = 0", p.system.pool.unicode(f))
+            })
+            .collect();
+        return Err((
+            "wrong-eom",
+            format!(
+                "the stated equations {} are not the equations of motion ({why}); the physics gives {}",
+                shown.join("; "),
+                derived.join("; ")
+            ),
+        ));
+    }
+    for w in &part.wrong {
+        let Ok(r) = residuals(p, std::slice::from_ref(w)) else {
+            continue;
+        };
+        if equations_hold(p, &r, system)?.is_none() {
+            return Err((
+                "wrong-accepted",
+                format!("the `wrong` example `{w}` is in fact correct"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Reads an equilibrium item: `pi`, `theta = pi` or `theta1 = 0, theta2 = pi`.
+pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, (&'static str, String)> {
+    let reading = read(src, &p.context, &mut p.system.pool)
+        .map_err(|e| ("unreadable", format!("`{src}`: {e}")))?;
+    let n = p.system.n();
+    let mut point: Vec<Option<Id>> = vec![None; n];
+    let assign =
+        |lhs: Id, rhs: Id, point: &mut Vec<Option<Id>>| -> Result<(), (&'static str, String)> {
+            match p.system.pool.node(lhs) {
+                Node::Var(s, 0) => match p.system.coordinates.iter().position(|c| c.sym == *s) {
+                    Some(i) => {
+                        point[i] = Some(rhs);
+                        Ok(())
+                    }
+                    None => Err((
+                        "unreadable",
+                        format!("`{src}`: the left side must be a coordinate"),
+                    )),
+                },
+                _ => Err(("unreadable", format!("`{src}`: write coordinate = value"))),
+            }
+        };
+    match reading {
+        Reading::Expr(e, _) if n == 1 => point[0] = Some(e),
+        Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
+        Reading::List(items, _) => {
+            for it in items {
+                match it {
+                    Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
+                    _ => {
+                        return Err((
+                            "unreadable",
+                            format!("`{src}`: write coordinate = value for each coordinate"),
+                        ));
+                    }
+                }
+            }
+        }
+        _ => {
+            return Err((
+                "unreadable",
+                format!("`{src}`: an equilibrium is coordinate = value"),
+            ));
+        }
+    }
+    point
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| {
+            v.ok_or((
+                "unreadable",
+                format!(
+                    "`{src}` gives no value for {}",
+                    p.system.coordinates[i].name
+                ),
+            ))
+        })
+        .collect()
+}
+
+/// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
+pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
+    let d = if periodic { wrap_angle(a - b) } else { a - b };
+    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < 1e-9 {
+        std::f64::consts::PI.min(d.abs())
+    } else {
+        d
+    };
+    d.abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
+}
+
+fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let stated: Vec<Vec<Id>> = part
+        .answers
+        .iter()
+        .map(|a| read_point(p, a))
+        .collect::<Result<_, _>>()?;
+    for (item, point) in part.answers.iter().zip(&stated) {
+        for (i, &v) in point.iter().enumerate() {
+            let want = problem.dims.get(&p.system.coordinates[i].name);
+            check_dimension(problem, p, v, want)?;
+        }
+        if !p
+            .system
+            .verify_equilibrium(&p.derivation, point)
+            .map_err(|e| ("unusable", e.to_string()))?
+        {
+            return Err((
+                "spurious-equilibrium",
+                format!(
+                    "`{item}` is not an equilibrium: the generalized forces do not vanish there"
+                ),
+            ));
+        }
+    }
+    if !part.stability.is_empty() && part.stability.len() != stated.len() {
+        return Err((
+            "bad-stability",
+            format!(
+                "{} stabilities for {} equilibria",
+                part.stability.len(),
+                stated.len()
+            ),
+        ));
+    }
+    let samples = PointSet::draw(
+        &p.system,
+        &p.assumptions,
+        seed_from(&[&problem.id, &part.id, "equilibria"]),
+        EQUILIBRIUM_SAMPLES,
+    )
+    .map_err(|e| ("sampling", e))?;
+    let flat: Vec<Id> = stated.iter().flatten().copied().collect();
+    let vals = values(&p.system, &flat, &samples).map_err(|e| ("sampling", e))?;
+    let n = p.system.n();
+    let periodic: Vec<bool> = p.system.coordinates.iter().map(|c| c.periodic).collect();
+    let names: Vec<String> = p
+        .system
+        .coordinates
+        .iter()
+        .map(|c| c.name.clone())
+        .collect();
+    for (k, v) in vals.iter().enumerate() {
+        let Some(v) = v else { continue };
+        let params = samples.params(&p.system, k).to_vec();
+        let found = p
+            .system
+            .equilibria(&p.derivation, &params)
+            .map_err(|e| ("unusable", e.to_string()))?;
+        let pstr = p
+            .system
+            .parameters
+            .iter()
+            .zip(&params)
+            .map(|(q, x)| format!("{} = {x:.4}", q.name))
+            .collect::<Vec<_>>()
+            .join(", ");
+        if found.continuum {
+            return Err((
+                "not-isolated",
+                format!(
+                    "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
+                ),
+            ));
+        }
+        let stated_pts: Vec<&[f64]> = v.chunks(n).collect();
+        let in_range = |q: &[f64]| {
+            q.iter().enumerate().all(|(i, x)| {
+                periodic[i]
+                    || (p.system.coordinates[i].range.0 - 1e-9
+                        ..=p.system.coordinates[i].range.1 + 1e-9)
+                        .contains(x)
+            })
+        };
+        for (q, st) in &found.points {
+            let hit = stated_pts.iter().position(|s| {
+                s.iter()
+                    .zip(q)
+                    .enumerate()
+                    .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
+            });
+            match hit {
+                None => {
+                    let at = names
+                        .iter()
+                        .zip(q)
+                        .map(|(c, x)| format!("{c} = {}", fmt_value(*x)))
+                        .collect::<Vec<_>>()
+                        .join(", ");
+                    return Err((
+                        "missing-equilibrium",
+                        format!(
+                            "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
+                        ),
+                    ));
+                }
+                Some(j) => {
+                    if let Some(want) = part.stability.get(j)
+                        && want != st.name()
+                    {
+                        return Err((
+                            "wrong-stability",
+                            format!(
+                                "`{}` is stated {want}, but it is {} (for {pstr})",
+                                part.answers[j],
+                                st.name()
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        for (j, s) in stated_pts.iter().enumerate() {
+            if in_range(s)
+                && !found.points.iter().any(|(q, _)| {
+                    s.iter()
+                        .zip(q)
+                        .enumerate()
+                        .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
+                })
+            {
+                return Err((
+                    "spurious-equilibrium",
+                    format!(
+                        "`{}` is not among the equilibria the engine finds for {pstr}",
+                        part.answers[j]
+                    ),
+                ));
+            }
+        }
+        let _ = Stability::Stable;
+    }
+    Ok(())
+}
+
+/// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
+pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
+    let body = match src.split_once('=') {
+        Some((label, rhs))
+            if label
+                .trim()
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '²' || c == '^') =>
+        {
+            rhs
+        }
+        _ => src,
+    };
+    read_one(p, body)
+}
+
+fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let stated: Vec<Id> = part
+        .answers
+        .iter()
+        .map(|a| read_frequency(p, a))
+        .collect::<Result<_, _>>()?;
+    for &s in &stated {
+        check_dimension(problem, p, s, Some(Dimension::new(0, 0, -1)))?;
+    }
+    let at = equilibrium_of(p, part)?;
+    let samples = PointSet::draw(
+        &p.system,
+        &p.assumptions,
+        seed_from(&[&problem.id, &part.id, "frequencies"]),
+        FREQUENCY_SAMPLES,
+    )
+    .map_err(|e| ("sampling", e))?;
+    let mut roots = stated.clone();
+    roots.extend(at.iter().copied());
+    let vals = values(&p.system, &roots, &samples).map_err(|e| ("sampling", e))?;
+    for (k, v) in vals.iter().enumerate() {
+        let Some(v) = v else { continue };
+        let params = samples.params(&p.system, k).to_vec();
+        let q0 = &v[stated.len()..];
+        let modes = p
+            .system
+            .modes_at(&p.derivation, &params, q0)
+            .map_err(|e| ("unusable", e.to_string()))?;
+        let mut want = modes.frequencies.clone();
+        let mut got: Vec<f64> = v[..stated.len()].to_vec();
+        want.sort_by(f64::total_cmp);
+        got.sort_by(f64::total_cmp);
+        let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if want.len() != got.len()
+            || !want
+                .iter()
+                .zip(&got)
+                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(1e-8)))
+        {
+            let pstr = p
+                .system
+                .parameters
+                .iter()
+                .zip(&params)
+                .map(|(q, x)| format!("{} = {x:.4}", q.name))
+                .collect::<Vec<_>>()
+                .join(", ");
+            return Err((
+                "wrong-frequency",
+                format!(
+                    "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The equilibrium a frequencies part is about (`at`, default all coordinates 0).
+fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, (&'static str, String)> {
+    let n = p.system.n();
+    let zero = p.system.pool.zero();
+    let mut at = vec![zero; n];
+    for (name, v) in &part.at {
+        let i = p
+            .system
+            .coordinates
+            .iter()
+            .position(|c| c.name == crate::expr::names::normalize(name))
+            .ok_or((
+                "bad-at",
+                format!("`at` names `{name}`, which is not a coordinate"),
+            ))?;
+        at[i] = read_one(p, v)?;
+    }
+    Ok(at)
+}

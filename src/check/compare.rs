@@ -1,0 +1,99 @@
+//! Numeric relations between two expressions over a point set.
+
+use super::points::PointSet;
+use crate::expr::{Id, Program};
+use crate::mechanics::System;
+
+/// How two expressions relate on the sample points.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Relation {
+    /// Equal at every point.
+    Equal,
+    /// They differ by the same constant everywhere (`a = b + c`).
+    UpToConstant(f64),
+    /// One is a constant multiple of the other (`a = c·b`).
+    Factor(f64),
+    /// Not related that simply; `point` is a sample where they differ.
+    Different { point: usize },
+    /// `a` is undefined at a point where `b` is defined.
+    Undefined { point: usize },
+}
+
+/// Relative tolerance of numeric comparison, with an absolute floor relative to the scale
+/// of the values compared.
+pub const TOLERANCE: f64 = 1e-9;
+
+/// Whether `x` and `y` agree to `tol` relative to `scale`.
+pub fn close(x: f64, y: f64, scale: f64, tol: f64) -> bool {
+    (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + 1e-300)
+}
+
+/// Evaluates `ids` at each point; `None` where undefined.
+pub fn values(sys: &System, ids: &[Id], pts: &PointSet) -> Result<Vec<Option<Vec<f64>>>, String> {
+    let prog = Program::compile(&sys.pool, ids, &sys.layout())
+        .map_err(|u| format!("`{}` is not a symbol of this problem", u.name))?;
+    let mut scratch = prog.scratch();
+    Ok(pts
+        .points
+        .iter()
+        .map(|x| {
+            prog.run(x, &mut scratch).ok()?;
+            Some((0..ids.len()).map(|k| prog.output(k, &scratch)).collect())
+        })
+        .collect())
+}
+
+/// How `a` relates to `b` (the reference) over `pts`. Points where `b` is undefined are
+/// skipped.
+pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Relation, String> {
+    let vals = values(sys, &[b], pts)?;
+    let avals = values(sys, &[a], pts)?;
+    let mut pairs = Vec::new();
+    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
+        let Some(vb) = vb else { continue };
+        let Some(va) = va else {
+            return Ok(Relation::Undefined { point: k });
+        };
+        pairs.push((k, va[0], vb[0]));
+    }
+    if pairs.is_empty() {
+        return Err("the reference is undefined at every sample point".into());
+    }
+    let scale = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
+    if pairs.iter().all(|&(_, x, y)| close(x, y, scale, tol)) {
+        return Ok(Relation::Equal);
+    }
+    let c = pairs[0].1 - pairs[0].2;
+    if pairs.iter().all(|&(_, x, y)| close(x - y, c, scale, tol)) {
+        return Ok(Relation::UpToConstant(c));
+    }
+    if let Some(&(_, x0, y0)) = pairs.iter().find(|p| p.2.abs() > 1e-12 * (scale + 1e-300)) {
+        let f = x0 / y0;
+        if f.is_finite()
+            && f != 0.0
+            && pairs
+                .iter()
+                .all(|&(_, x, y)| close(x, f * y, scale * f.abs(), tol))
+        {
+            return Ok(Relation::Factor(f));
+        }
+    }
+    let bad = pairs
+        .iter()
+        .find(|&&(_, x, y)| !close(x, y, scale, tol))
+        .map_or(0, |p| p.0);
+    Ok(Relation::Different { point: bad })
+}
+
+/// A number for people: multiples of π/2 by name, otherwise six significant decimals.
+pub fn fmt_value(x: f64) -> String {
+    let pi = std::f64::consts::PI;
+    for (k, name) in [(1.0, "π"), (-1.0, "−π"), (0.5, "π/2"), (-0.5, "−π/2")] {
+        if (x - k * pi).abs() < 1e-9 {
+            return name.to_string();
+        }
+    }
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    if s == "-0" { "0".into() } else { s }
+}

@@ -1,0 +1,109 @@
+//! Sample points for a system: random states (t, q, q', q'') and parameter values drawn in
+//! their ranges, redrawn until every assumption holds (`2*g*a > omega^2`).
+
+use super::super::mechanics::System;
+use super::super::mechanics::sample::Sampler;
+use crate::expr::{Context, Id, Program, read_expr};
+
+/// An inequality between two expressions of the parameters.
+#[derive(Clone, Debug)]
+pub struct Assumption {
+    pub text: String,
+    pub lhs: Id,
+    pub rhs: Id,
+    /// `>` (or `>=`) when true; `<` (or `<=`) when false.
+    pub greater: bool,
+}
+
+impl Assumption {
+    /// Reads `lhs > rhs`, `lhs < rhs`, `>=`, `<=` (also `≥`, `≤`).
+    pub fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
+        let ops: [(&str, bool); 6] = [
+            (">=", true),
+            ("<=", false),
+            ("≥", true),
+            ("≤", false),
+            (">", true),
+            ("<", false),
+        ];
+        for (op, greater) in ops {
+            if let Some((a, b)) = text.split_once(op) {
+                let lhs =
+                    read_expr(a, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
+                let rhs =
+                    read_expr(b, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
+                return Ok(Assumption {
+                    text: text.to_string(),
+                    lhs,
+                    rhs,
+                    greater,
+                });
+            }
+        }
+        Err(format!("`{text}` is not an inequality (use > or <)"))
+    }
+}
+
+/// Points in a system's standard layout, every one satisfying the assumptions.
+#[derive(Clone, Debug)]
+pub struct PointSet {
+    pub points: Vec<Vec<f64>>,
+}
+
+/// How many draws may be rejected before the assumptions are declared unsatisfiable.
+const MAX_DRAWS: usize = 10_000;
+
+impl PointSet {
+    /// `count` points from `seed`. Fails when the assumptions reject (nearly) every draw.
+    pub fn draw(
+        sys: &System,
+        assumptions: &[Assumption],
+        seed: u64,
+        count: usize,
+    ) -> Result<PointSet, String> {
+        let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
+        let prog: Option<Program> = if roots.is_empty() {
+            None
+        } else {
+            Some(sys.compile(&roots).map_err(|e| e.to_string())?)
+        };
+        let mut sampler = Sampler::new(seed);
+        let mut points = Vec::with_capacity(count);
+        let mut draws = 0;
+        while points.len() < count {
+            draws += 1;
+            if draws > MAX_DRAWS {
+                return Err(format!(
+                    "the assumptions ({}) hold almost nowhere in the parameter ranges",
+                    assumptions
+                        .iter()
+                        .map(|a| a.text.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
+            let x = sys.sample_point(&mut sampler);
+            if let Some(p) = &prog {
+                let Ok(v) = p.eval(&x) else { continue };
+                let ok = assumptions.iter().enumerate().all(|(i, a)| {
+                    if a.greater {
+                        v[2 * i] > v[2 * i + 1]
+                    } else {
+                        v[2 * i] < v[2 * i + 1]
+                    }
+                });
+                if !ok {
+                    continue;
+                }
+            }
+            points.push(x);
+        }
+        Ok(PointSet { points })
+    }
+
+    /// The parameter values of point `k` (the tail of the layout).
+    pub fn params<'a>(&'a self, sys: &System, k: usize) -> &'a [f64] {
+        let start = 1 + 3 * sys.n();
+        &self.points[k][start..]
+    }
+}

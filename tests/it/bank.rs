@@ -1,0 +1,118 @@
+//! The problem bank: every problem in `problems/` (and the embedded copy) verifies, and a
+//! folder of deliberately broken problems is rejected, each with its specific message.
+
+use lagrange::bank::{embedded, load_dir, verify::verify};
+
+fn root() -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn every_problem_in_the_bank_verifies() {
+    let bank = load_dir(&root().join("problems")).unwrap();
+    assert!(
+        bank.failures.is_empty(),
+        "files that do not load: {:#?}",
+        bank.failures
+    );
+    let mut findings = Vec::new();
+    for p in &bank.problems {
+        for f in verify(p) {
+            findings.push(f.to_string());
+        }
+    }
+    assert!(findings.is_empty(), "\n{}", findings.join("\n"));
+    assert_eq!(
+        bank.problems.len(),
+        embedded::FILES.len(),
+        "problems/ and the embedded list differ"
+    );
+}
+
+/// Loads and verifies one file, returning every finding.
+fn findings_of(path: &std::path::Path) -> Vec<lagrange::bank::Finding> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let name = format!("broken/{}", path.file_name().unwrap().to_string_lossy());
+    match lagrange::bank::load_str(&name, &text) {
+        Err(f) => vec![f],
+        Ok(p) => verify(&p),
+    }
+}
+
+#[test]
+fn broken_problems_are_rejected_with_their_specific_message() {
+    let dir = root().join("tests/broken");
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 14);
+    let mut report = String::new();
+    for path in &paths {
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        let found = findings_of(path);
+        assert!(!found.is_empty(), "{stem} was accepted");
+        // The file name says what must be caught.
+        let code = match stem.as_str() {
+            "undeclared-symbol" | "dimension-error" => {
+                if stem == "dimension-error" {
+                    "dimension"
+                } else {
+                    "undeclared-symbol"
+                }
+            }
+            s => s,
+        };
+        assert!(
+            found.iter().any(|f| f.code == code),
+            "{stem}: expected code {code}, got {found:#?}"
+        );
+        for f in &found {
+            report.push_str(&format!("{f}\n"));
+        }
+    }
+    insta::assert_snapshot!("broken_problems", report);
+}
+
+#[test]
+fn one_bad_file_does_not_stop_the_others() {
+    let tmp = std::env::temp_dir().join(format!("lagrange-bank-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::copy(
+        root().join("problems/simple-pendulum.toml"),
+        tmp.join("a.toml"),
+    )
+    .unwrap();
+    std::fs::copy(
+        root().join("tests/broken/toml-syntax.toml"),
+        tmp.join("b.toml"),
+    )
+    .unwrap();
+    std::fs::write(tmp.join("c.toml"), [0xff, 0xfe, 0x00]).unwrap();
+    std::fs::copy(root().join("problems/atwood.toml"), tmp.join("d.toml")).unwrap();
+    let bank = load_dir(&tmp).unwrap();
+    std::fs::remove_dir_all(&tmp).ok();
+    assert_eq!(bank.problems.len(), 2);
+    assert_eq!(bank.failures.len(), 2);
+    assert!(bank.failures.iter().any(|f| f.code == "not-utf8"));
+}
+
+#[test]
+fn hostile_toml_never_panics() {
+    let huge = format!("id = \"{}\"", "x".repeat(2 << 20));
+    let nested = format!("a = {}1{}", "[".repeat(100_000), "]".repeat(100_000));
+    let inline = format!("a = {}", "{ b = ".repeat(10_000));
+    for text in [
+        huge.as_str(),
+        nested.as_str(),
+        inline.as_str(),
+        "",
+        "id = 5",
+        "parts = \"x\"",
+        "\u{0}",
+    ] {
+        let r = lagrange::bank::load_str("hostile.toml", text);
+        assert!(r.is_err());
+    }
+}
