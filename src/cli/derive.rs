@@ -31,8 +31,13 @@ pub struct DeriveArgs {
     json: bool,
 }
 
-pub fn run(args: &DeriveArgs, color: bool, out: &mut String) -> anyhow::Result<ExitCode> {
-    let mut sys = match args.system.build() {
+pub fn run(
+    args: &DeriveArgs,
+    problems: Option<&std::path::Path>,
+    color: bool,
+    out: &mut String,
+) -> anyhow::Result<ExitCode> {
+    let mut sys = match args.system.build(problems) {
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };

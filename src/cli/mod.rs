@@ -3,6 +3,7 @@
 
 mod derive;
 mod modes;
+mod problems;
 mod read;
 mod system_args;
 
@@ -18,6 +19,9 @@ struct Cli {
     /// When to use colour: auto (a terminal, unless NO_COLOR is set), always or never.
     #[arg(long, global = true, value_enum, default_value_t = ColorChoice::Auto)]
     color: ColorChoice,
+    /// Load the problem bank from this folder of TOML files instead of the built-in one.
+    #[arg(long, global = true, value_name = "DIR")]
+    problems: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -39,6 +43,9 @@ enum Command {
     Derive(derive::DeriveArgs),
     /// Find equilibria, their stability, normal-mode frequencies and shapes.
     Modes(modes::ModesArgs),
+    /// List, show and verify the problems of the bank.
+    #[command(subcommand)]
+    Problems(problems::ProblemsCommand),
 }
 
 /// Parses arguments and runs the command.
@@ -55,8 +62,9 @@ pub fn run() -> anyhow::Result<ExitCode> {
     let mut out = String::new();
     let code = match cli.command {
         Command::Read(args) => read::run(&args, color, &mut out),
-        Command::Derive(args) => derive::run(&args, color, &mut out),
-        Command::Modes(args) => modes::run(&args, color, &mut out),
+        Command::Derive(args) => derive::run(&args, cli.problems.as_deref(), color, &mut out),
+        Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
+        Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
     };
     emit(&out)?;
     code

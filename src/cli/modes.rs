@@ -48,8 +48,13 @@ fn pairs(s: &str) -> Result<Vec<(String, String)>, MechError> {
         .collect()
 }
 
-pub fn run(args: &ModesArgs, color: bool, out: &mut String) -> anyhow::Result<ExitCode> {
-    match modes_report(args) {
+pub fn run(
+    args: &ModesArgs,
+    problems: Option<&std::path::Path>,
+    color: bool,
+    out: &mut String,
+) -> anyhow::Result<ExitCode> {
+    match modes_report(args, problems) {
         Ok(text) => {
             out.push_str(&text);
             Ok(ExitCode::SUCCESS)
@@ -70,11 +75,14 @@ fn constant(sys: &System, e: Id) -> Option<f64> {
         .map(|v| v[0])
 }
 
-fn modes_report(args: &ModesArgs) -> Result<String, MechError> {
-    let mut sys = args.system.build()?;
-    for c in sys.coordinates.iter_mut() {
-        if !c.periodic {
-            c.range = (-10.0, 10.0);
+fn modes_report(args: &ModesArgs, problems: Option<&std::path::Path>) -> Result<String, MechError> {
+    let mut sys = args.system.build(problems)?;
+    if args.system.problem.is_none() {
+        // A typed Lagrangian has no ranges of its own; a problem's are kept.
+        for c in sys.coordinates.iter_mut() {
+            if !c.periodic {
+                c.range = (-10.0, 10.0);
+            }
         }
     }
     for r in &args.range {

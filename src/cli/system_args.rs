@@ -8,9 +8,11 @@ use clap::Args;
 use lagrange::diagnostic::render_parse_error;
 use lagrange::mechanics::{MechError, System};
 
-/// A system given on the command line.
+/// A system given on the command line, or a problem of the bank by id.
 #[derive(Args, Debug)]
 pub struct SystemArgs {
+    /// A problem id from the bank (`lagrange problems list`), instead of --lagrangian.
+    pub problem: Option<String>,
     /// The Lagrangian, e.g. "1/2 m l^2 theta'^2 + m g l cos(theta)".
     #[arg(long, short = 'L')]
     pub lagrangian: Option<String>,
@@ -26,7 +28,7 @@ pub struct SystemArgs {
     #[arg(long, short = 'V', requires = "kinetic")]
     pub potential: Option<String>,
     /// The generalized coordinates, comma-separated, e.g. "theta1,theta2".
-    #[arg(long, short = 'q')]
+    #[arg(long, short = 'q', default_value = "")]
     pub coords: String,
     /// Generalized non-conservative forces, one per coordinate, separated by `;`.
     #[arg(long)]
@@ -38,8 +40,20 @@ pub struct SystemArgs {
 }
 
 impl SystemArgs {
-    /// Builds the system.
-    pub fn build(&self) -> Result<System, MechError> {
+    /// Builds the system (from the bank when a problem id is given).
+    pub fn build(&self, problems: Option<&std::path::Path>) -> Result<System, MechError> {
+        if let Some(id) = &self.problem {
+            if self.lagrangian.is_some() || self.kinetic.is_some() {
+                return Err(MechError::Invalid(
+                    "give a problem id or --lagrangian, not both".into(),
+                ));
+            }
+            let bank = super::problems::load_bank(problems).map_err(MechError::Invalid)?;
+            let p = bank.problem(id).ok_or_else(|| {
+                MechError::Invalid(format!("no problem `{id}` (see `lagrange problems list`)"))
+            })?;
+            return Ok(p.system.clone());
+        }
         let coords: Vec<&str> = self
             .coords
             .split(',')

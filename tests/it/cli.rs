@@ -326,3 +326,63 @@ fn bad_mechanics_input_exits_2_with_one_clear_line() {
         assert!(err.contains(want), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn problems_list_show_verify() {
+    let (code, out, _) = lagrange(&["problems", "list"]);
+    assert_eq!(code, 0);
+    for id in [
+        "simple-pendulum",
+        "bead-wire",
+        "double-pendulum",
+        "atwood",
+        "bead-parabola",
+        "spring-incline",
+    ] {
+        assert!(out.contains(id), "{id} missing from\n{out}");
+    }
+    let (code, out, _) = lagrange(&["problems", "show", "simple-pendulum"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("coordinates: θ"), "{out}");
+    assert!(!out.contains("answer:"), "answers are hidden by default");
+    let (code, out, _) = lagrange(&["problems", "show", "simple-pendulum", "--answers"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("answer: m*l^2*theta'' + m*g*l*sin(theta) = 0"),
+        "{out}"
+    );
+    let (code, _, err) = lagrange(&["problems", "show", "no-such-problem"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("no problem `no-such-problem`"));
+    let (code, out, _) = lagrange(&["problems", "verify"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("0 failing"), "{out}");
+    let broken = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/broken/wrong-eom.toml");
+    let (code, out, _) = lagrange(&["problems", "verify", broken]);
+    assert_eq!(code, 1);
+    assert!(out.contains("[wrong-eom]"), "{out}");
+}
+
+#[test]
+fn problems_folder_and_problem_ids_in_other_commands() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/broken");
+    let (code, out, _) = lagrange(&["--problems", dir, "problems", "list"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("wrong-eom") && out.contains("[toml-syntax]"),
+        "{out}"
+    );
+    let (code, out, err) = lagrange(&["derive", "atwood-tension"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("λ1 = 2·m₁·m₂·g/(m₁ + m₂)"), "{out}");
+    let (code, out, _) = lagrange(&[
+        "modes",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["equilibria"].as_array().unwrap().len(), 2);
+}
