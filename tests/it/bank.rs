@@ -116,3 +116,150 @@ fn hostile_toml_never_panics() {
         assert!(r.is_err());
     }
 }
+
+#[test]
+fn the_default_bank_has_the_required_problems_and_hints() {
+    let bank = embedded::bank();
+    let required: &[(&str, &[&str], &[&str], &[&str])] = &[
+        (
+            "simple-pendulum",
+            &["theta"],
+            &["m", "l", "g"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "momentum",
+                "eom",
+                "equilibria",
+                "frequencies",
+                "energy-function",
+            ],
+        ),
+        (
+            "bead-wire",
+            &["r"],
+            &["m", "omega"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "momentum",
+                "eom",
+                "equilibria",
+                "energy-function",
+            ],
+        ),
+        (
+            "double-pendulum",
+            &["theta1", "theta2"],
+            &["m1", "m2", "l1", "l2", "g"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "eom",
+                "frequencies",
+                "energy-function",
+            ],
+        ),
+        (
+            "atwood",
+            &["x"],
+            &["m1", "m2", "g"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "momentum",
+                "eom",
+                "energy-function",
+            ],
+        ),
+        (
+            "bead-parabola",
+            &["r"],
+            &["m", "a", "g", "omega"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "momentum",
+                "eom",
+                "equilibria",
+                "frequencies",
+                "energy-function",
+            ],
+        ),
+        (
+            "spring-incline",
+            &["x"],
+            &["m", "k", "g", "alpha"],
+            &[
+                "kinetic",
+                "potential",
+                "lagrangian",
+                "momentum",
+                "eom",
+                "equilibria",
+                "frequencies",
+                "energy-function",
+            ],
+        ),
+        (
+            "atwood-tension",
+            &["y1", "y2"],
+            &["m1", "m2", "g"],
+            &["tension"],
+        ),
+        (
+            "rolling-disk",
+            &["x", "phi"],
+            &["M", "R", "g", "alpha"],
+            &["acceleration", "friction"],
+        ),
+        (
+            "rotating-hoop",
+            &["theta"],
+            &["m", "R", "g", "omega"],
+            &["energy-function"],
+        ),
+    ];
+    for (id, coords, params, parts) in required {
+        let p = bank.problem(id).unwrap_or_else(|| panic!("{id} missing"));
+        let c: Vec<&str> = p
+            .system
+            .coordinates
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect();
+        assert_eq!(&c, coords, "{id}");
+        for q in *params {
+            assert!(
+                p.system.parameters.iter().any(|x| x.name == *q),
+                "{id}: parameter {q}"
+            );
+        }
+        for part in *parts {
+            assert!(p.part(part).is_some(), "{id}: part {part}");
+        }
+        for part in &p.parts {
+            assert!(
+                (2..=4).contains(&part.hints.len()),
+                "{id}/{}: {} hints",
+                part.id,
+                part.hints.len()
+            );
+        }
+    }
+    // The rolling disk's constraint is on velocities, the hoop's h is conserved but not T + V.
+    let disk = bank.problem("rolling-disk").unwrap();
+    assert_eq!(
+        disk.system.constraints[0].kind,
+        lagrange::mechanics::ConstraintKind::Nonholonomic
+    );
+    let mut hoop = bank.problem("rotating-hoop").unwrap().system.clone();
+    let d = hoop.derive().unwrap();
+    let e = hoop.energy(&d);
+    assert!(e.conserved && !e.is_total);
+}
