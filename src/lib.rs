@@ -5,6 +5,7 @@
 //!   simplify, print, dimensions;
 //! - [`mechanics`]: Euler–Lagrange equations, accelerations, conserved quantities,
 //!   constraint forces, equilibria and normal modes;
+//! - [`problem`]: problems and parts as data (what the bank builds and the checker reads);
 //! - [`check`]: numeric equivalence of answers (sampling, relations, accelerations);
 //! - [`bank`]: the problem format, loading, verification and the embedded bank;
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face.
@@ -16,3 +17,4 @@ pub mod check;
 pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;
+pub mod problem;

@@ -3,9 +3,10 @@
 
 use std::path::Path;
 
+use super::build::build;
 use super::finding::{Finding, line_of};
-use super::problem::{Problem, build};
 use super::schema::ProblemFile;
+use crate::problem::Problem;
 
 /// Largest problem file read, in bytes.
 pub const MAX_FILE_BYTES: usize = 1 << 20;

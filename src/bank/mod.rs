@@ -2,13 +2,13 @@
 //! engine can analyse, verifying every stated answer against the physics, and the default
 //! bank embedded in the binary.
 
+pub mod build;
 pub mod embedded;
 pub mod finding;
 pub mod load;
-pub mod problem;
 pub mod schema;
 pub mod verify;
 
+pub use crate::problem::{Part, PartKind, Problem, Quantity};
 pub use finding::Finding;
 pub use load::{Bank, load_dir, load_str};
-pub use problem::{Part, PartKind, Problem, Quantity};

@@ -4,20 +4,21 @@
 //! stability), frequencies from the eigen-solver, and the energy function, momenta, T, V and
 //! constraint forces; and every `wrong` example must indeed be wrong.
 
-use nalgebra::{DMatrix, DVector};
-
 use super::finding::Finding;
-use super::problem::{Part, PartKind, Problem, Quantity};
+use crate::check::PointSet;
 use crate::check::compare::{Relation, close, fmt_value, relate, values};
-use crate::check::{Assumption, PointSet};
-use crate::expr::{Context, Dimension, Id, Node, Reading, read, read_equation, read_expr};
+use crate::check::equations::equations_hold;
+use crate::check::prepare::{
+    Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
+    same_coordinate,
+};
+use crate::expr::{Dimension, Id, read_expr};
 use crate::mechanics::accel::Dynamics;
-use crate::mechanics::equilibria::{Stability, wrap_angle};
+use crate::mechanics::equilibria::Stability;
 use crate::mechanics::sample::seed_from;
-use crate::mechanics::{Derivation, System};
+use crate::problem::{Part, PartKind, Problem, Quantity};
 
-/// Sample points for expressions and equations.
-const POINTS: usize = 24;
+use crate::check::prepare::POINTS;
 /// Parameter samples for equilibria (each runs a multi-start search).
 const EQUILIBRIUM_SAMPLES: usize = 6;
 /// Parameter samples for frequencies.
@@ -95,47 +96,6 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
     out
 }
 
-/// A part's system (with its substitutions), its derivation and sample points.
-pub struct Prepared {
-    pub system: System,
-    pub derivation: Derivation,
-    pub assumptions: Vec<Assumption>,
-    pub points: PointSet,
-    pub context: Context,
-}
-
-/// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
-pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
-    let mut system = problem.system.clone();
-    let map = system
-        .substitute_parameters(&part.substitute)
-        .map_err(|e| e.to_string())?;
-    let assumptions: Vec<Assumption> = problem
-        .assumptions
-        .iter()
-        .map(|a| Assumption {
-            lhs: system.pool.substitute(a.lhs, &map),
-            rhs: system.pool.substitute(a.rhs, &map),
-            ..a.clone()
-        })
-        .collect();
-    let derivation = system.derive().map_err(|e| e.to_string())?;
-    let points = PointSet::draw(
-        &system,
-        &assumptions,
-        seed_from(&[&problem.id, &part.id]),
-        POINTS,
-    )?;
-    let context = system.context();
-    Ok(Prepared {
-        system,
-        derivation,
-        assumptions,
-        points,
-        context,
-    })
-}
-
 fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     let fail = |code: &'static str, message: String| Finding {
         file: problem.file.clone(),
@@ -164,17 +124,6 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
 }
 
 type Check = Result<(), (&'static str, String)>;
-
-fn read_one(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
-    read_expr(src, &p.context, &mut p.system.pool).map_err(|e| {
-        let code = if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
-            "undeclared-symbol"
-        } else {
-            "unreadable"
-        };
-        (code, format!("`{src}`: {e} ({})", e.help()))
-    })
-}
 
 /// The dimension an answer of this quantity must have.
 fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
@@ -339,113 +288,6 @@ fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
     Ok(())
 }
 
-/// The residuals `lhs − rhs` of an answer's equations.
-fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, (&'static str, String)> {
-    let mut out = Vec::new();
-    for it in items {
-        for piece in it.split(';').filter(|s| !s.trim().is_empty()) {
-            let (l, r) = read_equation(piece, &p.context, &mut p.system.pool)
-                .map_err(|e| ("unreadable", format!("`{piece}`: {e}")))?;
-            out.push(p.system.pool.sub(l, r));
-        }
-    }
-    Ok(out)
-}
-
-/// True accelerations at every point.
-fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, (&'static str, String)> {
-    let sys = &p.system;
-    if !sys.constraints.is_empty() {
-        let mut s = sys.clone();
-        let rows = s.constraint_rows();
-        return Ok(p
-            .points
-            .points
-            .iter()
-            .map(|x| {
-                s.multipliers_at(&p.derivation, &rows, x)
-                    .ok()
-                    .map(|(a, _)| a)
-            })
-            .collect());
-    }
-    let dynamics = Dynamics::new(sys, &p.derivation).map_err(|e| ("unusable", e.to_string()))?;
-    let mut scratch = dynamics.scratch();
-    Ok(p.points
-        .points
-        .iter()
-        .map(|x| dynamics.accelerations(x, &mut scratch).ok())
-        .collect())
-}
-
-/// Whether the equations `res` determine the true accelerations (`equations`), or hold at
-/// them (`equation`). Returns a description of the failure.
-pub fn equations_hold(
-    p: &mut Prepared,
-    res: &[Id],
-    system: bool,
-) -> Result<Option<String>, (&'static str, String)> {
-    let n = p.system.n();
-    let truth = true_accelerations(p)?;
-    let coords = p.system.coordinate_syms();
-    // A and b with R = A q'' + b.
-    let mut roots = Vec::new();
-    for &r in res {
-        for &c in &coords {
-            roots.push(p.system.pool.diff(r, c, 2));
-        }
-    }
-    roots.extend(res.iter().copied());
-    let vals = values(&p.system, &roots, &p.points).map_err(|e| ("sampling", e))?;
-    let m = res.len();
-    for (k, (t, v)) in truth.iter().zip(&vals).enumerate() {
-        let (Some(t), Some(v)) = (t, v) else { continue };
-        let a = DMatrix::from_fn(m, n, |i, j| v[i * n + j]);
-        let acc_terms: Vec<f64> = (0..m)
-            .map(|i| (0..n).map(|j| a[(i, j)] * t[j]).sum())
-            .collect();
-        if system {
-            if m != n {
-                return Ok(Some(format!("{m} equations for {n} coordinates")));
-            }
-            // b = R − A q'' at the sampled q''.
-            let x = &p.points.points[k];
-            let b = DVector::from_fn(n, |i, _| {
-                v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>()
-            });
-            let Some(sol) = a.clone().lu().solve(&(-b)) else {
-                return Ok(Some(
-                    "the equations do not determine the accelerations".into(),
-                ));
-            };
-            let scale = t.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-            if !sol.iter().zip(t).all(|(x, y)| close(*x, *y, scale, 1e-7)) {
-                return Ok(Some(format!(
-                    "they give q'' = {:?} where the physics gives {:?}",
-                    sol.as_slice(),
-                    t
-                )));
-            }
-        } else {
-            let x = &p.points.points[k];
-            for i in 0..m {
-                let b = v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>();
-                let r = acc_terms[i] + b;
-                let scale = acc_terms[i].abs() + b.abs();
-                if r.abs() > 1e-7 * (scale + 1e-300) {
-                    return Ok(Some(format!(
-                        "it does not hold for the true accelerations (residual {r:.3e})"
-                    )));
-                }
-            }
-            if (0..m).any(|i| (0..n).all(|j| a[(i, j)] == 0.0)) {
-                return Ok(Some("it contains no acceleration".into()));
-            }
-        }
-    }
-    Ok(None)
-}
-
 fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
     let res = residuals(p, &part.answers)?;
     let system = part.kind == PartKind::Equations;
@@ -484,77 +326,6 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
         }
     }
     Ok(())
-}
-
-/// Reads an equilibrium item: `pi`, `theta = pi` or `theta1 = 0, theta2 = pi`.
-pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, (&'static str, String)> {
-    let reading = read(src, &p.context, &mut p.system.pool)
-        .map_err(|e| ("unreadable", format!("`{src}`: {e}")))?;
-    let n = p.system.n();
-    let mut point: Vec<Option<Id>> = vec![None; n];
-    let assign =
-        |lhs: Id, rhs: Id, point: &mut Vec<Option<Id>>| -> Result<(), (&'static str, String)> {
-            match p.system.pool.node(lhs) {
-                Node::Var(s, 0) => match p.system.coordinates.iter().position(|c| c.sym == *s) {
-                    Some(i) => {
-                        point[i] = Some(rhs);
-                        Ok(())
-                    }
-                    None => Err((
-                        "unreadable",
-                        format!("`{src}`: the left side must be a coordinate"),
-                    )),
-                },
-                _ => Err(("unreadable", format!("`{src}`: write coordinate = value"))),
-            }
-        };
-    match reading {
-        Reading::Expr(e, _) if n == 1 => point[0] = Some(e),
-        Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
-        Reading::List(items, _) => {
-            for it in items {
-                match it {
-                    Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
-                    _ => {
-                        return Err((
-                            "unreadable",
-                            format!("`{src}`: write coordinate = value for each coordinate"),
-                        ));
-                    }
-                }
-            }
-        }
-        _ => {
-            return Err((
-                "unreadable",
-                format!("`{src}`: an equilibrium is coordinate = value"),
-            ));
-        }
-    }
-    point
-        .into_iter()
-        .enumerate()
-        .map(|(i, v)| {
-            v.ok_or((
-                "unreadable",
-                format!(
-                    "`{src}` gives no value for {}",
-                    p.system.coordinates[i].name
-                ),
-            ))
-        })
-        .collect()
-}
-
-/// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
-pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
-    let d = if periodic { wrap_angle(a - b) } else { a - b };
-    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < 1e-9 {
-        std::f64::consts::PI.min(d.abs())
-    } else {
-        d
-    };
-    d.abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
 }
 
 fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
@@ -701,22 +472,6 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
     Ok(())
 }
 
-/// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
-pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
-    let body = match src.split_once('=') {
-        Some((label, rhs))
-            if label
-                .trim()
-                .chars()
-                .all(|c| c.is_alphanumeric() || c == '_' || c == '²' || c == '^') =>
-        {
-            rhs
-        }
-        _ => src,
-    };
-    read_one(p, body)
-}
-
 fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
     let stated: Vec<Id> = part
         .answers
@@ -773,24 +528,4 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         }
     }
     Ok(())
-}
-
-/// The equilibrium a frequencies part is about (`at`, default all coordinates 0).
-fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, (&'static str, String)> {
-    let n = p.system.n();
-    let zero = p.system.pool.zero();
-    let mut at = vec![zero; n];
-    for (name, v) in &part.at {
-        let i = p
-            .system
-            .coordinates
-            .iter()
-            .position(|c| c.name == crate::expr::names::normalize(name))
-            .ok_or((
-                "bad-at",
-                format!("`at` names `{name}`, which is not a coordinate"),
-            ))?;
-        at[i] = read_one(p, v)?;
-    }
-    Ok(at)
 }

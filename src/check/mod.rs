@@ -5,7 +5,9 @@
 //! Verdicts never depend on the simplifier: everything here evaluates.
 
 pub mod compare;
+pub mod equations;
 pub mod points;
+pub mod prepare;
 
 pub use compare::{Relation, relate};
 pub use points::{Assumption, PointSet};

@@ -1,0 +1,119 @@
+//! A problem as data: its system (built by the mechanics engine), dimensions, assumptions and
+//! parts. The bank builds problems from TOML; the checker checks answers against them.
+
+use crate::check::points::Assumption;
+use crate::expr::{Context, Dimension, Dimensions, Id};
+use crate::mechanics::System;
+
+/// The kinds of part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PartKind {
+    Expression,
+    Lagrangian,
+    Equation,
+    Equations,
+    Equilibria,
+    Frequencies,
+    Values,
+    ConstraintForce,
+}
+
+impl PartKind {
+    /// The kind named `s` in a problem file.
+    pub fn parse(s: &str) -> Option<PartKind> {
+        Some(match s {
+            "expression" => PartKind::Expression,
+            "lagrangian" => PartKind::Lagrangian,
+            "equation" => PartKind::Equation,
+            "equations" => PartKind::Equations,
+            "equilibria" => PartKind::Equilibria,
+            "frequencies" => PartKind::Frequencies,
+            "values" => PartKind::Values,
+            "constraint-force" => PartKind::ConstraintForce,
+            _ => return None,
+        })
+    }
+
+    /// The name used in problem files.
+    pub fn name(self) -> &'static str {
+        match self {
+            PartKind::Expression => "expression",
+            PartKind::Lagrangian => "lagrangian",
+            PartKind::Equation => "equation",
+            PartKind::Equations => "equations",
+            PartKind::Equilibria => "equilibria",
+            PartKind::Frequencies => "frequencies",
+            PartKind::Values => "values",
+            PartKind::ConstraintForce => "constraint-force",
+        }
+    }
+}
+
+/// The physical quantity an expression part asks for, which verification derives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    Kinetic,
+    Potential,
+    Lagrangian,
+    /// The momentum conjugate to coordinate i.
+    Momentum(usize),
+    EnergyFunction,
+    /// The multiplier of constraint j.
+    Multiplier(usize),
+    /// The acceleration of coordinate i.
+    Acceleration(usize),
+    /// Nothing the engine derives (checked against the reference answer only).
+    None,
+}
+
+/// A part of a problem.
+#[derive(Clone, Debug)]
+pub struct Part {
+    pub id: String,
+    pub kind: PartKind,
+    pub prompt: String,
+    /// Reference answer items (one for a single expression or equation).
+    pub answers: Vec<String>,
+    pub hints: Vec<String>,
+    pub points: f64,
+    pub substitute: Vec<(String, String)>,
+    pub at: Vec<(String, String)>,
+    pub up_to_constant: bool,
+    pub wrong: Vec<String>,
+    pub tolerance: f64,
+    pub stability: Vec<String>,
+    pub quantity: Quantity,
+    pub dimension: Option<Dimension>,
+    /// Line of the part in its file.
+    pub line: usize,
+}
+
+/// A problem ready to check answers against.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    pub file: String,
+    pub id: String,
+    pub title: String,
+    pub source: String,
+    pub statement: String,
+    pub system: System,
+    pub dims: Dimensions,
+    pub assumptions: Vec<Assumption>,
+    pub parts: Vec<Part>,
+    /// L as written in the file, when it gives one.
+    pub stated_lagrangian: Option<Id>,
+    /// Line of the `lagrangian` key (or of the first body).
+    pub lagrangian_line: usize,
+}
+
+impl Problem {
+    /// The part with this id.
+    pub fn part(&self, id: &str) -> Option<&Part> {
+        self.parts.iter().find(|p| p.id == id)
+    }
+
+    /// The closed reading context of the problem (its coordinates and parameters).
+    pub fn context(&self) -> Context {
+        self.system.context()
+    }
+}
