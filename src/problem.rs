@@ -84,8 +84,22 @@ pub struct Part {
     pub stability: Vec<String>,
     pub quantity: Quantity,
     pub dimension: Option<Dimension>,
+    /// For frequencies: the answers are ω² rather than ω.
+    pub squared: bool,
     /// Line of the part in its file.
     pub line: usize,
+}
+
+impl Part {
+    /// The reference answer as a student would type it in one line.
+    pub fn reference_text(&self, coordinates: usize) -> String {
+        let sep = match self.kind {
+            PartKind::Equations => "; ",
+            PartKind::Equilibria if coordinates > 1 => "; ",
+            _ => ", ",
+        };
+        self.answers.join(sep)
+    }
 }
 
 /// A problem ready to check answers against.

@@ -419,6 +419,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         stability: sp.stability.clone(),
         quantity,
         dimension,
+        squared: sp.squared,
         line,
     })
 }

@@ -187,4 +187,7 @@ pub struct PartSpec {
     pub multiplier: Option<usize>,
     /// The dimension the answer must have, where the kind does not imply one.
     pub dimension: Option<String>,
+    /// For frequencies: the answers are ω² rather than ω.
+    #[serde(default)]
+    pub squared: bool,
 }

@@ -106,7 +106,7 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         message,
     };
     let mut p = prepare(problem, part).map_err(|e| fail("unusable", e))?;
-    match part.kind {
+    let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
             verify_expression(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
         }
@@ -120,7 +120,31 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
             verify_frequencies(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
         }
         PartKind::Values => Ok(()),
+    };
+    physics?;
+    // The checker must accept the reference as written and reject every `wrong` example.
+    let reference = part.reference_text(p.system.n());
+    let v = crate::check::answer::check_prepared(problem, part, &mut p, &reference);
+    if v.status != crate::check::Status::Correct {
+        let why: Vec<String> = v.diagnoses.iter().map(|d| d.message.clone()).collect();
+        return Err(fail(
+            "reference-rejected",
+            format!(
+                "the checker does not accept the reference answer `{reference}`: {}",
+                why.join("; ")
+            ),
+        ));
     }
+    for w in &part.wrong {
+        let v = crate::check::answer::check_prepared(problem, part, &mut p, w);
+        if v.status == crate::check::Status::Correct {
+            return Err(fail(
+                "wrong-accepted",
+                format!("the `wrong` example `{w}` is in fact correct"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 type Check = Result<(), (&'static str, String)>;
@@ -478,8 +502,13 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         .iter()
         .map(|a| read_frequency(p, a))
         .collect::<Result<_, _>>()?;
+    let per_time = if part.squared {
+        Dimension::new(0, 0, -2)
+    } else {
+        Dimension::new(0, 0, -1)
+    };
     for &s in &stated {
-        check_dimension(problem, p, s, Some(Dimension::new(0, 0, -1)))?;
+        check_dimension(problem, p, s, Some(per_time))?;
     }
     let at = equilibrium_of(p, part)?;
     let samples = PointSet::draw(
@@ -500,7 +529,11 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
             .system
             .modes_at(&p.derivation, &params, q0)
             .map_err(|e| ("unusable", e.to_string()))?;
-        let mut want = modes.frequencies.clone();
+        let mut want: Vec<f64> = if part.squared {
+            modes.frequencies.iter().map(|w| w * w).collect()
+        } else {
+            modes.frequencies.clone()
+        };
         let mut got: Vec<f64> = v[..stated.len()].to_vec();
         want.sort_by(f64::total_cmp);
         got.sort_by(f64::total_cmp);

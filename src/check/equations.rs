@@ -10,6 +10,15 @@ use crate::mechanics::accel::Dynamics;
 
 /// True accelerations at every point.
 pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
+    if let Some(a) = p.accelerations.get() {
+        return Ok(a.clone());
+    }
+    let a = compute_accelerations(p)?;
+    let _ = p.accelerations.set(a.clone());
+    Ok(a)
+}
+
+fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
     let sys = &p.system;
     if !sys.constraints.is_empty() {
         let mut s = sys.clone();

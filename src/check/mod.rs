@@ -4,10 +4,16 @@
 //!
 //! Verdicts never depend on the simplifier: everything here evaluates.
 
+pub mod answer;
 pub mod compare;
+pub mod diagnose;
 pub mod equations;
+pub mod lists;
 pub mod points;
 pub mod prepare;
+pub mod verdict;
 
+pub use answer::{Checker, check};
 pub use compare::{Relation, relate};
 pub use points::{Assumption, PointSet};
+pub use verdict::{Diagnosis, Status, Verdict};

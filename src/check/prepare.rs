@@ -22,6 +22,8 @@ pub struct Prepared {
     pub assumptions: Vec<Assumption>,
     pub points: PointSet,
     pub context: Context,
+    /// The true accelerations at each point, computed once (None where undefined).
+    pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -53,6 +55,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
         assumptions,
         points,
         context,
+        accelerations: std::cell::OnceCell::new(),
     })
 }
 

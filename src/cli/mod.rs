@@ -1,6 +1,7 @@
 //! Argument definitions (clap) and dispatch. Clap types stay in the binary; the library
 //! never sees them.
 
+mod check;
 mod derive;
 mod modes;
 mod problems;
@@ -43,6 +44,8 @@ enum Command {
     Derive(derive::DeriveArgs),
     /// Find equilibria, their stability, normal-mode frequencies and shapes.
     Modes(modes::ModesArgs),
+    /// Check an answer to a part of a problem: the verdict and, if wrong, why.
+    Check(check::CheckArgs),
     /// List, show and verify the problems of the bank.
     #[command(subcommand)]
     Problems(problems::ProblemsCommand),
@@ -64,6 +67,7 @@ pub fn run() -> anyhow::Result<ExitCode> {
         Command::Read(args) => read::run(&args, color, &mut out),
         Command::Derive(args) => derive::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
+        Command::Check(args) => check::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
     };
     emit(&out)?;

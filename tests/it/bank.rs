@@ -120,7 +120,8 @@ fn hostile_toml_never_panics() {
 #[test]
 fn the_default_bank_has_the_required_problems_and_hints() {
     let bank = embedded::bank();
-    let required: &[(&str, &[&str], &[&str], &[&str])] = &[
+    type Row<'a> = (&'a str, &'a [&'a str], &'a [&'a str], &'a [&'a str]);
+    let required: &[Row] = &[
         (
             "simple-pendulum",
             &["theta"],

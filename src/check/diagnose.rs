@@ -1,0 +1,189 @@
+//! Searches for the mistake behind a wrong answer, each yielding a tutor's sentence: a sign
+//! flipped in one term, one term off by a constant factor, two symbols swapped, constants
+//! rounded. Each search takes a test `holds(candidate)`, so the same search serves
+//! expressions (equal to the reference) and equations (satisfied by the true motion).
+
+use super::compare::{Relation, relate};
+use super::prepare::Prepared;
+use super::verdict::Diagnosis;
+use crate::expr::{Id, Node, Sym};
+use rustc_hash::FxHashMap;
+
+/// The terms of a sum (or the expression itself).
+pub fn terms(p: &Prepared, e: Id) -> Vec<Id> {
+    match p.system.pool.node(e) {
+        Node::Add(t) => t.to_vec(),
+        _ => vec![e],
+    }
+}
+
+/// `Some(text)` when `c` is a simple fraction (denominator ≤ 12), e.g. `2`, `½`, `−3/2`.
+pub fn nice_fraction(c: f64) -> Option<String> {
+    if !c.is_finite() {
+        return None;
+    }
+    for q in 1..=12i64 {
+        let pn = (c * q as f64).round();
+        if (pn / q as f64 - c).abs() <= 1e-9 * (1.0 + c.abs()) && pn != 0.0 {
+            let p = pn as i64;
+            return Some(
+                match (p, q) {
+                    (p, 1) => p.to_string(),
+                    (1, 2) => "½".into(),
+                    (-1, 2) => "−½".into(),
+                    (p, q) => format!("{p}/{q}"),
+                }
+                .replace('-', "−"),
+            );
+        }
+    }
+    None
+}
+
+/// The terms of `e`, those without accelerations first: in an equation, flipping the inertia
+/// term is equivalent to flipping all the others, and the force terms are where slips happen.
+fn terms_forces_first(p: &Prepared, e: Id) -> Vec<Id> {
+    let mut ts = terms(p, e);
+    ts.sort_by_key(|&t| p.system.pool.variables(t).iter().any(|v| v.1 == 2));
+    ts
+}
+
+/// A sign flipped in one term: `holds(e − 2t)` for a term t of `e`.
+pub fn sign_in_term(
+    p: &mut Prepared,
+    e: Id,
+    holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
+) -> Option<Diagnosis> {
+    let ts = terms_forces_first(p, e);
+    if ts.len() < 2 {
+        return None;
+    }
+    for t in ts {
+        let two = p.system.pool.int(2);
+        let t2 = p.system.pool.mul(two, t);
+        let cand = p.system.pool.sub(e, t2);
+        if holds(p, cand) {
+            return Some(Diagnosis::new(
+                "sign-error",
+                format!(
+                    "sign error: the term {} should have the opposite sign",
+                    p.system.pool.unicode(t)
+                ),
+            ));
+        }
+    }
+    None
+}
+
+/// One term off by a simple factor: `holds(e + (c − 1)·t)` for a term t and a nice c.
+/// `factor_at` gives the c that would repair term t at the first sample point.
+pub fn factor_in_term(
+    p: &mut Prepared,
+    e: Id,
+    factor_at: &mut dyn FnMut(&mut Prepared, Id) -> Option<f64>,
+    holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
+) -> Option<Diagnosis> {
+    let ts = terms_forces_first(p, e);
+    if ts.len() < 2 {
+        return None;
+    }
+    for t in ts {
+        let Some(c) = factor_at(p, t) else { continue };
+        let Some(nice) = nice_fraction(c) else {
+            continue;
+        };
+        if (c - 1.0).abs() < 1e-9 || (c + 1.0).abs() < 1e-9 {
+            continue;
+        }
+        let cm1 = p.system.pool.num(rational(c - 1.0));
+        let add = p.system.pool.mul(cm1, t);
+        let cand = p.system.pool.add(e, add);
+        if holds(p, cand) {
+            return Some(Diagnosis::new(
+                "constant-factor",
+                format!(
+                    "the term {} is off by a factor: it should be {nice} times what you wrote",
+                    p.system.pool.unicode(t)
+                ),
+            ));
+        }
+    }
+    None
+}
+
+/// The nearest simple fraction as an exact rational (for building candidates).
+fn rational(x: f64) -> num_rational::BigRational {
+    for q in 1..=12i64 {
+        let pn = (x * q as f64).round();
+        if (pn / q as f64 - x).abs() <= 1e-9 * (1.0 + x.abs()) {
+            return num_rational::BigRational::new((pn as i64).into(), q.into());
+        }
+    }
+    num_rational::BigRational::from_float(x).unwrap_or_default()
+}
+
+/// Two symbols exchanged: `holds(e with a ↔ b)`.
+pub fn swapped(
+    p: &mut Prepared,
+    e: Id,
+    holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
+) -> Option<Diagnosis> {
+    let mut syms: Vec<Sym> = p.system.parameter_syms();
+    syms.extend(p.system.coordinate_syms());
+    let present: Vec<Sym> = p
+        .system
+        .pool
+        .variables(e)
+        .into_iter()
+        .map(|v| v.0)
+        .collect();
+    for (i, &a) in syms.iter().enumerate() {
+        for &b in &syms[i + 1..] {
+            if !present.contains(&a) && !present.contains(&b) {
+                continue;
+            }
+            let mut map = FxHashMap::default();
+            for o in 0..3u8 {
+                let (va, vb) = (p.system.pool.var(a, o), p.system.pool.var(b, o));
+                map.insert((a, o), vb);
+                map.insert((b, o), va);
+            }
+            let cand = p.system.pool.substitute(e, &map);
+            if cand != e && holds(p, cand) {
+                let (na, nb) = (
+                    p.system.pool.name(a).to_string(),
+                    p.system.pool.name(b).to_string(),
+                );
+                let (va, vb) = (p.system.pool.sym(&na), p.system.pool.sym(&nb));
+                return Some(Diagnosis::new(
+                    "swapped-symbols",
+                    format!(
+                        "{} and {} are swapped: exchanging them gives the right answer",
+                        p.system.pool.unicode(va),
+                        p.system.pool.unicode(vb)
+                    ),
+                ));
+            }
+        }
+    }
+    None
+}
+
+/// Agreement to only a few digits: `a` is within 1e-2 of `b` everywhere but not within the
+/// tolerance.
+pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
+    let r = relate(&p.system, a, b, &p.points, 1e-2).ok()?;
+    if r != Relation::Equal {
+        return None;
+    }
+    let digits = (1..=8)
+        .rev()
+        .find(|k| relate(&p.system, a, b, &p.points, 10f64.powi(-k)).ok() == Some(Relation::Equal))
+        .unwrap_or(1);
+    Some(Diagnosis::new(
+        "rounded-constant",
+        format!(
+            "your answer agrees only to about {digits} significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"
+        ),
+    ))
+}

@@ -1,0 +1,80 @@
+//! `lagrange check PROBLEM PART "ANSWER"`: one verdict, for a student or a script.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::ExitCode;
+
+use clap::Args;
+use colored::Colorize;
+
+use lagrange::check::{Checker, Status};
+use lagrange::diagnostic::render_parse_error;
+
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    /// The problem id (`lagrange problems list`).
+    problem: String,
+    /// The part id (`lagrange problems show PROBLEM`).
+    part: String,
+    /// The answer, e.g. "m*l^2*theta'' + m*g*l*sin(theta) = 0".
+    answer: String,
+    /// One JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(
+    args: &CheckArgs,
+    problems: Option<&Path>,
+    color: bool,
+    out: &mut String,
+) -> anyhow::Result<ExitCode> {
+    let bank = super::problems::load_bank(problems).map_err(anyhow::Error::msg)?;
+    let Some(problem) = bank.problem(&args.problem) else {
+        eprintln!(
+            "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",
+            args.problem
+        );
+        return Ok(ExitCode::from(2));
+    };
+    let mut checker = Checker::new(problem);
+    let v = match checker.check(&args.part, &args.answer) {
+        Ok(v) => v,
+        Err(e) => {
+            let parts: Vec<&str> = problem.parts.iter().map(|p| p.id.as_str()).collect();
+            eprintln!("error: {e}\n  help: the parts are {}", parts.join(", "));
+            return Ok(ExitCode::from(2));
+        }
+    };
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
+    } else {
+        if !v.reading.unicode.is_empty() {
+            writeln!(out, "{} {}", "read as:".bold(), v.reading.unicode)?;
+            if let Some(n) = &v.reading.note {
+                writeln!(out, "         ({n})")?;
+            }
+        }
+        if let Some(e) = &v.parse_error {
+            eprint!("{}", render_parse_error("answer", &args.answer, e, color));
+        }
+        let status = match v.status {
+            Status::Correct => "correct".green().bold(),
+            Status::Incorrect => "incorrect".red().bold(),
+            Status::Invalid => "cannot check this answer".yellow().bold(),
+        };
+        if v.score > 0.0 && v.score < 1.0 {
+            writeln!(out, "{status} (partial credit {:.0}%)", v.score * 100.0)?;
+        } else {
+            writeln!(out, "{status}")?;
+        }
+        for d in &v.diagnoses {
+            writeln!(out, "  {} {}", format!("[{}]", d.code).dimmed(), d.message)?;
+        }
+    }
+    Ok(if v.status == Status::Correct {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
