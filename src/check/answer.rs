@@ -199,6 +199,11 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
                 format!("your L is {} times the reference; a constant factor gives the same equations of motion", nice_fraction(f).unwrap_or_else(|| fmt_value(f))),
             ));
         }
+        Relation::Factor(f) if (f - 1.0).abs() < 1e-2 && rounded(p, s, reference).is_some() => {
+            if let Some(d) = rounded(p, s, reference) {
+                v.diagnoses.push(d);
+            }
+        }
         Relation::Factor(f) if (f + 1.0).abs() < 1e-9 => {
             v.diagnoses.push(Diagnosis::new(
                 "sign-error",
@@ -407,8 +412,11 @@ fn at_rest(p: &Prepared) -> Option<PointSet> {
     Some(PointSet { points })
 }
 
+/// An equation's affine form at one point: the coefficients of q'' and the rest.
+type AffineRow = (Vec<f64>, f64);
+
 /// One equation's affine form at each point: the row A (coefficients of q'') and b (the rest).
-fn affine(p: &Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<(Vec<f64>, f64)>>, String> {
+fn affine(p: &Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, String> {
     let coords = p.system.coordinate_syms();
     let mut pool = p.system.pool.clone();
     let mut roots: Vec<Id> = coords.iter().map(|&c| pool.diff(r, c, 2)).collect();

@@ -63,9 +63,28 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
     if pairs.iter().all(|&(_, x, y)| close(x, y, scale, tol)) {
         return Ok(Relation::Equal);
     }
+    // Up to a constant: the difference does not change when the state (t, q, q', q'') changes
+    // and the parameters stay — the constant may depend on parameters (a zero level m·g·l).
     let c = pairs[0].1 - pairs[0].2;
     if pairs.iter().all(|&(_, x, y)| close(x - y, c, scale, tol)) {
         return Ok(Relation::UpToConstant(c));
+    }
+    let time = sys.pool.time();
+    let stateful = sys
+        .pool
+        .variables(b)
+        .iter()
+        .any(|(s, _)| *s == time || sys.coordinates.iter().any(|c| c.sym == *s));
+    if stateful && let Some(moved) = moved_states(sys, pts) {
+        let da = values(sys, &[a], &moved)?;
+        let db = values(sys, &[b], &moved)?;
+        let same = pairs.iter().all(|&(k, x, y)| match (&da[k], &db[k]) {
+            (Some(u), Some(w)) => close(x - y, u[0] - w[0], scale, tol),
+            _ => true,
+        });
+        if same {
+            return Ok(Relation::UpToConstant(c));
+        }
     }
     if let Some(&(_, x0, y0)) = pairs.iter().find(|p| p.2.abs() > 1e-12 * (scale + 1e-300)) {
         let f = x0 / y0;
@@ -83,6 +102,24 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
         .find(|&&(_, x, y)| !close(x, y, scale, tol))
         .map_or(0, |p| p.0);
     Ok(Relation::Different { point: bad })
+}
+
+/// The points with each one's state (t, q, q', q'') taken from the next point and its
+/// parameters kept.
+fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
+    let k = pts.points.len();
+    if k < 2 {
+        return None;
+    }
+    let state = 1 + 3 * sys.n();
+    let points = (0..k)
+        .map(|i| {
+            let mut x = pts.points[i].clone();
+            x[..state].copy_from_slice(&pts.points[(i + 1) % k][..state]);
+            x
+        })
+        .collect();
+    Some(PointSet { points })
 }
 
 /// A number for people: multiples of π/2 by name, otherwise six significant decimals.

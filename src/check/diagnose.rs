@@ -9,11 +9,12 @@ use super::verdict::Diagnosis;
 use crate::expr::{Id, Node, Sym};
 use rustc_hash::FxHashMap;
 
-/// The terms of a sum (or the expression itself).
-pub fn terms(p: &Prepared, e: Id) -> Vec<Id> {
-    match p.system.pool.node(e) {
+/// The terms of the expanded expression (so `½(m₁ − m₂)ẋ²` has two).
+pub fn terms(p: &mut Prepared, e: Id) -> Vec<Id> {
+    let x = p.system.pool.expand(e);
+    match p.system.pool.node(x) {
         Node::Add(t) => t.to_vec(),
-        _ => vec![e],
+        _ => vec![x],
     }
 }
 
@@ -42,7 +43,7 @@ pub fn nice_fraction(c: f64) -> Option<String> {
 
 /// The terms of `e`, those without accelerations first: in an equation, flipping the inertia
 /// term is equivalent to flipping all the others, and the force terms are where slips happen.
-fn terms_forces_first(p: &Prepared, e: Id) -> Vec<Id> {
+fn terms_forces_first(p: &mut Prepared, e: Id) -> Vec<Id> {
     let mut ts = terms(p, e);
     ts.sort_by_key(|&t| p.system.pool.variables(t).iter().any(|v| v.1 == 2));
     ts

@@ -323,6 +323,30 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
                 continue;
             }
         }
+        // An item of the wrong dimension says so.
+        let want = match part.kind {
+            PartKind::Frequencies if part.squared => Some(crate::expr::Dimension::new(0, 0, -2)),
+            PartKind::Frequencies => Some(crate::expr::Dimension::new(0, 0, -1)),
+            _ => None,
+        };
+        let have = p
+            .system
+            .pool
+            .dimension(items[i][0], &problem.dims)
+            .ok()
+            .flatten();
+        if let (Some(w), Some(h)) = (want, have)
+            && w != h
+        {
+            if !free_refs.is_empty() {
+                free_refs.remove(0);
+            }
+            v.diagnoses.push(Diagnosis::new(
+                "dimension",
+                format!("{label} has dimension {h}, but a frequency is {w}"),
+            ));
+            continue;
+        }
         if !free_refs.is_empty() {
             free_refs.remove(0);
             v.diagnoses

@@ -193,6 +193,8 @@ fn name(src: &str, start: usize) -> (Tok, usize) {
     let mut end = start;
     let mut first = true;
     let mut greek = false;
+    // After a subscript (`m₂`), a letter starts a new name: `m₂l₂` is m₂·l₂.
+    let mut subscripted = false;
     for (j, c) in src[start..].char_indices() {
         let j = start + j;
         let accepted = if first {
@@ -219,8 +221,12 @@ fn name(src: &str, start: usize) -> (Tok, usize) {
             true
         } else if let Some(d) = names::subscript_digit(c) {
             text.push(char::from_digit(d, 10).unwrap_or('0'));
+            subscripted = true;
             true
-        } else if c.is_ascii_digit() || c == '_' || (!greek && c.is_ascii_alphabetic()) {
+        } else if c.is_ascii_digit()
+            || c == '_'
+            || (!greek && !subscripted && c.is_ascii_alphabetic())
+        {
             text.push(c);
             true
         } else {
@@ -329,6 +335,7 @@ mod tests {
             ("q''", vec![name("q", 0), Tok::Prime, Tok::Prime]),
             ("ẍ", vec![name("x", 2)]),
             ("mẋ", vec![name("m", 0), name("x", 1)]),
+            ("m₂l₂", vec![name("m2", 0), name("l2", 0)]),
         ];
         for (src, want) in cases {
             assert_eq!(kinds(src), want, "{src}");

@@ -3,6 +3,7 @@
 
 mod bank;
 mod cli;
+mod corpus;
 mod diagnostics;
 mod dimensions;
 mod helpers;
