@@ -386,3 +386,101 @@ fn problems_folder_and_problem_ids_in_other_commands() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["equilibria"].as_array().unwrap().len(), 2);
 }
+
+#[test]
+fn check_verdicts_exit_codes_and_json() {
+    let cases: &[(&str, &str, &str, i32)] = &[
+        ("simple-pendulum", "eom", "theta'' = -g/l sin(θ)", 0),
+        ("simple-pendulum", "eom", "theta'' + g/l*theta = 0", 1),
+        (
+            "simple-pendulum",
+            "eom",
+            "m*l^2*theta'' - m*g*l*sin(theta) = 0",
+            1,
+        ),
+        ("simple-pendulum", "eom", "thta'' + g/l*sin(theta) = 0", 1),
+        ("simple-pendulum", "frequencies", "g/l", 1),
+        ("simple-pendulum", "equilibria", "theta = 0", 1),
+        ("simple-pendulum", "potential", "m*g*l*(1 - cos(theta))", 0),
+        (
+            "double-pendulum",
+            "frequencies",
+            "sqrt(0.586*g/l), sqrt(3.414*g/l)",
+            1,
+        ),
+        (
+            "bead-wire",
+            "energy-function",
+            "1/2*m*r'^2 + 1/2*m*omega^2*r^2",
+            1,
+        ),
+        ("simple-pendulum", "eom", "theta'' + g/l sin(theta)", 0),
+    ];
+    let mut shown = String::new();
+    for (problem, part, answer, code) in cases {
+        let (c, out, err) = lagrange(&["--color", "never", "check", problem, part, answer]);
+        assert_eq!(c, *code, "{problem} {part} {answer}: {out}{err}");
+        shown.push_str(&format!(
+            "$ lagrange check {problem} {part} {answer:?}\n{out}{err}\n"
+        ));
+    }
+    insta::assert_snapshot!("check_verdicts", shown);
+    let (c, out, _) = lagrange(&[
+        "check",
+        "simple-pendulum",
+        "eom",
+        "theta'' + g/l*theta = 0",
+        "--json",
+    ]);
+    assert_eq!(c, 1);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "problem",
+        "part",
+        "status",
+        "score",
+        "reading",
+        "diagnoses",
+        "seed",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(v["status"], "incorrect");
+    assert_eq!(v["diagnoses"][0]["code"], "small-angle");
+    assert_eq!(v["reading"]["plain"], "theta'' + g*theta/l = 0");
+    // Usage errors exit 2.
+    assert_eq!(lagrange(&["check", "no-such-problem", "eom", "x"]).0, 2);
+    let (c, _, err) = lagrange(&["check", "simple-pendulum", "no-such-part", "x"]);
+    assert_eq!(c, 2);
+    assert!(err.contains("the parts are kinetic"), "{err}");
+}
+
+#[test]
+fn check_colour_follows_the_flag_and_no_color() {
+    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args([
+            "--color",
+            "always",
+            "check",
+            "simple-pendulum",
+            "eom",
+            "theta'' + g/l*sin(theta) = 0",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("\u{1b}["),
+        "colour was asked for"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args([
+            "check",
+            "simple-pendulum",
+            "eom",
+            "theta'' + g/l*sin(theta) = 0",
+        ])
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("\u{1b}["));
+}
