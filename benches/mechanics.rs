@@ -8,45 +8,11 @@
 //! - symbolic double-pendulum modes with m₁ = m₂ = m, l₁ = l₂ = l, from the Lagrangian text.
 
 use divan::{Bencher, black_box};
-use lagrange::expr::{Context, Pool, read_expr};
 use lagrange::mechanics::System;
-use lagrange::mechanics::bodies::{Body, Potential};
 use lagrange::mechanics::equilibria::Statics;
-use lagrange::mechanics::system::Coordinate;
 
 fn n_link(n: usize) -> System {
-    let mut pool = Pool::new();
-    let names: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
-    let coordinates: Vec<Coordinate> = names
-        .iter()
-        .map(|q| Coordinate {
-            name: q.clone(),
-            sym: pool.symbol(q),
-            periodic: true,
-            range: (-std::f64::consts::PI, std::f64::consts::PI),
-        })
-        .collect();
-    let ctx = Context::open().with_coordinates(&names);
-    let mut bodies = Vec::with_capacity(n);
-    let (mut xs, mut ys) = (String::new(), String::new());
-    for q in &names {
-        xs.push_str(&format!(" + l*sin({q})"));
-        ys.push_str(&format!(" - l*cos({q})"));
-        let x = read_expr(&xs, &ctx, &mut pool).expect("x");
-        let y = read_expr(&ys, &ctx, &mut pool).expect("y");
-        let m = pool.sym("m");
-        bodies.push(Body::Point {
-            mass: m,
-            position: vec![x, y],
-        });
-    }
-    let g = pool.sym("g");
-    System::from_bodies(
-        pool,
-        coordinates,
-        &bodies,
-        &[Potential::Gravity { g, axis: 1 }],
-    )
+    lagrange::mechanics::bodies::n_link_pendulum(n)
 }
 
 fn printed_ops(n: usize) -> (usize, f64) {

@@ -6,7 +6,7 @@
 
 use super::finding::Finding;
 use crate::check::PointSet;
-use crate::check::compare::{Relation, close, fmt_value, relate, values};
+use crate::check::compare::{Relation, close, fmt_value, parameter_text, relate, values};
 use crate::check::equations::equations_hold;
 use crate::check::prepare::{
     Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
@@ -410,14 +410,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
             .system
             .equilibria(&p.derivation, &params)
             .map_err(|e| ("unusable", e.to_string()))?;
-        let pstr = p
-            .system
-            .parameters
-            .iter()
-            .zip(&params)
-            .map(|(q, x)| format!("{} = {x:.4}", q.name))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let pstr = parameter_text(&p.system, &params);
         if found.continuum {
             return Err((
                 "not-isolated",
@@ -544,14 +537,7 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
                 .zip(&got)
                 .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(1e-8)))
         {
-            let pstr = p
-                .system
-                .parameters
-                .iter()
-                .zip(&params)
-                .map(|(q, x)| format!("{} = {x:.4}", q.name))
-                .collect::<Vec<_>>()
-                .join(", ");
+            let pstr = parameter_text(&p.system, &params);
             return Err((
                 "wrong-frequency",
                 format!(

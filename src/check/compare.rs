@@ -122,6 +122,16 @@ fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
     Some(PointSet { points })
 }
 
+/// Parameter values for a message: `g = 9.8100, l = 1.2000`.
+pub fn parameter_text(sys: &System, params: &[f64]) -> String {
+    sys.parameters
+        .iter()
+        .zip(params)
+        .map(|(q, x)| format!("{} = {x:.4}", q.name))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A number for people: multiples of π/2 by name, otherwise six significant decimals.
 pub fn fmt_value(x: f64) -> String {
     let pi = std::f64::consts::PI;

@@ -111,16 +111,22 @@ impl System {
                 roots.push(self.pool.diff(f, c, 1));
             }
         }
-        let prog = self.compile(&roots)?;
-        let x = self.rest_point(params, q0);
-        let mut scratch = prog.scratch();
-        prog.run(&x, &mut scratch)
+        let v = self.values_at_rest(&roots, params, q0)?;
+        Ok(DMatrix::from_fn(n, n, |r, c| v[r * n + c]))
+    }
+
+    /// The values of `roots` at rest at `q0` (for the linearized equations).
+    fn values_at_rest(
+        &self,
+        roots: &[Id],
+        params: &[f64],
+        q0: &[f64],
+    ) -> Result<Vec<f64>, MechError> {
+        let prog = self.compile(roots)?;
+        prog.eval(&self.rest_point(params, q0))
             .map_err(|_| MechError::Undefined {
                 what: "the linearized equations".into(),
-            })?;
-        Ok(DMatrix::from_fn(n, n, |r, c| {
-            prog.output(r * n + c, &scratch)
-        }))
+            })
     }
 
     /// The standard-layout point at rest at `q0`.
@@ -150,15 +156,9 @@ impl System {
                 roots.push(self.pool.diff(f, q, 0));
             }
         }
-        let prog = self.compile(&roots)?;
-        let x = self.rest_point(params, q0);
-        let mut scratch = prog.scratch();
-        prog.run(&x, &mut scratch)
-            .map_err(|_| MechError::Undefined {
-                what: "the linearized equations".into(),
-            })?;
-        let m = DMatrix::from_fn(n, n, |r, cc| prog.output(r * n + cc, &scratch));
-        let fq = DMatrix::from_fn(n, n, |r, cc| prog.output(n * n + r * n + cc, &scratch));
+        let v = self.values_at_rest(&roots, params, q0)?;
+        let m = DMatrix::from_fn(n, n, |r, cc| v[r * n + cc]);
+        let fq = DMatrix::from_fn(n, n, |r, cc| v[n * n + r * n + cc]);
         let minv = m
             .try_inverse()
             .ok_or_else(|| MechError::Invalid("the mass matrix is singular here".into()))?;
