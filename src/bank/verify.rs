@@ -314,6 +314,31 @@ fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
 
 fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
     let res = residuals(p, &part.answers)?;
+    // A condition without accelerations: proportional to a generalized force at rest.
+    if part.kind == PartKind::Equation
+        && res.len() == 1
+        && !p.system.pool.variables(res[0]).iter().any(|v| v.1 == 2)
+    {
+        let coords = p.system.coordinate_syms();
+        let zero = p.system.pool.zero();
+        let rest: rustc_hash::FxHashMap<_, _> = coords
+            .iter()
+            .flat_map(|&c| [((c, 1), zero), ((c, 2), zero)])
+            .collect();
+        for &f in &p.derivation.forcing.clone() {
+            let f0 = p.system.pool.substitute(f, &rest);
+            if crate::check::compare::proportional(&p.system, res[0], f0, &p.points, 1e-9) {
+                return Ok(());
+            }
+        }
+        return Err((
+            "wrong-condition",
+            format!(
+                "the stated condition {} = 0 is not a generalized force at rest set to zero",
+                p.system.pool.unicode(res[0])
+            ),
+        ));
+    }
     let system = part.kind == PartKind::Equations;
     if let Some(why) = equations_hold(p, &res, system)? {
         let shown: Vec<String> = res

@@ -575,6 +575,58 @@ fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading)
         }
     }
     let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
+    // A condition (a reference equation without accelerations, such as an equilibrium
+    // condition) is compared with the reference up to a nonzero factor.
+    if part.kind == PartKind::Equation
+        && let Ok((rl, rr)) =
+            crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
+    {
+        let reference = p.system.pool.sub(rl, rr);
+        if !p.system.pool.variables(reference).iter().any(|v| v.1 == 2) {
+            if res.len() != 1 {
+                v.diagnoses.push(Diagnosis::new(
+                    "equation-count",
+                    format!("one equation is asked for, but you gave {}", res.len()),
+                ));
+                return v;
+            }
+            match relate(&p.system, res[0], reference, &p.points, part.tolerance) {
+                Ok(Relation::Equal | Relation::Factor(_)) => {
+                    v.status = Status::Correct;
+                    v.score = 1.0;
+                }
+                _ if super::compare::proportional(
+                    &p.system, res[0], reference, &p.points, 1e-9,
+                ) =>
+                {
+                    v.status = Status::Correct;
+                    v.score = 1.0;
+                }
+                Ok(Relation::Undefined { point }) => v.diagnoses.push(Diagnosis::new(
+                    "undefined",
+                    format!(
+                        "your equation is undefined at {}, where the correct one is defined",
+                        point_text(p, point)
+                    ),
+                )),
+                _ => {
+                    let r0 = res[0];
+                    let eq = |p: &mut Prepared, c: Id| {
+                        super::compare::proportional(&p.system, c, reference, &p.points, 1e-9)
+                    };
+                    let d = sign_in_term(p, r0, &mut |p, c| eq(p, c))
+                        .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
+                    v.diagnoses.push(d.unwrap_or_else(|| {
+                        Diagnosis::new(
+                            "not-equal",
+                            "this condition is not equivalent to the right one",
+                        )
+                    }));
+                }
+            }
+            return v;
+        }
+    }
     let n = p.system.n();
     let truth = match true_accelerations(p) {
         Ok(t) => t,

@@ -104,6 +104,91 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
     Ok(Relation::Different { point: bad })
 }
 
+/// Whether `a = c·b` with c nonzero and independent of the state (it may depend on the
+/// parameters, like the m in m·r·(ω² − 2ga) = 0).
+pub fn proportional(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
+    let Some(moved) = moved_states(sys, pts) else {
+        return false;
+    };
+    let (Ok(va), Ok(vb), Ok(ma), Ok(mb)) = (
+        values(sys, &[a], pts),
+        values(sys, &[b], pts),
+        values(sys, &[a], &moved),
+        values(sys, &[b], &moved),
+    ) else {
+        return false;
+    };
+    let mut checked = 0;
+    for k in 0..pts.points.len() {
+        let (Some(x), Some(y), Some(u), Some(w)) = (&va[k], &vb[k], &ma[k], &mb[k]) else {
+            continue;
+        };
+        let (x, y, u, w) = (x[0], y[0], u[0], w[0]);
+        // x/y = u/w, written without division; both sides must not vanish together.
+        let scale = (x * w).abs() + (u * y).abs();
+        if scale == 0.0 {
+            continue;
+        }
+        if (x == 0.0) != (y == 0.0) || (x * w - u * y).abs() > tol * scale {
+            return false;
+        }
+        checked += 1;
+    }
+    checked > 0 && monomial_ratio(sys, a, b, pts)
+}
+
+/// Whether a/b depends on the parameters only as a monomial (k·m·g/l, never 2ga + ω²):
+/// doubling any one parameter scales the ratio by the same power of 2 at every point.
+fn monomial_ratio(sys: &System, a: Id, b: Id, pts: &PointSet) -> bool {
+    let ratio = |set: &PointSet| -> Option<Vec<Option<f64>>> {
+        let va = values(sys, &[a], set).ok()?;
+        let vb = values(sys, &[b], set).ok()?;
+        Some(
+            va.iter()
+                .zip(&vb)
+                .map(|(x, y)| match (x, y) {
+                    (Some(x), Some(y)) if y[0] != 0.0 && x[0] != 0.0 => Some(x[0] / y[0]),
+                    _ => None,
+                })
+                .collect(),
+        )
+    };
+    let Some(base) = ratio(pts) else { return false };
+    let start = 1 + 3 * sys.n();
+    for j in 0..sys.parameters.len() {
+        let doubled = PointSet {
+            points: pts
+                .points
+                .iter()
+                .map(|x| {
+                    let mut y = x.clone();
+                    y[start + j] *= 2.0;
+                    y
+                })
+                .collect(),
+        };
+        let Some(r2) = ratio(&doubled) else {
+            return false;
+        };
+        let mut exponent: Option<f64> = None;
+        for (u, w) in base.iter().zip(&r2) {
+            let (Some(u), Some(w)) = (u, w) else { continue };
+            let q = w / u;
+            if q <= 0.0 {
+                return false;
+            }
+            let e = q.log2();
+            if (e * 2.0 - (e * 2.0).round()).abs() > 1e-6
+                || exponent.is_some_and(|f| (f - e).abs() > 1e-6)
+            {
+                return false;
+            }
+            exponent = Some(e);
+        }
+    }
+    true
+}
+
 /// The points with each one's state (t, q, q', q'') taken from the next point and its
 /// parameters kept.
 fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
