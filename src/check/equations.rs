@@ -1,12 +1,20 @@
 //! Equations compared through the accelerations they imply: an answer's equations must hold
-//! at the true accelerations (one equation), or determine exactly them (a system).
+//! at the true accelerations (one equation), or determine exactly them (a system). Also the
+//! diagnosis of a wrong equation: linearized, a sign or factor in one term, swapped symbols, a
+//! velocity term; and conditions without accelerations, compared up to a factor.
 
 use nalgebra::{DMatrix, DVector};
+use rustc_hash::FxHashMap;
 
-use super::compare::{close, values};
+use super::answer::{at_rest, point_text, verdict};
+use super::compare::{Relation, close, relate, values};
+use super::diagnose::{factor_in_term, sign_in_term, swapped};
+use super::points::PointSet;
 use super::prepare::{Failure, Prepared};
-use crate::expr::Id;
+use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
+use crate::expr::{Id, Reading};
 use crate::mechanics::accel::Dynamics;
+use crate::problem::{Part, PartKind, Problem};
 
 /// True accelerations at every point.
 pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
@@ -109,4 +117,385 @@ pub fn equations_hold(
         }
     }
     Ok(None)
+}
+
+/// An equation's affine form at one point: the coefficients of q'' and the rest.
+type AffineRow = (Vec<f64>, f64);
+
+/// One equation's affine form at each point: the row A (coefficients of q'') and b (the rest).
+fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, String> {
+    let coords = p.system.coordinate_syms();
+    let mut roots: Vec<Id> = coords
+        .iter()
+        .map(|&c| p.system.pool.diff(r, c, 2))
+        .collect();
+    roots.push(r);
+    let vals = values(&p.system, &roots, pts)?;
+    let n = coords.len();
+    Ok(vals
+        .into_iter()
+        .zip(&pts.points)
+        .map(|(v, x)| {
+            let v = v?;
+            let a: Vec<f64> = v[..n].to_vec();
+            let b = v[n] - (0..n).map(|j| a[j] * x[1 + 3 * j + 2]).sum::<f64>();
+            Some((a, b))
+        })
+        .collect())
+}
+
+/// Whether equation `r` holds at accelerations `acc` (per point), and involves them.
+fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
+    let Ok(rows) = affine(p, r, pts) else {
+        return false;
+    };
+    let mut any_acc = false;
+    let mut checked = 0;
+    for (row, a) in rows.iter().zip(acc) {
+        let (Some((coef, b)), Some(a)) = (row, a) else {
+            continue;
+        };
+        let lhs: f64 = coef.iter().zip(a).map(|(c, x)| c * x).sum();
+        let scale = coef.iter().zip(a).map(|(c, x)| (c * x).abs()).sum::<f64>() + b.abs();
+        if coef.iter().any(|c| *c != 0.0) {
+            any_acc = true;
+        }
+        if (lhs + b).abs() > 1e-7 * (scale + 1e-300) {
+            return false;
+        }
+        checked += 1;
+    }
+    any_acc && checked > 0
+}
+
+/// True accelerations at arbitrary points.
+fn accelerations_at(p: &Prepared, pts: &PointSet) -> Vec<Option<Vec<f64>>> {
+    let Ok(d) = Dynamics::new(&p.system, &p.derivation) else {
+        return vec![None; pts.points.len()];
+    };
+    let mut scratch = d.scratch();
+    pts.points
+        .iter()
+        .map(|x| d.accelerations(x, &mut scratch).ok())
+        .collect()
+}
+
+/// Accelerations of the equations linearized about q = 0, q' = 0.
+fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
+    let n = p.system.n();
+    let coords = p.system.coordinate_syms();
+    let zero = p.system.pool.zero();
+    let rest: FxHashMap<_, _> = coords
+        .iter()
+        .flat_map(|&c| [((c, 0), zero), ((c, 1), zero), ((c, 2), zero)])
+        .collect();
+    let mut roots = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            roots.push(p.system.pool.substitute(p.derivation.mass[i][j], &rest));
+        }
+    }
+    for i in 0..n {
+        let f = p.derivation.forcing[i];
+        roots.push(p.system.pool.substitute(f, &rest));
+        for &c in &coords {
+            let dq = p.system.pool.diff(f, c, 0);
+            roots.push(p.system.pool.substitute(dq, &rest));
+            let dv = p.system.pool.diff(f, c, 1);
+            roots.push(p.system.pool.substitute(dv, &rest));
+        }
+    }
+    let Ok(vals) = values(&p.system, &roots, &p.points) else {
+        return vec![None; p.points.points.len()];
+    };
+    vals.into_iter()
+        .zip(&p.points.points)
+        .map(|(v, x)| {
+            let v = v?;
+            let m = DMatrix::from_fn(n, n, |i, j| v[i * n + j]);
+            let mut rhs = DVector::zeros(n);
+            for i in 0..n {
+                let base = n * n + i * (1 + 2 * n);
+                let mut s = v[base];
+                for (j, _) in coords.iter().enumerate() {
+                    s +=
+                        v[base + 1 + 2 * j] * x[1 + 3 * j] + v[base + 2 + 2 * j] * x[1 + 3 * j + 1];
+                }
+                rhs[i] = s;
+            }
+            m.lu().solve(&rhs).map(|s| s.iter().copied().collect())
+        })
+        .collect()
+}
+
+/// Checks an answer to an `equation` or `equations` part.
+pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
+    let mut v = verdict(problem, part, Status::Incorrect);
+    // Collect the equations; a bare expression e is read as e = 0.
+    let mut eqs: Vec<(Id, Id)> = Vec::new();
+    let mut bare = false;
+    let mut flat = Vec::new();
+    match r {
+        Reading::System(items, _) | Reading::List(items, _) => flat.extend(items),
+        other => flat.push(other),
+    }
+    for it in flat {
+        match it {
+            Reading::Expr(e, _) => {
+                bare = true;
+                eqs.push((e, p.system.pool.zero()));
+            }
+            Reading::Equation { lhs, rhs, .. } => eqs.push((lhs, rhs)),
+            _ => {
+                let mut w = verdict(problem, part, Status::Invalid);
+                w.diagnoses.push(Diagnosis::new(
+                    "wrong-kind",
+                    "write equations separated by `;`",
+                ));
+                return w;
+            }
+        }
+    }
+    let shown: Vec<String> = eqs
+        .iter()
+        .map(|&(l, r)| {
+            p.system
+                .pool
+                .display_equation(l, r, crate::expr::Style::Plain)
+        })
+        .collect();
+    let shown_u: Vec<String> = eqs
+        .iter()
+        .map(|&(l, r)| {
+            p.system
+                .pool
+                .display_equation(l, r, crate::expr::Style::Unicode)
+        })
+        .collect();
+    v.reading = ReadAs {
+        plain: shown.join("; "),
+        unicode: shown_u.join("; "),
+        note: bare.then(|| "an expression without `=` was read as expression = 0".to_string()),
+    };
+    for &(l, r) in &eqs {
+        if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
+            v.diagnoses.push(Diagnosis::new("dimension", e.to_string()));
+        }
+    }
+    let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
+    // A condition (a reference equation without accelerations, such as an equilibrium
+    // condition) is compared with the reference up to a nonzero factor.
+    if part.kind == PartKind::Equation
+        && let Ok((rl, rr)) =
+            crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
+    {
+        let reference = p.system.pool.sub(rl, rr);
+        if !p.system.pool.variables(reference).iter().any(|v| v.1 == 2) {
+            if res.len() != 1 {
+                v.diagnoses.push(Diagnosis::new(
+                    "equation-count",
+                    format!("one equation is asked for, but you gave {}", res.len()),
+                ));
+                return v;
+            }
+            match relate(&p.system, res[0], reference, &p.points, part.tolerance) {
+                Ok(Relation::Equal | Relation::Factor(_)) => {
+                    v.status = Status::Correct;
+                    v.score = 1.0;
+                }
+                _ if super::compare::proportional(
+                    &p.system, res[0], reference, &p.points, 1e-9,
+                ) =>
+                {
+                    v.status = Status::Correct;
+                    v.score = 1.0;
+                }
+                Ok(Relation::Undefined { point }) => v.diagnoses.push(Diagnosis::new(
+                    "undefined",
+                    format!(
+                        "your equation is undefined at {}, where the correct one is defined",
+                        point_text(p, point)
+                    ),
+                )),
+                _ => {
+                    let r0 = res[0];
+                    let eq = |p: &mut Prepared, c: Id| {
+                        super::compare::proportional(&p.system, c, reference, &p.points, 1e-9)
+                    };
+                    let d = sign_in_term(p, r0, &mut |p, c| eq(p, c))
+                        .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
+                    v.diagnoses.push(d.unwrap_or_else(|| {
+                        Diagnosis::new(
+                            "not-equal",
+                            "this condition is not equivalent to the right one",
+                        )
+                    }));
+                }
+            }
+            return v;
+        }
+    }
+    let n = p.system.n();
+    let truth = match true_accelerations(p) {
+        Ok(t) => t,
+        Err((_, m)) => {
+            v.diagnoses.push(Diagnosis::new("not-equal", m));
+            return v;
+        }
+    };
+    let pts = p.points.clone();
+    let ok: Vec<bool> = res.iter().map(|&r| holds(p, r, &pts, &truth)).collect();
+    let want = if part.kind == PartKind::Equations {
+        n
+    } else {
+        1
+    };
+    // Independent equations that hold: rank of their acceleration rows at a sample point.
+    let holding: Vec<Id> = res
+        .iter()
+        .zip(&ok)
+        .filter(|(_, o)| **o)
+        .map(|(r, _)| *r)
+        .collect();
+    let rank = rank_of(p, &holding);
+    if res.len() != want {
+        v.diagnoses.push(Diagnosis::new(
+            "equation-count",
+            format!(
+                "{want} equation{} {} asked for, but you gave {}",
+                if want == 1 { "" } else { "s" },
+                if want == 1 { "is" } else { "are" },
+                res.len()
+            ),
+        ));
+    } else if ok.iter().all(|o| *o) {
+        if rank == want {
+            v.status = Status::Correct;
+        } else {
+            v.diagnoses.push(Diagnosis::new(
+                "dependent-equations",
+                "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
+            ));
+        }
+    }
+    for (i, &r) in res.iter().enumerate() {
+        if ok[i] {
+            continue;
+        }
+        let which = if res.len() > 1 {
+            format!("equation {}", i + 1)
+        } else {
+            "your equation".to_string()
+        };
+        if res.len() > 1 || part.kind == PartKind::Equations {
+            v.diagnoses.push(Diagnosis::new(
+                "wrong-equation",
+                format!("{which} ({}) does not hold for the true motion", shown_u[i]),
+            ));
+        }
+        diagnose_equation(p, r, &which, &truth, &mut v);
+    }
+    if v.status != Status::Correct && v.diagnoses.is_empty() {
+        v.diagnoses.push(Diagnosis::new(
+            "not-equal",
+            "your equation does not hold for the true motion",
+        ));
+    }
+    v.score = if v.status == Status::Correct {
+        1.0
+    } else {
+        rank.min(want) as f64 / want as f64
+            * if res.len() > want {
+                want as f64 / res.len() as f64
+            } else {
+                1.0
+            }
+    };
+    v
+}
+
+fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
+    if rows.is_empty() {
+        return 0;
+    }
+    let pts = PointSet {
+        points: vec![p.points.points[0].clone()],
+    };
+    let mut m = Vec::new();
+    for &r in rows {
+        match affine(p, r, &pts)
+            .ok()
+            .and_then(|v| v.into_iter().next().flatten())
+        {
+            Some((a, _)) => m.push(a),
+            None => return 0,
+        }
+    }
+    let n = p.system.n();
+    let a = DMatrix::from_fn(m.len(), n, |i, j| m[i][j]);
+    let scale = a.amax().max(1e-300);
+    a.svd(false, false)
+        .singular_values
+        .iter()
+        .filter(|s| **s > 1e-9 * scale)
+        .count()
+}
+
+fn diagnose_equation(
+    p: &mut Prepared,
+    r: Id,
+    which: &str,
+    truth: &[Option<Vec<f64>>],
+    v: &mut Verdict,
+) {
+    let pts = p.points.clone();
+    let lin = linearized_accelerations(p);
+    if holds(p, r, &pts, &lin) {
+        v.diagnoses.push(Diagnosis::new(
+            "small-angle",
+            format!("{which} is the small-angle (linearized) equation, but the full equation is asked: keep sin θ and cos θ, and the velocity terms"),
+        ));
+        return;
+    }
+    let truth = truth.to_vec();
+    let mut holds_true = |p: &mut Prepared, c: Id| holds(p, c, &pts, &truth);
+    if let Some(d) = swapped(p, r, &mut holds_true) {
+        v.diagnoses.push(d);
+        return;
+    }
+    if let Some(d) = sign_in_term(p, r, &mut holds_true) {
+        v.diagnoses.push(d);
+        return;
+    }
+    let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
+        // c with R + (c − 1)·T = 0 at the first defined point.
+        let ar = affine(p, r, &pts).ok()?;
+        let at = affine(p, t, &pts).ok()?;
+        for ((rr, tt), acc) in ar.iter().zip(&at).zip(&truth) {
+            let (Some((ca, cb)), Some((ta, tb)), Some(acc)) = (rr, tt, acc) else {
+                continue;
+            };
+            let rv: f64 = ca.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + cb;
+            let tv: f64 = ta.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + tb;
+            if tv.abs() > 1e-9 {
+                return Some(1.0 - rv / tv);
+            }
+        }
+        None
+    };
+    if let Some(d) = factor_in_term(p, r, &mut factor_at, &mut holds_true) {
+        v.diagnoses.push(d);
+        return;
+    }
+    if let Some(still) = at_rest(p) {
+        let acc = accelerations_at(p, &still);
+        if holds(p, r, &still, &acc) {
+            v.diagnoses.push(Diagnosis::new(
+                "velocity-term",
+                format!("{which} is right when nothing moves, so a velocity term is missing or wrong (a q'² or q'₁q'₂ term)"),
+            ));
+            return;
+        }
+    }
+    let _ = close;
 }

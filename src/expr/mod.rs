@@ -10,6 +10,7 @@ pub mod diff;
 pub mod dimension;
 pub mod error;
 pub mod eval;
+pub mod exact;
 pub mod lexer;
 pub mod lower;
 pub mod names;
