@@ -39,6 +39,17 @@ pub const FILES: &[(&str, &str)] = &[
     ),
 ];
 
+/// Loads one embedded problem by id: files are named after their id, so only that file is
+/// built (a full scan is the fallback if a name and an id ever disagree).
+pub fn problem(id: &str) -> Option<crate::problem::Problem> {
+    let by_name = FILES
+        .iter()
+        .find(|(name, _)| name.strip_suffix(".toml") == Some(id))
+        .and_then(|(name, text)| load_str(&format!("problems/{name}"), text).ok())
+        .filter(|p| p.id == id);
+    by_name.or_else(|| bank().problems.into_iter().find(|p| p.id == id))
+}
+
 /// Loads the embedded bank.
 pub fn bank() -> Bank {
     let mut b = Bank::default();

@@ -29,8 +29,16 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    let bank = super::problems::load_bank(problems).map_err(anyhow::Error::msg)?;
-    let Some(problem) = bank.problem(&args.problem) else {
+    // The embedded bank builds only the problem asked for; a folder is loaded whole.
+    let found = match problems {
+        None => lagrange::bank::embedded::problem(&args.problem),
+        Some(dir) => super::problems::load_bank(Some(dir))
+            .map_err(anyhow::Error::msg)?
+            .problems
+            .into_iter()
+            .find(|p| p.id == args.problem),
+    };
+    let Some(problem) = found.as_ref() else {
         eprintln!(
             "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",
             args.problem

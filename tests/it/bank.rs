@@ -264,3 +264,12 @@ fn the_default_bank_has_the_required_problems_and_hints() {
     let e = hoop.energy(&d);
     assert!(e.conserved && !e.is_total);
 }
+
+#[test]
+fn one_embedded_problem_loads_by_id() {
+    for (name, _) in embedded::FILES {
+        let id = name.trim_end_matches(".toml");
+        assert_eq!(embedded::problem(id).map(|p| p.id), Some(id.to_string()));
+    }
+    assert!(embedded::problem("no-such-problem").is_none());
+}
