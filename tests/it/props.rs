@@ -194,3 +194,33 @@ fn hostile_inputs_are_refused_not_crashed() {
         let _ = read(s, &Context::open(), &mut pool);
     }
 }
+
+proptest! {
+    #![proptest_config(config(300))]
+
+    /// Whatever a student types, every kind of part returns a verdict.
+    #[test]
+    fn the_checker_never_panics(
+        soup in prop::collection::vec(prop::sample::select(vec![
+            "theta", "theta1", "theta2", "r", "x", "'", "''", "m", "l", "g", "omega", "=", ";", ",",
+            "+", "-", "*", "/", "^", "(", ")", "sin", "cos", "sqrt", "pi", "0", "1", "2", "0.5",
+            " ", "θ̇", "½", "√", "dot(", "t", "abs", "log", "exp", "/0",
+        ]), 0..40),
+        which in 0usize..6,
+    ) {
+        let targets = [
+            ("simple-pendulum", "eom"),
+            ("simple-pendulum", "equilibria"),
+            ("double-pendulum", "eom"),
+            ("double-pendulum", "frequencies"),
+            ("bead-parabola", "equilibrium-condition"),
+            ("atwood-tension", "tension"),
+        ];
+        let (id, part) = targets[which];
+        let problem = lagrange::bank::embedded::problem(id).unwrap();
+        let mut checker = lagrange::check::Checker::new(&problem);
+        let input: String = soup.concat();
+        let v = checker.check(part, &input).unwrap();
+        prop_assert!((0.0..=1.0).contains(&v.score));
+    }
+}
