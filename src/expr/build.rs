@@ -241,6 +241,51 @@ impl Pool {
                 _ => out.push(p),
             }
         }
+        // Numeric radicals with one exponent merge: √2·√3 = √6, √2·√8 = 4.
+        let radical = |pool: &Pool, f: Id| -> Option<(BigRational, Id)> {
+            match pool.node(f) {
+                Node::Pow(b, e) => match (pool.as_num(*b), pool.as_num(*e)) {
+                    (Some(bv), Some(_)) if bv.is_positive() => Some((bv.clone(), *e)),
+                    _ => None,
+                },
+                _ => None,
+            }
+        };
+        let mut k = 0;
+        while k < out.len() {
+            let Some((bk, ek)) = radical(self, out[k]) else {
+                k += 1;
+                continue;
+            };
+            let mut base = bk;
+            let mut merged = false;
+            let mut j = k + 1;
+            while j < out.len() {
+                match radical(self, out[j]) {
+                    Some((bj, ej)) if ej == ek => {
+                        base *= bj;
+                        out.remove(j);
+                        merged = true;
+                    }
+                    _ => j += 1,
+                }
+            }
+            if merged {
+                let b = self.num(base);
+                let p = self.pow(b, ek);
+                out.remove(k);
+                match self.node(p) {
+                    Node::Num(v) => mul_coeff(&mut coeff, v),
+                    Node::Mul(_) => {
+                        again = true;
+                        out.push(p);
+                    }
+                    _ => out.insert(k, p),
+                }
+            } else {
+                k += 1;
+            }
+        }
         if again {
             let c = self.num(coeff);
             out.push(c);
