@@ -285,12 +285,23 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
     // A condition (a reference equation without accelerations, such as an equilibrium
     // condition) is compared with the reference up to a nonzero factor.
-    if part.kind == PartKind::Equation
-        && let Ok((rl, rr)) =
-            crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
-    {
-        let reference = p.system.pool.sub(rl, rr);
-        if !p.system.pool.variables(reference).iter().any(|v| v.1 == 2) {
+    let condition = match p.condition.get() {
+        Some(c) => *c,
+        None => {
+            let c = (part.kind == PartKind::Equation)
+                .then(|| {
+                    crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
+                        .ok()
+                })
+                .flatten()
+                .map(|(rl, rr)| p.system.pool.sub(rl, rr))
+                .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
+            let _ = p.condition.set(c);
+            c
+        }
+    };
+    if let Some(reference) = condition {
+        {
             if res.len() != 1 {
                 v.diagnoses.push(Diagnosis::new(
                     "equation-count",

@@ -24,6 +24,8 @@ pub struct Prepared {
     pub context: Context,
     /// The true accelerations at each point, computed once (None where undefined).
     pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
+    /// For an `equation` part whose reference has no accelerations: its residual (decided once).
+    pub condition: std::cell::OnceCell<Option<Id>>,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -56,6 +58,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
         points,
         context,
         accelerations: std::cell::OnceCell::new(),
+        condition: std::cell::OnceCell::new(),
     })
 }
 
