@@ -61,6 +61,23 @@ impl PointSet {
         seed: u64,
         count: usize,
     ) -> Result<PointSet, String> {
+        Self::draw_defined(sys, assumptions, &[], seed, count)
+    }
+
+    /// Like [`draw`](Self::draw), but a point where any of `defined` is undefined (the
+    /// reference answer, say) is redrawn.
+    pub fn draw_defined(
+        sys: &System,
+        assumptions: &[Assumption],
+        defined: &[Id],
+        seed: u64,
+        count: usize,
+    ) -> Result<PointSet, String> {
+        let must: Option<Program> = if defined.is_empty() {
+            None
+        } else {
+            Some(sys.compile(defined).map_err(|e| e.to_string())?)
+        };
         let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
         let prog: Option<Program> = if roots.is_empty() {
             None
@@ -95,6 +112,11 @@ impl PointSet {
                 if !ok {
                     continue;
                 }
+            }
+            if let Some(m) = &must
+                && m.eval(&x).is_err()
+            {
+                continue;
             }
             points.push(x);
         }

@@ -7,7 +7,7 @@ use crate::expr::{Context, Id, Node, Reading, read, read_equation, read_expr};
 use crate::mechanics::equilibria::wrap_angle;
 use crate::mechanics::sample::seed_from;
 use crate::mechanics::{Derivation, System};
-use crate::problem::{Part, Problem};
+use crate::problem::{Part, PartKind, Problem};
 
 /// Sample points for expressions and equations.
 pub const POINTS: usize = 24;
@@ -44,13 +44,28 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
         })
         .collect();
     let derivation = system.derive().map_err(|e| e.to_string())?;
-    let points = PointSet::draw(
+    let context = system.context();
+    // Points where the reference answer is undefined are redrawn.
+    let mut reference: Vec<Id> = Vec::new();
+    for a in &part.answers {
+        for piece in a.split(';') {
+            let body = match piece.split_once('=') {
+                Some((l, r)) if part.kind != PartKind::Equilibria => format!("({l}) - ({r})"),
+                Some((_, r)) => r.to_string(),
+                None => piece.to_string(),
+            };
+            if let Ok(id) = read_expr(&body, &context, &mut system.pool) {
+                reference.push(id);
+            }
+        }
+    }
+    let points = PointSet::draw_defined(
         &system,
         &assumptions,
+        &reference,
         seed_from(&[&problem.id, &part.id]),
         POINTS,
     )?;
-    let context = system.context();
     Ok(Prepared {
         system,
         derivation,

@@ -142,7 +142,11 @@ impl System {
         // Starting points: a grid (≤ ~400 points) plus random ones.
         let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
         let mut starts: Vec<Vec<f64>> = Vec::new();
-        let total = per_axis.pow(n as u32);
+        // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
+        let total = per_axis
+            .checked_pow(n as u32)
+            .filter(|&t| t <= 512)
+            .unwrap_or(0);
         for k in 0..total {
             let mut idx = k;
             let mut q = Vec::with_capacity(n);
@@ -153,7 +157,8 @@ impl System {
             }
             starts.push(q);
         }
-        for _ in 0..64 {
+        let random = if total == 0 { 256 } else { 64 };
+        for _ in 0..random {
             starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
         }
         // Continuum: f ≈ 0 at almost every starting point.

@@ -211,6 +211,12 @@ impl System {
         at: &[Id],
     ) -> Result<SymbolicModes, MechError> {
         let n = self.n();
+        // A cofactor expansion has n! terms: closed forms are for small systems only.
+        if n > 3 {
+            return Err(MechError::Invalid(format!(
+                "the characteristic polynomial is given in closed form for up to 3 coordinates, not {n}; drop --symbolic for the numeric modes"
+            )));
+        }
         let coords = self.coordinate_syms();
         let zero = self.pool.zero();
         let mut map: FxHashMap<_, _> = FxHashMap::default();

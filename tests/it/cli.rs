@@ -484,3 +484,22 @@ fn check_colour_follows_the_flag_and_no_color() {
         .unwrap();
     assert!(!String::from_utf8_lossy(&out.stdout).contains("\u{1b}["));
 }
+
+#[test]
+fn symbolic_modes_of_a_large_system_is_a_clear_error() {
+    let l = "1/2*(a'^2 + b'^2 + c'^2 + d'^2) - 1/2*k*(a^2 + b^2 + c^2 + d^2)";
+    let (code, _, err) = lagrange(&[
+        "modes",
+        "--lagrangian",
+        l,
+        "--coords",
+        "a,b,c,d",
+        "--params",
+        "k=k",
+        "--at",
+        "a=0,b=0,c=0,d=0",
+        "--symbolic",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("up to 3 coordinates"), "{err}");
+}

@@ -524,3 +524,24 @@ fn rotor_and_spring_bodies() {
     let modes = sys.modes_at(&d, &p, &[1.5]).unwrap();
     assert!(close(modes.frequencies[0], 2.0));
 }
+
+#[test]
+fn many_coordinates_use_random_starts_only() {
+    // Twelve uncoupled oscillators: a full grid would be 2^12 starts; the search stays small
+    // and finds the single equilibrium.
+    let names: Vec<String> = (1..=12).map(|i| format!("x{i}")).collect();
+    let l: String = names
+        .iter()
+        .map(|x| format!(" + 1/2*{x}'^2 - 1/2*k*{x}^2"))
+        .collect();
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let mut sys = System::from_lagrangian(&l, &refs).unwrap();
+    let d = sys.derive().unwrap();
+    let eq = sys.equilibria(&d, &[2.0]).unwrap();
+    assert_eq!(eq.points.len(), 1);
+    assert!(eq.points[0].0.iter().all(|x| x.abs() < 1e-9));
+    assert_eq!(eq.points[0].1, Stability::Stable);
+    let zero = sys.pool.zero();
+    let err = sys.symbolic_modes(&d, &vec![zero; 12]).unwrap_err();
+    assert!(err.to_string().contains("up to 3 coordinates"), "{err}");
+}
