@@ -542,6 +542,6 @@ fn many_coordinates_use_random_starts_only() {
     assert!(eq.points[0].0.iter().all(|x| x.abs() < 1e-9));
     assert_eq!(eq.points[0].1, Stability::Stable);
     let zero = sys.pool.zero();
-    let err = sys.symbolic_modes(&d, &vec![zero; 12]).unwrap_err();
+    let err = sys.symbolic_modes(&d, &[zero; 12]).unwrap_err();
     assert!(err.to_string().contains("up to 3 coordinates"), "{err}");
 }
