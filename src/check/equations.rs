@@ -52,69 +52,41 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure>
 }
 
 /// Whether the equations `res` determine the true accelerations (`equations`), or hold at
-/// them (`equation`). Returns a description of the failure.
+/// them (`equation`). Returns a description of the failure. The same tests as the checker's:
+/// each equation holds at the true accelerations, and together they have full rank.
 pub fn equations_hold(
     p: &mut Prepared,
     res: &[Id],
     system: bool,
 ) -> Result<Option<String>, Failure> {
     let n = p.system.n();
-    let truth = true_accelerations(p)?;
-    let coords = p.system.coordinate_syms();
-    // A and b with R = A q'' + b.
-    let mut roots = Vec::new();
-    for &r in res {
-        for &c in &coords {
-            roots.push(p.system.pool.diff(r, c, 2));
-        }
+    if system && res.len() != n {
+        return Ok(Some(format!("{} equations for {n} coordinates", res.len())));
     }
-    roots.extend(res.iter().copied());
-    let vals = values(&p.system, &roots, &p.points).map_err(|e| ("sampling", e))?;
-    let m = res.len();
-    for (k, (t, v)) in truth.iter().zip(&vals).enumerate() {
-        let (Some(t), Some(v)) = (t, v) else { continue };
-        let a = DMatrix::from_fn(m, n, |i, j| v[i * n + j]);
-        let acc_terms: Vec<f64> = (0..m)
-            .map(|i| (0..n).map(|j| a[(i, j)] * t[j]).sum())
-            .collect();
-        if system {
-            if m != n {
-                return Ok(Some(format!("{m} equations for {n} coordinates")));
-            }
-            // b = R − A q'' at the sampled q''.
-            let x = &p.points.points[k];
-            let b = DVector::from_fn(n, |i, _| {
-                v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>()
-            });
-            let Some(sol) = a.clone().lu().solve(&(-b)) else {
-                return Ok(Some(
-                    "the equations do not determine the accelerations".into(),
-                ));
-            };
-            let scale = t.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-            if !sol.iter().zip(t).all(|(x, y)| close(*x, *y, scale, 1e-7)) {
+    let truth = true_accelerations(p)?;
+    let pts = p.points.clone();
+    for &r in res {
+        match miss(p, r, &pts, &truth) {
+            None => {}
+            Some(Miss::Residual(x)) if !system => {
                 return Ok(Some(format!(
-                    "they give q'' = {:?} where the physics gives {:?}",
-                    sol.as_slice(),
-                    t
+                    "it does not hold for the true accelerations (residual {x:.3e})"
                 )));
             }
-        } else {
-            let x = &p.points.points[k];
-            for i in 0..m {
-                let b = v[m * n + i] - (0..n).map(|j| a[(i, j)] * x[1 + 3 * j + 2]).sum::<f64>();
-                let r = acc_terms[i] + b;
-                let scale = acc_terms[i].abs() + b.abs();
-                if r.abs() > 1e-7 * (scale + 1e-300) {
-                    return Ok(Some(format!(
-                        "it does not hold for the true accelerations (residual {r:.3e})"
-                    )));
-                }
-            }
-            if (0..m).any(|i| (0..n).all(|j| a[(i, j)] == 0.0)) {
+            Some(Miss::NoAcceleration) if !system => {
                 return Ok(Some("it contains no acceleration".into()));
             }
+            Some(_) => {
+                return Ok(Some(
+                    "they do not give the accelerations the physics gives".into(),
+                ));
+            }
         }
+    }
+    if system && rank_of(p, res) < n {
+        return Ok(Some(
+            "the equations do not determine the accelerations".into(),
+        ));
     }
     Ok(None)
 }
@@ -144,10 +116,20 @@ fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRo
         .collect())
 }
 
-/// Whether equation `r` holds at accelerations `acc` (per point), and involves them.
-fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
+/// Why an equation fails at given accelerations.
+enum Miss {
+    /// The residual at the first point where it does not vanish.
+    Residual(f64),
+    /// It contains no acceleration.
+    NoAcceleration,
+    /// It could not be evaluated anywhere.
+    Unevaluable,
+}
+
+/// `None` when equation `r` holds at accelerations `acc` (per point) and involves them.
+fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Option<Miss> {
     let Ok(rows) = affine(p, r, pts) else {
-        return false;
+        return Some(Miss::Unevaluable);
     };
     let mut any_acc = false;
     let mut checked = 0;
@@ -161,11 +143,20 @@ fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> b
             any_acc = true;
         }
         if (lhs + b).abs() > 1e-7 * (scale + 1e-300) {
-            return false;
+            return Some(Miss::Residual(lhs + b));
         }
         checked += 1;
     }
-    any_acc && checked > 0
+    match (any_acc, checked) {
+        (_, 0) => Some(Miss::Unevaluable),
+        (false, _) => Some(Miss::NoAcceleration),
+        _ => None,
+    }
+}
+
+/// Whether equation `r` holds at accelerations `acc` (per point), and involves them.
+fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
+    miss(p, r, pts, acc).is_none()
 }
 
 /// True accelerations at arbitrary points.
