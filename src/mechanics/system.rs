@@ -103,19 +103,9 @@ impl System {
         let t = pool.simplify(t, &positive);
         let v = pool.simplify(v, &positive);
         let l = pool.sub(t, v);
-        let n = coordinates.len();
-        let zero = pool.zero();
-        let mut sys = System {
-            pool,
-            coordinates,
-            parameters: Vec::new(),
-            lagrangian: l,
-            kinetic: Some(t),
-            potential: Some(v),
-            forces: vec![zero; n],
-            constraints: Vec::new(),
-        };
-        sys.collect_parameters();
+        let mut sys = System::from_parts(pool, coordinates, l);
+        sys.kinetic = Some(t);
+        sys.potential = Some(v);
         sys
     }
 
