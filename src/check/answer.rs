@@ -150,7 +150,17 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         unicode: p.system.pool.unicode(s),
         note: None,
     };
-    let Ok(reference) = read_expr(&part.answers[0], &p.context, &mut p.system.pool) else {
+    let reference = match p.reference.get() {
+        Some(r) => r.first().and_then(|x| x.first()).copied().ok_or(()),
+        None => {
+            let r = read_expr(&part.answers[0], &p.context, &mut p.system.pool).map_err(|_| ());
+            if let Ok(id) = r {
+                let _ = p.reference.set(vec![vec![id]]);
+            }
+            r
+        }
+    };
+    let Ok(reference) = reference else {
         v.status = Status::Invalid;
         v.diagnoses.push(Diagnosis::new(
             "syntax",

@@ -224,7 +224,8 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
             .join(sep),
         note: None,
     };
-    let refs = match reference_items(part, p) {
+    let cached = p.reference.get().cloned();
+    let refs = match cached.map_or_else(|| reference_items(part, p), Ok) {
         Ok(r) => r,
         Err(m) => {
             v.status = Status::Invalid;
@@ -235,6 +236,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
             return v;
         }
     };
+    let _ = p.reference.set(refs.clone());
     for it in &items {
         for &x in it {
             if let Err(e) = p.system.pool.dimension(x, &problem.dims) {

@@ -26,6 +26,8 @@ pub struct Prepared {
     pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
     /// For an `equation` part whose reference has no accelerations: its residual (decided once).
     pub condition: std::cell::OnceCell<Option<Id>>,
+    /// The reference answer's items, read once (one id per item; several per equilibrium).
+    pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -74,6 +76,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
         context,
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
+        reference: std::cell::OnceCell::new(),
     })
 }
 
