@@ -329,7 +329,7 @@ impl Pool {
                 let mut seen: Vec<(String, Dimension)> = Vec::new();
                 let mut unknown = false;
                 let mut terms = ch.to_vec();
-                terms.sort_by(|&a, &b| self.display_cmp_terms(a, b));
+                self.display_sort_terms(&mut terms);
                 for &c in &terms {
                     match self.dim_of(c, dims, memo)? {
                         Some(d) => {

@@ -63,14 +63,6 @@ impl Pool {
         )
     }
 
-    /// The display order of terms in a sum: highest time derivative first, then like a
-    /// polynomial (higher degree first, then by variable name and its degree), constants
-    /// last. So `m·l²·θ̈ + m·g·l·sin θ`, `a² + 2·a·b + b²`, `l²·ω⁴ − 4·g·l·ω² + 2·g²`.
-    pub fn display_cmp_terms(&self, a: Id, b: Id) -> Ordering {
-        let (ka, kb) = (self.term_key(a), self.term_key(b));
-        self.display_cmp_keyed(a, &ka, b, &kb)
-    }
-
     /// The term printed first in a sum (each term's key computed once).
     pub fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
         let keyed: Vec<(Id, TermKey<'_>)> = terms.iter().map(|&t| (t, self.term_key(t))).collect();
@@ -78,6 +70,19 @@ impl Pool {
             .iter()
             .min_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb))
             .map(|(t, _)| *t)
+    }
+
+    /// Sorts the terms of a sum into display order: highest time derivative first, then like a
+    /// polynomial (higher degree first, then by variable name and its degree), constants
+    /// last. So `m·l²·θ̈ + m·g·l·sin θ`, `a² + 2·a·b + b²`, `l²·ω⁴ − 4·g·l·ω² + 2·g²`.
+    /// Each term's key is computed once.
+    pub fn display_sort_terms(&self, terms: &mut [Id]) {
+        let mut keyed: Vec<(Id, TermKey<'_>)> =
+            terms.iter().map(|&t| (t, self.term_key(t))).collect();
+        keyed.sort_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb));
+        for (slot, (t, _)) in terms.iter_mut().zip(keyed) {
+            *slot = t;
+        }
     }
 
     fn display_cmp_keyed(&self, a: Id, ka: &TermKey<'_>, b: Id, kb: &TermKey<'_>) -> Ordering {
@@ -233,7 +238,7 @@ impl Printer<'_> {
         match self.pool.node(id) {
             Node::Add(ch) => {
                 let mut terms = ch.to_vec();
-                terms.sort_by(|&a, &b| self.pool.display_cmp_terms(a, b));
+                self.pool.display_sort_terms(&mut terms);
                 let mut out = String::new();
                 for (i, &t) in terms.iter().enumerate() {
                     let (neg, mag, _) = self.term(t);
