@@ -69,11 +69,3 @@ pub fn render(name: &str, src: &str, d: &Diagnostic, color: bool) -> String {
 pub fn render_parse_error(name: &str, src: &str, e: &ParseError, color: bool) -> String {
     render(name, src, &Diagnostic::from(e), color)
 }
-
-/// A one-line summary: `error[code] at byte N: message (help)`.
-pub fn one_line(d: &Diagnostic) -> String {
-    format!(
-        "error[{}] at byte {}: {}; {}",
-        d.code, d.span.start, d.message, d.help
-    )
-}

@@ -164,11 +164,6 @@ impl Program {
         self.code.is_empty()
     }
 
-    /// Number of outputs.
-    pub fn output_count(&self) -> usize {
-        self.outputs.len()
-    }
-
     /// A scratch buffer of the right size for [`run`](Self::run).
     pub fn scratch(&self) -> Vec<f64> {
         vec![0.0; self.code.len()]

@@ -119,11 +119,6 @@ impl Pool {
         s
     }
 
-    /// The symbol with this name, if interned.
-    pub fn find_symbol(&self, name: &str) -> Option<Sym> {
-        self.sym_index.get(name).copied()
-    }
-
     /// The name of a symbol.
     pub fn name(&self, s: Sym) -> &str {
         &self.names[s.0 as usize]
@@ -234,11 +229,6 @@ impl Pool {
         vars.sort();
         vars.dedup();
         vars
-    }
-
-    /// Whether the variable `(s, order)` occurs in `id`.
-    pub fn contains_var(&self, id: Id, s: Sym, order: u8) -> bool {
-        self.variables(id).contains(&(s, order))
     }
 
     /// Number of operations when printed as a tree (a rough size, like SymPy's `count_ops`):
