@@ -10,227 +10,37 @@ use crate::mechanics::system::{Coordinate, Parameter};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 use super::finding::{Finding, line_of};
-use super::schema::{AnchorSpec, AnswerSpec, PartSpec, ProblemFile};
+use super::schema::{AnchorSpec, AnswerSpec, BodySpec, PartSpec, PotentialSpec, ProblemFile};
 
 /// Builds a problem from a parsed file. Every error is a finding with a line.
 pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding> {
-    let id = pf.id.get_ref().clone();
-    let fail = |line: usize, code: &'static str, message: String| Finding {
-        file: file.to_string(),
-        problem: Some(id.clone()),
-        part: None,
-        line,
-        code,
-        message,
+    let b = Builder {
+        file,
+        text,
+        id: pf.id.get_ref().clone(),
+        id_line: line_of(text, pf.id.span().start),
     };
-    let id_line = line_of(text, pf.id.span().start);
     if pf.coordinates.is_empty() {
-        return Err(fail(
-            id_line,
+        return Err(b.fail(
+            b.id_line,
             "no-coordinates",
             "the problem declares no coordinate".into(),
         ));
     }
     let mut pool = Pool::new();
     let mut dims = Dimensions::new();
-    let mut coordinates = Vec::new();
-    for c in &pf.coordinates {
-        let name = crate::expr::names::normalize(&c.name);
-        let d = match &c.dimension {
-            Some(d) => Dimension::parse(d).map_err(|e| fail(id_line, "bad-dimension", e))?,
-            None if c.periodic => Dimension::NONE,
-            None => Dimension::new(0, 1, 0),
-        };
-        dims.set(&name, d);
-        let range = match c.range {
-            Some([a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
-            Some(r) => {
-                return Err(fail(
-                    id_line,
-                    "bad-range",
-                    format!(
-                        "coordinate `{name}` has range {r:?}; it needs [low, high] with low < high"
-                    ),
-                ));
-            }
-            None if c.periodic => (-std::f64::consts::PI, std::f64::consts::PI),
-            None => crate::mechanics::system::DEFAULT_COORDINATE_RANGE,
-        };
-        coordinates.push(Coordinate {
-            sym: pool.symbol(&name),
-            name,
-            periodic: c.periodic,
-            range,
-        });
-    }
-    let mut parameters = Vec::new();
-    for (name, p) in &pf.parameters {
-        let name = crate::expr::names::normalize(name);
-        let d = Dimension::parse(&p.dimension)
-            .map_err(|e| fail(id_line, "bad-dimension", format!("parameter `{name}`: {e}")))?;
-        let [lo, hi] = p.range;
-        if !(lo > 0.0 && hi > lo && hi.is_finite()) {
-            return Err(fail(
-                id_line,
-                "bad-range",
-                format!(
-                    "parameter `{name}` has range [{lo}, {hi}]; it needs a positive range [low, high]"
-                ),
-            ));
-        }
-        dims.set(&name, d);
-        parameters.push(Parameter {
-            sym: pool.symbol(&name),
-            name,
-            dimension: Some(d),
-            range: (lo, hi),
-        });
-    }
-    let ctx = Context::new()
-        .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
-        .with_parameters(parameters.iter().map(|p| p.name.as_str()));
-    let read = |pool: &mut Pool, src: &str, line: usize, what: &str| -> Result<Id, Finding> {
-        read_expr(src, &ctx, pool).map_err(|e| {
-            fail(
-                line,
-                if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
-                    "undeclared-symbol"
-                } else {
-                    "unreadable"
-                },
-                format!("{what} `{src}`: {e} ({})", e.help()),
-            )
-        })
+    let coordinates = b.coordinates(&pf, &mut pool, &mut dims)?;
+    let parameters = b.parameters(&pf, &mut pool, &mut dims)?;
+    let reader = Reader {
+        b: &b,
+        ctx: Context::new()
+            .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
+            .with_parameters(parameters.iter().map(|p| p.name.as_str())),
     };
-    let mut bodies = Vec::new();
-    for b in &pf.bodies {
-        let line = line_of(text, b.span().start);
-        let b = b.get_ref();
-        match b.kind.as_str() {
-            "point" => {
-                let (Some(m), Some(pos)) = (&b.mass, &b.position) else {
-                    return Err(fail(
-                        line,
-                        "bad-body",
-                        "a point body needs `mass` and `position`".into(),
-                    ));
-                };
-                if !(2..=3).contains(&pos.len()) {
-                    return Err(fail(
-                        line,
-                        "bad-body",
-                        "a position has 2 or 3 components".into(),
-                    ));
-                }
-                let mass = read(&mut pool, m, line, "mass")?;
-                let position = pos
-                    .iter()
-                    .map(|x| read(&mut pool, x, line, "position"))
-                    .collect::<Result<_, _>>()?;
-                bodies.push(Body::Point { mass, position });
-            }
-            "rotor" => {
-                let (Some(i), Some(a)) = (&b.inertia, &b.angle) else {
-                    return Err(fail(
-                        line,
-                        "bad-body",
-                        "a rotor needs `inertia` and `angle`".into(),
-                    ));
-                };
-                let inertia = read(&mut pool, i, line, "inertia")?;
-                let angle = read(&mut pool, a, line, "angle")?;
-                bodies.push(Body::Rotor { inertia, angle });
-            }
-            other => {
-                return Err(fail(
-                    line,
-                    "bad-body",
-                    format!("unknown body kind `{other}` (use point or rotor)"),
-                ));
-            }
-        }
-    }
-    let mut potentials = Vec::new();
-    for p in &pf.potentials {
-        let line = line_of(text, p.span().start);
-        let p = p.get_ref();
-        match p.kind.as_str() {
-            "gravity" => {
-                let g = read(&mut pool, p.g.as_deref().unwrap_or("g"), line, "gravity")?;
-                let axis = match p.axis.as_deref().unwrap_or("y") {
-                    "x" => 0,
-                    "y" => 1,
-                    "z" => 2,
-                    other => {
-                        return Err(fail(
-                            line,
-                            "bad-potential",
-                            format!("gravity axis `{other}` (use x, y or z)"),
-                        ));
-                    }
-                };
-                potentials.push(Potential::Gravity { g, axis });
-            }
-            "spring" => {
-                let k = read(
-                    &mut pool,
-                    p.k.as_deref().unwrap_or("k"),
-                    line,
-                    "spring constant",
-                )?;
-                let natural = read(
-                    &mut pool,
-                    p.natural.as_deref().unwrap_or("0"),
-                    line,
-                    "natural length",
-                )?;
-                let anchor = |a: &Option<AnchorSpec>, pool: &mut Pool| -> Result<Anchor, Finding> {
-                    match a {
-                        Some(AnchorSpec::Body(i)) if *i >= 1 && *i <= bodies.len() => {
-                            Ok(Anchor::Body(i - 1))
-                        }
-                        Some(AnchorSpec::Body(i)) => Err(fail(
-                            line,
-                            "bad-potential",
-                            format!("spring end {i} is not a body number"),
-                        )),
-                        Some(AnchorSpec::Point(v)) => Ok(Anchor::Fixed(
-                            v.iter()
-                                .map(|x| read(pool, x, line, "anchor"))
-                                .collect::<Result<_, _>>()?,
-                        )),
-                        None => Err(fail(
-                            line,
-                            "bad-potential",
-                            "a spring needs `from` and `to`".into(),
-                        )),
-                    }
-                };
-                let a = anchor(&p.from, &mut pool)?;
-                let b = anchor(&p.to, &mut pool)?;
-                potentials.push(Potential::Spring { k, natural, a, b });
-            }
-            "explicit" => {
-                let Some(v) = &p.v else {
-                    return Err(fail(
-                        line,
-                        "bad-potential",
-                        "an explicit potential needs `V`".into(),
-                    ));
-                };
-                potentials.push(Potential::Explicit(read(&mut pool, v, line, "potential")?));
-            }
-            other => {
-                return Err(fail(
-                    line,
-                    "bad-potential",
-                    format!("unknown potential kind `{other}` (use gravity, spring or explicit)"),
-                ));
-            }
-        }
-    }
+    let bodies = reader.bodies(&pf, &mut pool)?;
+    let potentials = reader.potentials(&pf, &bodies, &mut pool)?;
     let stated = match &pf.lagrangian {
-        Some(l) => Some(read(
+        Some(l) => Some(reader.read(
             &mut pool,
             l.get_ref(),
             line_of(text, l.span().start),
@@ -243,14 +53,14 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         .as_ref()
         .map(|l| line_of(text, l.span().start))
         .or_else(|| pf.bodies.first().map(|b| line_of(text, b.span().start)))
-        .unwrap_or(id_line);
+        .unwrap_or(b.id_line);
     let mut system = if !bodies.is_empty() {
         System::from_bodies(pool, coordinates, &bodies, &potentials)
     } else if let Some(l) = stated {
         System::from_parts(pool, coordinates, l)
     } else {
-        return Err(fail(
-            id_line,
+        return Err(b.fail(
+            b.id_line,
             "no-system",
             "give `lagrangian`, or `bodies` (and `potentials`)".into(),
         ));
@@ -263,56 +73,11 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         }
     }
     system.parameters = declared;
-    let ctx = system.context();
-    for (i, f) in pf.forces.iter().enumerate() {
-        if i >= system.n() {
-            return Err(fail(
-                id_line,
-                "bad-force",
-                "more forces than coordinates".into(),
-            ));
-        }
-        system.forces[i] = read_expr(f, &ctx, &mut system.pool)
-            .map_err(|e| fail(id_line, "unreadable", format!("force `{f}`: {e}")))?;
-    }
-    for c in &pf.constraints {
-        system
-            .add_constraint(c)
-            .map_err(|e| fail(id_line, "bad-constraint", format!("constraint `{c}`: {e}")))?;
-    }
-    let mut assumptions = Vec::new();
-    for a in &pf.assume {
-        assumptions.push(
-            Assumption::parse(a, &ctx, &mut system)
-                .map_err(|e| fail(id_line, "bad-assumption", e))?,
-        );
-    }
-    let mut parts = Vec::new();
-    for sp in &pf.parts {
-        let line = line_of(text, sp.span().start);
-        parts.push(
-            build_part(sp.get_ref(), line, &system).map_err(|(code, m)| Finding {
-                part: Some(sp.get_ref().id.clone()),
-                ..fail(line, code, m)
-            })?,
-        );
-    }
-    let mut seen = std::collections::BTreeSet::new();
-    for p in &parts {
-        if !seen.insert(p.id.clone()) {
-            return Err(Finding {
-                part: Some(p.id.clone()),
-                ..fail(
-                    p.line,
-                    "duplicate-part",
-                    format!("two parts are called `{}`", p.id),
-                )
-            });
-        }
-    }
+    let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
+    let parts = b.parts(&pf, &system)?;
     Ok(Problem {
         file: file.to_string(),
-        id,
+        id: b.id,
         title: pf.title,
         source: pf.source,
         statement: pf.statement,
@@ -323,6 +88,328 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         stated_lagrangian: stated,
         lagrangian_line,
     })
+}
+
+/// What every finding of one file shares: the file, its text and the problem id.
+struct Builder<'a> {
+    file: &'a str,
+    text: &'a str,
+    id: String,
+    id_line: usize,
+}
+
+impl Builder<'_> {
+    /// A finding about the problem (not a part) at `line`.
+    fn fail(&self, line: usize, code: &'static str, message: String) -> Finding {
+        Finding {
+            file: self.file.to_string(),
+            problem: Some(self.id.clone()),
+            part: None,
+            line,
+            code,
+            message,
+        }
+    }
+
+    /// The declared coordinates, with their dimensions recorded in `dims`.
+    fn coordinates(
+        &self,
+        pf: &ProblemFile,
+        pool: &mut Pool,
+        dims: &mut Dimensions,
+    ) -> Result<Vec<Coordinate>, Finding> {
+        let mut coordinates = Vec::new();
+        for c in &pf.coordinates {
+            let name = crate::expr::names::normalize(&c.name);
+            let d = match &c.dimension {
+                Some(d) => {
+                    Dimension::parse(d).map_err(|e| self.fail(self.id_line, "bad-dimension", e))?
+                }
+                None if c.periodic => Dimension::NONE,
+                None => Dimension::new(0, 1, 0),
+            };
+            dims.set(&name, d);
+            let range = match c.range {
+                Some([a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
+                Some(r) => {
+                    return Err(self.fail(
+                        self.id_line,
+                        "bad-range",
+                        format!(
+                            "coordinate `{name}` has range {r:?}; it needs [low, high] with low < high"
+                        ),
+                    ));
+                }
+                None if c.periodic => (-std::f64::consts::PI, std::f64::consts::PI),
+                None => crate::mechanics::system::DEFAULT_COORDINATE_RANGE,
+            };
+            coordinates.push(Coordinate {
+                sym: pool.symbol(&name),
+                name,
+                periodic: c.periodic,
+                range,
+            });
+        }
+        Ok(coordinates)
+    }
+
+    /// The declared parameters, with their dimensions recorded in `dims`.
+    fn parameters(
+        &self,
+        pf: &ProblemFile,
+        pool: &mut Pool,
+        dims: &mut Dimensions,
+    ) -> Result<Vec<Parameter>, Finding> {
+        let mut parameters = Vec::new();
+        for (name, p) in &pf.parameters {
+            let name = crate::expr::names::normalize(name);
+            let d = Dimension::parse(&p.dimension).map_err(|e| {
+                self.fail(
+                    self.id_line,
+                    "bad-dimension",
+                    format!("parameter `{name}`: {e}"),
+                )
+            })?;
+            let [lo, hi] = p.range;
+            if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+                return Err(self.fail(
+                    self.id_line,
+                    "bad-range",
+                    format!(
+                        "parameter `{name}` has range [{lo}, {hi}]; it needs a positive range [low, high]"
+                    ),
+                ));
+            }
+            dims.set(&name, d);
+            parameters.push(Parameter {
+                sym: pool.symbol(&name),
+                name,
+                dimension: Some(d),
+                range: (lo, hi),
+            });
+        }
+        Ok(parameters)
+    }
+
+    /// Generalized forces, constraints and assumptions, read in the built system's context.
+    fn forces_constraints_assumptions(
+        &self,
+        pf: &ProblemFile,
+        system: &mut System,
+    ) -> Result<Vec<Assumption>, Finding> {
+        let ctx = system.context();
+        for (i, f) in pf.forces.iter().enumerate() {
+            if i >= system.n() {
+                return Err(self.fail(
+                    self.id_line,
+                    "bad-force",
+                    "more forces than coordinates".into(),
+                ));
+            }
+            system.forces[i] = read_expr(f, &ctx, &mut system.pool)
+                .map_err(|e| self.fail(self.id_line, "unreadable", format!("force `{f}`: {e}")))?;
+        }
+        for c in &pf.constraints {
+            system.add_constraint(c).map_err(|e| {
+                self.fail(
+                    self.id_line,
+                    "bad-constraint",
+                    format!("constraint `{c}`: {e}"),
+                )
+            })?;
+        }
+        let mut assumptions = Vec::new();
+        for a in &pf.assume {
+            assumptions.push(
+                Assumption::parse(a, &ctx, system)
+                    .map_err(|e| self.fail(self.id_line, "bad-assumption", e))?,
+            );
+        }
+        Ok(assumptions)
+    }
+
+    /// The parts, each a finding of its own on error; two parts may not share an id.
+    fn parts(&self, pf: &ProblemFile, system: &System) -> Result<Vec<Part>, Finding> {
+        let mut parts = Vec::new();
+        for sp in &pf.parts {
+            let line = line_of(self.text, sp.span().start);
+            parts.push(
+                build_part(sp.get_ref(), line, system).map_err(|(code, m)| Finding {
+                    part: Some(sp.get_ref().id.clone()),
+                    ..self.fail(line, code, m)
+                })?,
+            );
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        for p in &parts {
+            if !seen.insert(p.id.clone()) {
+                return Err(Finding {
+                    part: Some(p.id.clone()),
+                    ..self.fail(
+                        p.line,
+                        "duplicate-part",
+                        format!("two parts are called `{}`", p.id),
+                    )
+                });
+            }
+        }
+        Ok(parts)
+    }
+}
+
+/// Reads the expressions of bodies and potentials in the declared symbols' context.
+struct Reader<'a> {
+    b: &'a Builder<'a>,
+    ctx: Context,
+}
+
+impl Reader<'_> {
+    /// Reads `src` (the file's `what` at `line`); an unknown name is `undeclared-symbol`.
+    fn read(&self, pool: &mut Pool, src: &str, line: usize, what: &str) -> Result<Id, Finding> {
+        read_expr(src, &self.ctx, pool).map_err(|e| {
+            self.b.fail(
+                line,
+                if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
+                    "undeclared-symbol"
+                } else {
+                    "unreadable"
+                },
+                format!("{what} `{src}`: {e} ({})", e.help()),
+            )
+        })
+    }
+
+    /// The `[[bodies]]`: point masses and rotors.
+    fn bodies(&self, pf: &ProblemFile, pool: &mut Pool) -> Result<Vec<Body>, Finding> {
+        let mut bodies = Vec::new();
+        for spec in &pf.bodies {
+            let line = line_of(self.b.text, spec.span().start);
+            bodies.push(self.body(spec.get_ref(), line, pool)?);
+        }
+        Ok(bodies)
+    }
+
+    fn body(&self, b: &BodySpec, line: usize, pool: &mut Pool) -> Result<Body, Finding> {
+        let bad = |m: String| self.b.fail(line, "bad-body", m);
+        match b.kind.as_str() {
+            "point" => {
+                let (Some(m), Some(pos)) = (&b.mass, &b.position) else {
+                    return Err(bad("a point body needs `mass` and `position`".into()));
+                };
+                if !(2..=3).contains(&pos.len()) {
+                    return Err(bad("a position has 2 or 3 components".into()));
+                }
+                let mass = self.read(pool, m, line, "mass")?;
+                let position = pos
+                    .iter()
+                    .map(|x| self.read(pool, x, line, "position"))
+                    .collect::<Result<_, _>>()?;
+                Ok(Body::Point { mass, position })
+            }
+            "rotor" => {
+                let (Some(i), Some(a)) = (&b.inertia, &b.angle) else {
+                    return Err(bad("a rotor needs `inertia` and `angle`".into()));
+                };
+                let inertia = self.read(pool, i, line, "inertia")?;
+                let angle = self.read(pool, a, line, "angle")?;
+                Ok(Body::Rotor { inertia, angle })
+            }
+            other => Err(bad(format!(
+                "unknown body kind `{other}` (use point or rotor)"
+            ))),
+        }
+    }
+
+    /// The `[[potentials]]`: gravity, springs between bodies or anchors, explicit V.
+    fn potentials(
+        &self,
+        pf: &ProblemFile,
+        bodies: &[Body],
+        pool: &mut Pool,
+    ) -> Result<Vec<Potential>, Finding> {
+        let mut potentials = Vec::new();
+        for spec in &pf.potentials {
+            let line = line_of(self.b.text, spec.span().start);
+            potentials.push(self.potential(spec.get_ref(), line, bodies.len(), pool)?);
+        }
+        Ok(potentials)
+    }
+
+    fn potential(
+        &self,
+        p: &PotentialSpec,
+        line: usize,
+        n_bodies: usize,
+        pool: &mut Pool,
+    ) -> Result<Potential, Finding> {
+        let bad = |m: String| self.b.fail(line, "bad-potential", m);
+        match p.kind.as_str() {
+            "gravity" => {
+                let g = self.read(pool, p.g.as_deref().unwrap_or("g"), line, "gravity")?;
+                let axis = match p.axis.as_deref().unwrap_or("y") {
+                    "x" => 0,
+                    "y" => 1,
+                    "z" => 2,
+                    other => return Err(bad(format!("gravity axis `{other}` (use x, y or z)"))),
+                };
+                Ok(Potential::Gravity { g, axis })
+            }
+            "spring" => {
+                let k = self.read(pool, p.k.as_deref().unwrap_or("k"), line, "spring constant")?;
+                let natural = self.read(
+                    pool,
+                    p.natural.as_deref().unwrap_or("0"),
+                    line,
+                    "natural length",
+                )?;
+                let a = self.anchor(&p.from, line, n_bodies, pool)?;
+                let b = self.anchor(&p.to, line, n_bodies, pool)?;
+                Ok(Potential::Spring { k, natural, a, b })
+            }
+            "explicit" => {
+                let Some(v) = &p.v else {
+                    return Err(bad("an explicit potential needs `V`".into()));
+                };
+                Ok(Potential::Explicit(self.read(
+                    pool,
+                    v,
+                    line,
+                    "potential",
+                )?))
+            }
+            other => Err(bad(format!(
+                "unknown potential kind `{other}` (use gravity, spring or explicit)"
+            ))),
+        }
+    }
+
+    /// One end of a spring: a body number (1-based) or a fixed point.
+    fn anchor(
+        &self,
+        a: &Option<AnchorSpec>,
+        line: usize,
+        n_bodies: usize,
+        pool: &mut Pool,
+    ) -> Result<Anchor, Finding> {
+        match a {
+            Some(AnchorSpec::Body(i)) if *i >= 1 && *i <= n_bodies => Ok(Anchor::Body(i - 1)),
+            Some(AnchorSpec::Body(i)) => Err(self.b.fail(
+                line,
+                "bad-potential",
+                format!("spring end {i} is not a body number"),
+            )),
+            Some(AnchorSpec::Point(v)) => Ok(Anchor::Fixed(
+                v.iter()
+                    .map(|x| self.read(pool, x, line, "anchor"))
+                    .collect::<Result<_, _>>()?,
+            )),
+            None => Err(self.b.fail(
+                line,
+                "bad-potential",
+                "a spring needs `from` and `to`".into(),
+            )),
+        }
+    }
 }
 
 fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'static str, String)> {
@@ -336,46 +423,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
     if answers.is_empty() {
         return Err(("no-answer", "the part has an empty answer".into()));
     }
-    let coordinate = match &sp.coordinate {
-        None => 0,
-        Some(c) => sys
-            .coordinates
-            .iter()
-            .position(|x| x.name == crate::expr::names::normalize(c))
-            .ok_or_else(|| ("bad-coordinate", format!("`{c}` is not a coordinate")))?,
-    };
-    let q = sp.quantity.as_deref().unwrap_or(match sp.id.as_str() {
-        "kinetic" => "kinetic",
-        "potential" => "potential",
-        "lagrangian" => "lagrangian",
-        "momentum" => "momentum",
-        "energy-function" => "energy-function",
-        "tension" | "constraint-force" => "multiplier",
-        _ => "none",
-    });
-    let quantity = match q {
-        "kinetic" => Quantity::Kinetic,
-        "potential" => Quantity::Potential,
-        "lagrangian" => Quantity::Lagrangian,
-        "momentum" => Quantity::Momentum(coordinate),
-        "energy-function" => Quantity::EnergyFunction,
-        "multiplier" => Quantity::Multiplier(sp.multiplier.unwrap_or(1).saturating_sub(1)),
-        "acceleration" => Quantity::Acceleration(coordinate),
-        "none" => Quantity::None,
-        other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
-    };
-    if let Quantity::Multiplier(j) = quantity
-        && j >= sys.constraints.len()
-    {
-        return Err((
-            "bad-quantity",
-            format!(
-                "the problem has {} constraint(s); there is no multiplier {}",
-                sys.constraints.len(),
-                j + 1
-            ),
-        ));
-    }
+    let quantity = quantity_of(sp, sys)?;
     let up_to_constant = match sp.up_to.as_deref() {
         None => false,
         Some("constant") => true,
@@ -422,4 +470,49 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         squared: sp.squared,
         line,
     })
+}
+
+/// The quantity an expression part asks for: stated, or implied by the part's id.
+fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, String)> {
+    let coordinate = match &sp.coordinate {
+        None => 0,
+        Some(c) => sys
+            .coordinates
+            .iter()
+            .position(|x| x.name == crate::expr::names::normalize(c))
+            .ok_or_else(|| ("bad-coordinate", format!("`{c}` is not a coordinate")))?,
+    };
+    let q = sp.quantity.as_deref().unwrap_or(match sp.id.as_str() {
+        "kinetic" => "kinetic",
+        "potential" => "potential",
+        "lagrangian" => "lagrangian",
+        "momentum" => "momentum",
+        "energy-function" => "energy-function",
+        "tension" | "constraint-force" => "multiplier",
+        _ => "none",
+    });
+    let quantity = match q {
+        "kinetic" => Quantity::Kinetic,
+        "potential" => Quantity::Potential,
+        "lagrangian" => Quantity::Lagrangian,
+        "momentum" => Quantity::Momentum(coordinate),
+        "energy-function" => Quantity::EnergyFunction,
+        "multiplier" => Quantity::Multiplier(sp.multiplier.unwrap_or(1).saturating_sub(1)),
+        "acceleration" => Quantity::Acceleration(coordinate),
+        "none" => Quantity::None,
+        other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
+    };
+    if let Quantity::Multiplier(j) = quantity
+        && j >= sys.constraints.len()
+    {
+        return Err((
+            "bad-quantity",
+            format!(
+                "the problem has {} constraint(s); there is no multiplier {}",
+                sys.constraints.len(),
+                j + 1
+            ),
+        ));
+    }
+    Ok(quantity)
 }

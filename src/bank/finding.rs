@@ -35,3 +35,16 @@ pub fn line_of(text: &str, offset: usize) -> usize {
         .count()
         + 1
 }
+
+impl From<&Finding> for crate::diagnostic::Diagnostic {
+    /// The finding as a diagnostic: its location leads the message (a finding points at a
+    /// line of a file, not at a span of an answer).
+    fn from(f: &Finding) -> Self {
+        let mut message = format!("{}:{}: ", f.file, f.line);
+        if let Some(p) = &f.part {
+            message.push_str(&format!("part `{p}`: "));
+        }
+        message.push_str(&f.message);
+        crate::diagnostic::Diagnostic::new(f.code, message, "")
+    }
+}
