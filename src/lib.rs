@@ -8,6 +8,8 @@
 //! - [`problem`]: problems and parts as data (what the bank builds and the checker reads);
 //! - [`check`]: numeric equivalence of answers (sampling, relations, accelerations);
 //! - [`bank`]: the problem format, loading, verification and the embedded bank;
+//! - [`report`]: what each command shows, as data built here and rendered once, for every
+//!   face;
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face.
 //!
 //! `src/main.rs` is a thin command-line face over this library.
@@ -18,3 +20,4 @@ pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;
 pub mod problem;
+pub mod report;

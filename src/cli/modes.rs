@@ -1,18 +1,14 @@
 //! `lagrange modes`: equilibria, their stability, frequencies and mode shapes; with
 //! `--symbolic`, the characteristic polynomial and ω² in closed form.
 
-use std::fmt::Write as _;
 use std::process::ExitCode;
 
 use clap::Args;
-use colored::Colorize;
-use serde_json::{Value, json};
 
-use super::system_args::{SystemArgs, report};
-use lagrange::expr::{Id, Program};
-use lagrange::mechanics::equilibria::Stability;
-use lagrange::mechanics::modes::Modes;
-use lagrange::mechanics::{MechError, System};
+use super::system_args::{CliError, SystemArgs, Terminal, report};
+use lagrange::expr::Style;
+use lagrange::report::modes::assignments;
+use lagrange::report::{ModesError, ModesOptions, ModesReport};
 
 #[derive(Args, Debug)]
 pub struct ModesArgs {
@@ -36,256 +32,73 @@ pub struct ModesArgs {
     json: bool,
 }
 
-fn pairs(s: &str) -> Result<Vec<(String, String)>, MechError> {
-    s.split(',')
-        .map(str::trim)
-        .filter(|x| !x.is_empty())
-        .map(|item| {
-            item.split_once('=')
-                .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
-                .ok_or_else(|| MechError::Invalid(format!("`{item}` should look like name=value")))
-        })
-        .collect()
-}
-
 pub fn run(
     args: &ModesArgs,
     problems: Option<&std::path::Path>,
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    match modes_report(args, problems) {
-        Ok(text) => {
-            out.push_str(&text);
-            Ok(ExitCode::SUCCESS)
-        }
-        Err(e) => Ok(report(&e, color)),
-    }
-}
-
-/// The value of a constant expression.
-fn constant(sys: &System, e: Id) -> Option<f64> {
-    if !sys.pool.variables(e).is_empty() {
-        return None;
-    }
-    Program::compile(&sys.pool, &[e], &[])
-        .ok()?
-        .eval(&[])
-        .ok()
-        .map(|v| v[0])
-}
-
-fn modes_report(args: &ModesArgs, problems: Option<&std::path::Path>) -> Result<String, MechError> {
-    let mut sys = args.system.build(problems)?;
-    if args.system.problem.is_none() {
-        // A typed Lagrangian has no ranges of its own; a problem's are kept.
-        for c in sys.coordinates.iter_mut() {
-            if !c.periodic {
-                c.range = (-10.0, 10.0);
-            }
-        }
-    }
-    for r in &args.range {
-        let (name, span) = r
-            .split_once('=')
-            .ok_or_else(|| MechError::Invalid(format!("--range `{r}` should look like x=-5:5")))?;
-        let (lo, hi) = span
-            .split_once(':')
-            .and_then(|(a, b)| Some((a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?)))
-            .filter(|(a, b)| a < b)
-            .ok_or_else(|| MechError::Invalid(format!("--range `{r}` should look like x=-5:5")))?;
-        let c = sys
-            .coordinates
-            .iter_mut()
-            .find(|c| c.name == name.trim())
-            .ok_or_else(|| MechError::UnknownCoordinate {
-                name: name.trim().into(),
-            })?;
-        c.range = (lo, hi);
-    }
-    sys.substitute_parameters(&pairs(&args.params)?)?;
-    let d = sys.derive()?;
-    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
-    let labels: Vec<String> = sys
-        .coordinates
-        .clone()
-        .iter()
-        .map(|c| {
-            let v = sys.pool.var(c.sym, 0);
-            sys.pool.unicode(v)
-        })
-        .collect();
-    // --at: one expression per coordinate.
-    let at: Option<Vec<Id>> = match &args.at {
-        None => None,
-        Some(text) => {
-            let given = pairs(text)?;
-            let ctx = sys.open_context();
-            let mut point = vec![None; names.len()];
-            for (name, v) in given {
-                let k = names
-                    .iter()
-                    .position(|n| *n == lagrange::expr::names::normalize(&name))
-                    .ok_or(MechError::UnknownCoordinate { name: name.clone() })?;
-                point[k] = Some(sys.read(&v, &format!("--at {name}"), &ctx)?);
-            }
-            let mut ids = Vec::with_capacity(names.len());
-            for (k, p) in point.into_iter().enumerate() {
-                ids.push(p.ok_or_else(|| {
-                    MechError::Invalid(format!("--at gives no value for `{}`", names[k]))
-                })?);
-            }
-            Some(ids)
-        }
+    let report_ = match modes_report(args, problems) {
+        Ok(r) => r,
+        Err(e) => return Ok(report(&e, color)),
     };
-    let symbolic_params: Vec<String> = sys.parameters.iter().map(|p| p.name.clone()).collect();
-    let mut results: Vec<Modes> = Vec::new();
-    let mut continuum = false;
-    if symbolic_params.is_empty() {
-        match &at {
-            Some(ids) => {
-                let q: Vec<f64> = ids
-                    .iter()
-                    .map(|&e| {
-                        constant(&sys, e).ok_or(MechError::Invalid(
-                            "--at values must be numbers here".into(),
-                        ))
-                    })
-                    .collect::<Result<_, _>>()?;
-                results.push(sys.modes_at(&d, &[], &q)?);
-            }
-            None => {
-                let eq = sys.equilibria(&d, &[])?;
-                continuum = eq.continuum;
-                if !continuum && eq.points.is_empty() {
-                    return Err(MechError::NoEquilibrium);
-                }
-                for (q, _) in eq.points {
-                    results.push(sys.modes_at(&d, &[], &q)?);
-                }
-            }
-        }
-    } else if !args.symbolic {
-        return Err(MechError::MissingValue {
-            name: symbolic_params[0].clone(),
-        });
-    }
-    let symbolic = match (&at, args.symbolic) {
-        (Some(ids), true) => Some(sys.symbolic_modes(&d, ids)?),
-        (None, true) => {
-            return Err(MechError::Invalid(
-                "--symbolic needs the equilibrium, given with --at".into(),
-            ));
-        }
-        _ => None,
-    };
-    let pool = &sys.pool;
     if args.json {
-        let eqs: Vec<Value> = results
-            .iter()
-            .map(|m| {
-                let point: serde_json::Map<String, Value> = names
-                    .iter()
-                    .zip(&m.point)
-                    .map(|(n, v)| (n.clone(), json!(v)))
-                    .collect();
-                json!({
-                    "point": point,
-                    "stable": m.stability == Stability::Stable,
-                    "stability": m.stability.name(),
-                    "frequencies": m.frequencies,
-                    "growth_rates": m.growth_rates,
-                    "omega_squared": m.modes.iter().map(|x| x.omega_squared).collect::<Vec<_>>(),
-                    "modes": m.modes.iter().map(|x| x.shape.clone()).collect::<Vec<_>>(),
-                    "gyroscopic": m.gyroscopic,
-                })
-            })
-            .collect();
-        let mut v = json!({ "equilibria": eqs, "continuum": continuum });
-        if let Some(s) = &symbolic {
-            v["characteristic_polynomial"] = json!(pool.plain(s.characteristic));
-            v["omega_squared"] = json!(
-                s.omega_squared
-                    .iter()
-                    .map(|&w| pool.plain(w))
-                    .collect::<Vec<_>>()
-            );
-        }
-        return Ok(format!(
-            "{}\n",
-            serde_json::to_string_pretty(&v).unwrap_or_default()
-        ));
+        out.push_str(&serde_json::to_string_pretty(&report_)?);
+        out.push('\n');
+    } else {
+        out.push_str(&report_.render(Style::Unicode, &Terminal));
     }
-    let mut o = String::new();
-    if continuum {
-        let _ = writeln!(
-            o,
-            "every point in the search range is an equilibrium: they are not isolated (neutral)"
-        );
-    }
-    for m in &results {
-        let point: Vec<String> = labels
-            .iter()
-            .zip(&m.point)
-            .map(|(n, v)| format!("{n} = {}", fmt_num(*v)))
-            .collect();
-        let st = match m.stability {
-            Stability::Stable => "stable".green(),
-            Stability::Unstable => "unstable".red(),
-            Stability::Marginal => "marginal".yellow(),
-        };
-        let _ = writeln!(o, "{} {}: {st}", "equilibrium".bold(), point.join(", "));
-        if m.gyroscopic {
-            let _ = writeln!(
-                o,
-                "  velocity-dependent terms survive here: solved as a first-order system"
-            );
-        }
-        if !m.frequencies.is_empty() {
-            let f: Vec<String> = m.frequencies.iter().map(|x| fmt_num(*x)).collect();
-            let _ = writeln!(o, "  frequencies ω: {}", f.join(", "));
-        }
-        if !m.growth_rates.is_empty() {
-            let f: Vec<String> = m.growth_rates.iter().map(|x| fmt_num(*x)).collect();
-            let _ = writeln!(o, "  growth rates: {}", f.join(", "));
-        }
-        let desc = m.describe(&labels);
-        for (k, mode) in m.modes.iter().enumerate() {
-            let shape: Vec<String> = mode.shape.iter().map(|x| fmt_num(*x)).collect();
-            let _ = writeln!(
-                o,
-                "  mode {}: ω² = {}, shape ({}){}",
-                k + 1,
-                fmt_num(mode.omega_squared),
-                shape.join(", "),
-                if desc[k].is_empty() {
-                    String::new()
-                } else {
-                    format!(" — {}", desc[k])
-                }
-            );
-        }
-    }
-    if let Some(s) = &symbolic {
-        let _ = writeln!(
-            o,
-            "{} det(K − ω²M) = {}",
-            "characteristic polynomial:".bold(),
-            pool.unicode(s.characteristic)
-        );
-        for &w in &s.omega_squared {
-            let _ = writeln!(o, "ω² = {}", pool.unicode(w).green());
-        }
-        if s.omega_squared.is_empty() {
-            let _ = writeln!(
-                o,
-                "(closed-form roots are given for one or two coordinates)"
-            );
-        }
-    }
-    Ok(o)
+    Ok(ExitCode::SUCCESS)
 }
 
-fn fmt_num(x: f64) -> String {
-    lagrange::check::compare::fmt_value(x)
+fn modes_report(
+    args: &ModesArgs,
+    problems: Option<&std::path::Path>,
+) -> Result<ModesReport, CliError> {
+    let sys = args.system.build(problems)?;
+    let opts = options(args)?;
+    lagrange::report::modes(&sys, &opts).map_err(|e| match e {
+        ModesError::Mech(e) => CliError::Mech(e),
+        ModesError::MissingPointValue { name } => {
+            CliError::Usage(format!("--at gives no value for `{name}`"))
+        }
+        ModesError::PointNotNumeric => CliError::usage("--at values must be numbers here"),
+        ModesError::SymbolicNeedsPoint => {
+            CliError::usage("--symbolic needs the equilibrium, given with --at")
+        }
+    })
+}
+
+/// The library's options from the flags.
+fn options(args: &ModesArgs) -> Result<ModesOptions, CliError> {
+    let usage = |e: lagrange::report::modes::BadAssignment| CliError::Usage(e.to_string());
+    Ok(ModesOptions {
+        // A typed Lagrangian has no ranges of its own; a problem's are kept.
+        default_range: args.system.problem.is_none().then_some((-10.0, 10.0)),
+        ranges: args
+            .range
+            .iter()
+            .map(|r| range(r))
+            .collect::<Result<_, _>>()?,
+        params: assignments(&args.params).map_err(usage)?,
+        at: args
+            .at
+            .as_deref()
+            .map(assignments)
+            .transpose()
+            .map_err(usage)?,
+        symbolic: args.symbolic,
+    })
+}
+
+/// `x=-5:5` as a name and a nonempty interval.
+fn range(r: &str) -> Result<(String, f64, f64), CliError> {
+    let bad = || CliError::Usage(format!("--range `{r}` should look like x=-5:5"));
+    let (name, span) = r.split_once('=').ok_or_else(bad)?;
+    let (lo, hi) = span
+        .split_once(':')
+        .and_then(|(a, b)| Some((a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?)))
+        .filter(|(a, b)| a < b)
+        .ok_or_else(bad)?;
+    Ok((name.trim().to_string(), lo, hi))
 }

@@ -1,12 +1,14 @@
 //! Arguments shared by `derive` and `modes`: how to describe a system on the command line,
-//! and how its errors are shown.
+//! how its errors are shown, and the terminal's colours for every report.
 
 use std::process::ExitCode;
 
 use clap::Args;
+use colored::Colorize;
 
 use lagrange::diagnostic::render_parse_error;
 use lagrange::mechanics::{MechError, System};
+use lagrange::report::Paint;
 
 /// A system given on the command line, or a problem of the bank by id.
 #[derive(Args, Debug)]
@@ -41,16 +43,16 @@ pub struct SystemArgs {
 
 impl SystemArgs {
     /// Builds the system (from the bank when a problem id is given).
-    pub fn build(&self, problems: Option<&std::path::Path>) -> Result<System, MechError> {
+    pub fn build(&self, problems: Option<&std::path::Path>) -> Result<System, CliError> {
         if let Some(id) = &self.problem {
             if self.lagrangian.is_some() || self.kinetic.is_some() {
-                return Err(MechError::Invalid(
-                    "give a problem id or --lagrangian, not both".into(),
+                return Err(CliError::usage(
+                    "give a problem id or --lagrangian, not both",
                 ));
             }
-            let bank = super::problems::load_bank(problems).map_err(MechError::Invalid)?;
+            let bank = super::problems::load_bank(problems).map_err(CliError::Usage)?;
             let p = bank.problem(id).ok_or_else(|| {
-                MechError::Invalid(format!("no problem `{id}` (see `lagrange problems list`)"))
+                CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
             })?;
             return Ok(p.system.clone());
         }
@@ -61,14 +63,14 @@ impl SystemArgs {
             .filter(|c| !c.is_empty())
             .collect();
         if coords.is_empty() {
-            return Err(MechError::Invalid("--coords names no coordinate".into()));
+            return Err(CliError::usage("--coords names no coordinate"));
         }
         let mut sys = match (&self.lagrangian, &self.kinetic, &self.potential) {
             (Some(l), _, _) => System::from_lagrangian(l, &coords)?,
             (None, Some(t), Some(v)) => System::from_energies(t, v, &coords)?,
             _ => {
-                return Err(MechError::Invalid(
-                    "give --lagrangian, or --kinetic and --potential".into(),
+                return Err(CliError::usage(
+                    "give --lagrangian, or --kinetic and --potential",
                 ));
             }
         };
@@ -82,18 +84,71 @@ impl SystemArgs {
     }
 }
 
-/// Prints a mechanics error (with the input and a caret for a parse error) and returns
-/// exit code 2.
-pub fn report(e: &MechError, color: bool) -> ExitCode {
+/// What `derive` and `modes` can fail with: the face's own argument errors, or the
+/// library's.
+#[derive(Debug)]
+pub enum CliError {
+    /// An argument is malformed or arguments do not fit together.
+    Usage(String),
+    /// The mechanics could not be done.
+    Mech(MechError),
+}
+
+impl CliError {
+    pub fn usage(message: &str) -> CliError {
+        CliError::Usage(message.to_string())
+    }
+}
+
+impl From<MechError> for CliError {
+    fn from(e: MechError) -> Self {
+        CliError::Mech(e)
+    }
+}
+
+/// Prints an error (with the input and a caret for a parse error) and returns exit code 2.
+pub fn report(e: &CliError, color: bool) -> ExitCode {
     match e {
-        MechError::Parse {
+        CliError::Usage(message) => eprintln!("error: {message}\n  help: check the input"),
+        CliError::Mech(MechError::Parse {
             what,
             source_text,
             error,
-        } => {
+        }) => {
             eprint!("{}", render_parse_error(what, source_text, error, color));
         }
-        other => eprintln!("error: {other}\n  help: {}", other.help()),
+        CliError::Mech(other) => eprintln!("error: {other}\n  help: {}", help(other)),
     }
     ExitCode::from(2)
+}
+
+/// The help for a mechanics error, phrased with this face's flags.
+fn help(e: &MechError) -> String {
+    match e {
+        MechError::UnknownCoordinate { .. } => "list it in --coords".into(),
+        MechError::MissingValue { name } => format!("add `{name}=<value>` to --params"),
+        MechError::NoEquilibrium => "widen the ranges, or give --at".into(),
+        other => other.help(),
+    }
+}
+
+/// Colour for a terminal, through `colored` (which honours `--color` and NO_COLOR).
+pub struct Terminal;
+
+impl Paint for Terminal {
+    fn heading(&self, text: &str) -> String {
+        text.bold().to_string()
+    }
+    fn good(&self, text: &str) -> String {
+        text.green().to_string()
+    }
+    fn bad(&self, text: &str) -> String {
+        text.red().to_string()
+    }
+    fn warn(&self, text: &str) -> String {
+        text.yellow().to_string()
+    }
+    fn dim(&self, text: &str) -> String {
+        text.dimmed().to_string()
+    }
 }

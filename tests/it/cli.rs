@@ -503,3 +503,40 @@ fn symbolic_modes_of_a_large_system_is_a_clear_error() {
     assert_eq!(code, 2);
     assert!(err.contains("up to 3 coordinates"), "{err}");
 }
+
+#[test]
+fn argument_errors_are_the_faces_own() {
+    let base = [
+        "modes",
+        "--lagrangian",
+        "1/2*m*x'^2 - 1/2*k*x^2",
+        "--coords",
+        "x",
+        "--params",
+        "m=1, k=1",
+    ];
+    for (extra, want) in [
+        (
+            &["--range", "x=5:-5"][..],
+            "--range `x=5:-5` should look like x=-5:5",
+        ),
+        (&["--range", "y=-5:5"][..], "`y` is not a coordinate"),
+        (
+            &["--symbolic"][..],
+            "--symbolic needs the equilibrium, given with --at",
+        ),
+    ] {
+        let args: Vec<&str> = base.iter().chain(extra).copied().collect();
+        let (code, _, err) = lagrange(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+    // The reading is shown before the face reports a --diff that is not one variable.
+    let (code, out, err) = lagrange(&["read", "x^2 + y", "--diff", "x+y", "--dt"]);
+    assert_eq!(code, 2);
+    assert!(
+        out.contains("parameters:  x, y") && !out.contains("d/dt"),
+        "{out}"
+    );
+    assert!(err.contains("--diff takes one variable"), "{err}");
+}

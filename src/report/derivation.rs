@@ -1,0 +1,351 @@
+//! [`DerivationReport`]: what `derive` shows — every step of the Euler–Lagrange equations,
+//! the mass matrix and forcing, the energy function, conserved momenta, and the constraint
+//! rows with their multipliers — built by [`derivation`] and rendered by
+//! [`DerivationReport::render`].
+//!
+//! The serialized fields are in alphabetical order: that is the order of the JSON the command
+//! has always printed, which scripts may compare textually.
+
+use std::fmt::Write as _;
+
+use serde::{Serialize, Serializer};
+
+use super::{Formula, Paint};
+use crate::expr::{Id, Style};
+use crate::mechanics::{ConstraintKind, MechError, System};
+
+/// Everything `derive` shows about a system.
+#[derive(Clone, Debug, Serialize)]
+pub struct DerivationReport {
+    /// The equations with multipliers λ, when there are constraints.
+    pub augmented_equations: Option<Vec<Formula>>,
+    /// The momentum of each cyclic coordinate.
+    pub conserved_momenta: Vec<ConservedMomentum>,
+    /// The constraints, each `= 0`.
+    pub constraints: Vec<ConstraintLine>,
+    /// Coordinate names.
+    pub coordinates: Vec<String>,
+    /// Names of the cyclic coordinates.
+    pub cyclic: Vec<String>,
+    /// Whether h is conserved.
+    pub energy_conserved: bool,
+    /// h = Σ q̇ ∂L/∂q̇ − L.
+    pub energy_function: Formula,
+    /// Whether h = T + V.
+    pub energy_is_total: bool,
+    /// The Euler–Lagrange expressions, each `= 0`.
+    pub equations: Vec<Formula>,
+    /// f in M q̈ = f.
+    pub forcing: Vec<Formula>,
+    /// ∂L/∂q for each coordinate.
+    pub generalized_forces: Vec<Formula>,
+    /// L.
+    pub lagrangian: Formula,
+    /// M in M q̈ = f.
+    pub mass_matrix: Vec<Vec<Formula>>,
+    /// p = ∂L/∂q̇ for each coordinate.
+    pub momenta: Vec<Formula>,
+    /// d/dt p for each coordinate.
+    pub momenta_dt: Vec<Formula>,
+    /// The multipliers in closed form; `None` without constraints or when the system is too
+    /// large for a closed form.
+    pub multipliers: Option<Vec<Formula>>,
+    /// Parameter names.
+    pub parameters: Vec<String>,
+    /// How the text shows each coordinate: (q, q̇).
+    #[serde(skip)]
+    pub coordinate_labels: Vec<(Formula, Formula)>,
+    /// How the text shows each parameter.
+    #[serde(skip)]
+    pub parameter_labels: Vec<Formula>,
+    /// The non-conservative force Q of each coordinate, when it is not zero.
+    #[serde(skip)]
+    pub applied_forces: Vec<Option<Formula>>,
+    /// The equations with common factors taken out, as the text shows them.
+    #[serde(skip)]
+    pub factored_equations: Vec<Formula>,
+    /// T + V, shown when it differs from h.
+    #[serde(skip)]
+    pub total_energy: Formula,
+}
+
+/// A cyclic coordinate and its conserved momentum.
+#[derive(Clone, Debug, Serialize)]
+pub struct ConservedMomentum {
+    /// The coordinate's name.
+    pub coordinate: String,
+    /// Its momentum.
+    pub momentum: Formula,
+    /// The coordinate's position in the system, for its label.
+    #[serde(skip)]
+    pub index: usize,
+}
+
+/// A constraint `constraint = 0`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ConstraintLine {
+    /// The constraint expression.
+    pub constraint: Formula,
+    /// Holonomic or nonholonomic (serialized in lower case).
+    #[serde(serialize_with = "lowercase_kind")]
+    pub kind: ConstraintKind,
+}
+
+fn lowercase_kind<S: Serializer>(k: &ConstraintKind, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&format!("{k:?}").to_lowercase())
+}
+
+/// Derives `sys` and gathers everything `derive` shows. `sys` itself is left unchanged.
+pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
+    let mut sys = sys.clone();
+    let d = sys.derive()?;
+    let energy = sys.energy(&d);
+    let rows = (!sys.constraints.is_empty()).then(|| sys.constraint_rows());
+    let augmented = rows.as_ref().map(|r| sys.augmented_equations(&d, r));
+    let multipliers = rows.as_ref().and_then(|r| sys.multipliers_symbolic(&d, r));
+    let factored: Vec<Id> = d
+        .steps
+        .iter()
+        .map(|s| sys.pool.factor_common(s.equation))
+        .collect();
+    let (coordinate_labels, parameter_labels) = labels(&mut sys);
+    let pool = &sys.pool;
+    let f = |e: Id| Formula::new(pool, e);
+    let all = |es: &[Id]| es.iter().map(|&e| f(e)).collect::<Vec<_>>();
+    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
+    let step = |pick: fn(&crate::mechanics::CoordinateSteps) -> Id| {
+        d.steps.iter().map(|s| f(pick(s))).collect::<Vec<_>>()
+    };
+    Ok(DerivationReport {
+        augmented_equations: augmented.as_deref().map(all),
+        conserved_momenta: energy
+            .cyclic
+            .iter()
+            .map(|&i| ConservedMomentum {
+                coordinate: names[i].clone(),
+                momentum: f(d.steps[i].momentum),
+                index: i,
+            })
+            .collect(),
+        constraints: sys
+            .constraints
+            .iter()
+            .map(|c| ConstraintLine {
+                constraint: f(c.expr),
+                kind: c.kind,
+            })
+            .collect(),
+        cyclic: energy.cyclic.iter().map(|&i| names[i].clone()).collect(),
+        energy_conserved: energy.conserved,
+        energy_function: f(energy.function),
+        energy_is_total: energy.is_total,
+        equations: step(|s| s.equation),
+        forcing: all(&d.forcing),
+        generalized_forces: step(|s| s.force),
+        lagrangian: f(sys.lagrangian),
+        mass_matrix: d.mass.iter().map(|r| all(r)).collect(),
+        momenta: step(|s| s.momentum),
+        momenta_dt: step(|s| s.momentum_dt),
+        multipliers: multipliers.as_deref().map(all),
+        parameters: sys.parameters.iter().map(|p| p.name.clone()).collect(),
+        coordinate_labels,
+        parameter_labels,
+        applied_forces: d
+            .steps
+            .iter()
+            .map(|s| (!pool.is_zero(s.generalized_force)).then(|| f(s.generalized_force)))
+            .collect(),
+        factored_equations: all(&factored),
+        total_energy: f(energy.total),
+        coordinates: names,
+    })
+}
+
+/// How each coordinate (q, q̇) and each parameter is shown.
+fn labels(sys: &mut System) -> (Vec<(Formula, Formula)>, Vec<Formula>) {
+    let coordinates = sys
+        .coordinates
+        .clone()
+        .iter()
+        .map(|c| {
+            let q = sys.pool.var(c.sym, 0);
+            let qd = sys.pool.var(c.sym, 1);
+            (Formula::new(&sys.pool, q), Formula::new(&sys.pool, qd))
+        })
+        .collect();
+    let parameters = sys
+        .parameters
+        .clone()
+        .iter()
+        .map(|p| {
+            let v = sys.pool.var(p.sym, 0);
+            Formula::new(&sys.pool, v)
+        })
+        .collect();
+    (coordinates, parameters)
+}
+
+impl DerivationReport {
+    /// The report as text: with `Style::Latex` an `align*` block of the steps and h; otherwise
+    /// the full report with expressions in `style`, marked up by `paint`.
+    pub fn render(&self, style: Style, paint: &dyn Paint) -> String {
+        if style == Style::Latex {
+            return self.render_latex();
+        }
+        let mut o = String::new();
+        self.render_steps(style, paint, &mut o);
+        self.render_energy(style, paint, &mut o);
+        self.render_constraints(style, paint, &mut o);
+        o
+    }
+
+    fn render_latex(&self) -> String {
+        let mut o = String::new();
+        let _ = writeln!(o, "\\begin{{align*}}");
+        let _ = writeln!(o, "L &= {} \\\\", self.lagrangian.latex);
+        for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
+            let (q, qd) = (&q.latex, &qd.latex);
+            let _ = writeln!(
+                o,
+                "p_{{{q}}} = \\frac{{\\partial L}}{{\\partial {qd}}} &= {} \\\\",
+                self.momenta[i].latex
+            );
+            let _ = writeln!(
+                o,
+                "\\frac{{d}}{{dt}} p_{{{q}}} &= {} \\\\",
+                self.momenta_dt[i].latex
+            );
+            let _ = writeln!(
+                o,
+                "\\frac{{\\partial L}}{{\\partial {q}}} &= {} \\\\",
+                self.generalized_forces[i].latex
+            );
+            let _ = writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex);
+        }
+        let _ = writeln!(o, "h &= {}", self.energy_function.latex);
+        let _ = writeln!(o, "\\end{{align*}}");
+        o
+    }
+
+    fn render_steps(&self, style: Style, paint: &dyn Paint, o: &mut String) {
+        let _ = writeln!(
+            o,
+            "{} L = {}",
+            paint.heading("Lagrangian:"),
+            self.lagrangian.get(style)
+        );
+        let coords: Vec<&str> = self
+            .coordinate_labels
+            .iter()
+            .map(|l| l.0.get(style))
+            .collect();
+        let params: Vec<&str> = self.parameter_labels.iter().map(|p| p.get(style)).collect();
+        let _ = writeln!(
+            o,
+            "{} {}    {} {}",
+            paint.heading("coordinates:"),
+            coords.join(", "),
+            paint.heading("parameters:"),
+            if params.is_empty() {
+                "none".to_string()
+            } else {
+                params.join(", ")
+            }
+        );
+        for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
+            let (q, qd) = (q.get(style), qd.get(style));
+            let _ = writeln!(o, "\n{} {q}", paint.heading("Coordinate"));
+            let _ = writeln!(o, "  p = ∂L/∂{qd} = {}", self.momenta[i].get(style));
+            let _ = writeln!(o, "  d/dt p = {}", self.momenta_dt[i].get(style));
+            let _ = writeln!(o, "  ∂L/∂{q} = {}", self.generalized_forces[i].get(style));
+            if let Some(force) = &self.applied_forces[i] {
+                let _ = writeln!(o, "  Q = {}", force.get(style));
+            }
+            let _ = writeln!(
+                o,
+                "  {} {} = 0",
+                if self.applied_forces[i].is_none() {
+                    "d/dt p − ∂L/∂q:"
+                } else {
+                    "d/dt p − ∂L/∂q − Q:"
+                },
+                paint.good(self.factored_equations[i].get(style))
+            );
+        }
+        let _ = writeln!(
+            o,
+            "\n{} (M q̈ = f)",
+            paint.heading("Mass matrix M and forcing f")
+        );
+        for (row, f) in self.mass_matrix.iter().zip(&self.forcing) {
+            let cells: Vec<&str> = row.iter().map(|m| m.get(style)).collect();
+            let _ = writeln!(o, "  [ {} ]   [ {} ]", cells.join(", "), f.get(style));
+        }
+    }
+
+    fn render_energy(&self, style: Style, paint: &dyn Paint, o: &mut String) {
+        let _ = writeln!(
+            o,
+            "\n{} h = Σ q̇ ∂L/∂q̇ − L = {}",
+            paint.heading("Energy function:"),
+            self.energy_function.get(style)
+        );
+        let _ = writeln!(
+            o,
+            "  conserved: {}",
+            if self.energy_conserved {
+                "yes (∂L/∂t = 0 and no non-conservative forces)"
+            } else {
+                "no"
+            }
+        );
+        let _ = writeln!(
+            o,
+            "  h = T + V: {}",
+            if self.energy_is_total {
+                "yes".to_string()
+            } else {
+                format!("no (T + V = {})", self.total_energy.get(style))
+            }
+        );
+        if self.conserved_momenta.is_empty() {
+            let _ = writeln!(o, "{} none", paint.heading("Cyclic coordinates:"));
+        }
+        for c in &self.conserved_momenta {
+            let _ = writeln!(
+                o,
+                "{} {} — conserved momentum {}",
+                paint.heading("Cyclic coordinate:"),
+                self.coordinate_labels[c.index].0.get(style),
+                c.momentum.get(style)
+            );
+        }
+    }
+
+    fn render_constraints(&self, style: Style, paint: &dyn Paint, o: &mut String) {
+        let Some(aug) = &self.augmented_equations else {
+            return;
+        };
+        let _ = writeln!(o, "\n{}", paint.heading("Constraints"));
+        for c in &self.constraints {
+            let _ = writeln!(o, "  {} = 0 ({:?})", c.constraint.get(style), c.kind);
+        }
+        let _ = writeln!(o, "  with multipliers λ:");
+        for e in aug {
+            let _ = writeln!(o, "  {} = 0", e.get(style));
+        }
+        match &self.multipliers {
+            Some(ms) => {
+                for (j, m) in ms.iter().enumerate() {
+                    let _ = writeln!(o, "  λ{} = {}", j + 1, m.get(style));
+                }
+            }
+            None => {
+                let _ = writeln!(
+                    o,
+                    "  (the multipliers are solved numerically at a state; the system is too large for a closed form)"
+                );
+            }
+        }
+    }
+}

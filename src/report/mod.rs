@@ -1,0 +1,62 @@
+//! Reports: what each command shows, as data, built by the library and rendered once.
+//!
+//! A face (the command line today; a REPL, a batch grader or a browser later) parses its own
+//! arguments into the plain option types here, calls one builder — [`reading`],
+//! [`derivation`], [`modes()`], [`problem_list`], [`problem_sheet`], [`verification`] — and
+//! either renders the report as text (each report has exactly one text rendering) or
+//! serializes it. The builders do all the mathematics; the faces do none.
+//!
+//! Colour is a face concern: renderers call a [`Paint`], and [`Plain`] paints nothing, so the
+//! library does not depend on a terminal crate.
+//!
+//! - [`formula`]: an expression shown in every notation, serialized as plain syntax;
+//! - [`read`]: [`Reading`], how an input is understood (`lagrange read`);
+//! - [`derivation`]: [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
+//! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
+//! - [`problems`]: the bank's list, one problem's sheet and the verification of answers.
+
+pub mod derivation;
+pub mod formula;
+pub mod modes;
+pub mod problems;
+pub mod read;
+
+pub use derivation::{DerivationReport, derivation};
+pub use formula::Formula;
+pub use modes::{ModesError, ModesOptions, ModesReport, modes};
+pub use problems::{
+    ProblemList, ProblemSheet, Verification, problem_list, problem_sheet, terminal_math,
+    verification,
+};
+pub use read::{ReadOptions, Reading, reading};
+
+/// How a renderer marks up text for a face. Every method defaults to no markup; a terminal
+/// face overrides them with colours, a browser face could emit HTML.
+pub trait Paint {
+    /// A heading or a field label (bold on a terminal).
+    fn heading(&self, text: &str) -> String {
+        text.to_string()
+    }
+    /// A result that is good news: correct, stable, proved (green).
+    fn good(&self, text: &str) -> String {
+        text.to_string()
+    }
+    /// A result that is bad news: unstable, failing, inconsistent (red).
+    fn bad(&self, text: &str) -> String {
+        text.to_string()
+    }
+    /// A result that is neither: marginal, undecided (yellow).
+    fn warn(&self, text: &str) -> String {
+        text.to_string()
+    }
+    /// Secondary text: sources, reference answers (dimmed).
+    fn dim(&self, text: &str) -> String {
+        text.to_string()
+    }
+}
+
+/// No markup at all.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Plain;
+
+impl Paint for Plain {}

@@ -1,0 +1,365 @@
+//! [`ModesReport`]: what `modes` shows — equilibria, their stability, frequencies, growth
+//! rates and mode shapes, and optionally the characteristic polynomial and ω² in closed
+//! form — built by [`modes()`] from a system and [`ModesOptions`], rendered by
+//! [`ModesReport::render`].
+//!
+//! The serialized fields are in alphabetical order, the order of the JSON the command has
+//! always printed.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use serde::{Serialize, Serializer};
+
+use super::{Formula, Paint};
+use crate::check::compare::fmt_value;
+use crate::expr::{Id, Program, Style};
+use crate::mechanics::equilibria::Stability;
+use crate::mechanics::modes::Modes;
+use crate::mechanics::{Derivation, MechError, System};
+
+/// What to analyse. Names and values are as a person typed them; values are expressions.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ModesOptions {
+    /// The search range given to every non-periodic coordinate first (a typed Lagrangian has
+    /// no ranges of its own); `None` keeps the system's ranges.
+    pub default_range: Option<(f64, f64)>,
+    /// Search ranges of named coordinates, applied after `default_range`.
+    pub ranges: Vec<(String, f64, f64)>,
+    /// Parameter values, `name = expression`; an expression may use other parameters, which
+    /// then stay symbolic.
+    pub params: Vec<(String, String)>,
+    /// Only this equilibrium, one `coordinate = expression` per coordinate.
+    pub at: Option<Vec<(String, String)>>,
+    /// Also the characteristic polynomial and ω² in closed form (needs `at`).
+    pub symbolic: bool,
+}
+
+/// Why the modes could not be reported.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ModesError {
+    /// The system itself could not be analysed.
+    #[error(transparent)]
+    Mech(#[from] MechError),
+    /// The equilibrium given names no value for this coordinate.
+    #[error("the equilibrium gives no value for `{name}`")]
+    MissingPointValue {
+        /// The coordinate.
+        name: String,
+    },
+    /// The equilibrium given is not numeric, but every parameter has a number.
+    #[error("the equilibrium's values must be numbers here")]
+    PointNotNumeric,
+    /// Closed forms were asked for without an equilibrium to expand about.
+    #[error("the closed forms need the equilibrium")]
+    SymbolicNeedsPoint,
+}
+
+/// A `name=value` item that is not one.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("`{0}` should look like name=value")]
+pub struct BadAssignment(pub String);
+
+/// Comma-separated `name=value` pairs, trimmed; empty items are skipped.
+pub fn assignments(text: &str) -> Result<Vec<(String, String)>, BadAssignment> {
+    text.split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .map(|item| {
+            item.split_once('=')
+                .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+                .ok_or_else(|| BadAssignment(item.to_string()))
+        })
+        .collect()
+}
+
+/// Everything `modes` shows.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModesReport {
+    /// det(K − ω²M), when closed forms were asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub characteristic_polynomial: Option<Formula>,
+    /// Every point of the search range is an equilibrium.
+    pub continuum: bool,
+    /// The equilibria analysed.
+    pub equilibria: Vec<EquilibriumModes>,
+    /// ω² in closed form, when closed forms were asked for (empty: not given for this size).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_squared: Option<Vec<Formula>>,
+    /// How the text shows each coordinate.
+    #[serde(skip)]
+    pub coordinate_labels: Vec<Formula>,
+}
+
+/// One equilibrium and its small oscillations.
+#[derive(Clone, Debug, Serialize)]
+pub struct EquilibriumModes {
+    /// Oscillation frequencies ω.
+    pub frequencies: Vec<f64>,
+    /// Growth rates of unstable directions.
+    pub growth_rates: Vec<f64>,
+    /// Velocity-dependent terms survive: solved as a first-order system.
+    pub gyroscopic: bool,
+    /// The mode shapes, one per mode.
+    pub modes: Vec<Vec<f64>>,
+    /// ω² of each mode.
+    pub omega_squared: Vec<f64>,
+    /// The equilibrium, by coordinate name.
+    pub point: BTreeMap<String, f64>,
+    /// Stable, unstable or marginal.
+    #[serde(serialize_with = "stability_name")]
+    pub stability: Stability,
+    /// Whether it is stable.
+    pub stable: bool,
+    /// The equilibrium in coordinate order.
+    #[serde(skip)]
+    pub coordinates: Vec<f64>,
+    /// A description of each mode ("in phase, θ₂/θ₁ = 1.414214"), in Unicode.
+    #[serde(skip)]
+    pub descriptions: Vec<String>,
+}
+
+fn stability_name<S: Serializer>(s: &Stability, ser: S) -> Result<S::Ok, S::Error> {
+    ser.serialize_str(s.name())
+}
+
+/// Finds the equilibria of `sys` (or takes the one given) and their normal modes, with the
+/// closed forms when asked. `sys` itself is left unchanged.
+pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesError> {
+    let mut sys = sys.clone();
+    set_ranges(&mut sys, opts)?;
+    sys.substitute_parameters(&opts.params)?;
+    let d = sys.derive()?;
+    let coordinate_labels: Vec<Formula> = sys
+        .coordinates
+        .clone()
+        .iter()
+        .map(|c| {
+            let v = sys.pool.var(c.sym, 0);
+            Formula::new(&sys.pool, v)
+        })
+        .collect();
+    let at = match &opts.at {
+        Some(given) => Some(point(&mut sys, given)?),
+        None => None,
+    };
+    let unicode: Vec<String> = coordinate_labels
+        .iter()
+        .map(|l| l.unicode.clone())
+        .collect();
+    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
+    let mut equilibria = Vec::new();
+    let mut continuum = false;
+    if sys.parameters.is_empty() {
+        let found;
+        (found, continuum) = numeric_modes(&mut sys, &d, at.as_deref())?;
+        equilibria = found
+            .iter()
+            .map(|m| equilibrium(m, &names, &unicode))
+            .collect();
+    } else if !opts.symbolic {
+        return Err(MechError::MissingValue {
+            name: sys.parameters[0].name.clone(),
+        }
+        .into());
+    }
+    let symbolic = match (&at, opts.symbolic) {
+        (Some(ids), true) => Some(sys.symbolic_modes(&d, ids)?),
+        (None, true) => return Err(ModesError::SymbolicNeedsPoint),
+        _ => None,
+    };
+    let pool = &sys.pool;
+    Ok(ModesReport {
+        characteristic_polynomial: symbolic
+            .as_ref()
+            .map(|s| Formula::new(pool, s.characteristic)),
+        continuum,
+        equilibria,
+        omega_squared: symbolic.as_ref().map(|s| {
+            s.omega_squared
+                .iter()
+                .map(|&w| Formula::new(pool, w))
+                .collect()
+        }),
+        coordinate_labels,
+    })
+}
+
+/// Applies the default and the named search ranges.
+fn set_ranges(sys: &mut System, opts: &ModesOptions) -> Result<(), MechError> {
+    if let Some(range) = opts.default_range {
+        for c in sys.coordinates.iter_mut().filter(|c| !c.periodic) {
+            c.range = range;
+        }
+    }
+    for (name, lo, hi) in &opts.ranges {
+        let c = sys
+            .coordinates
+            .iter_mut()
+            .find(|c| c.name == name.trim())
+            .ok_or_else(|| MechError::UnknownCoordinate {
+                name: name.trim().into(),
+            })?;
+        c.range = (*lo, *hi);
+    }
+    Ok(())
+}
+
+/// The given equilibrium, one expression per coordinate.
+fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesError> {
+    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
+    let ctx = sys.open_context();
+    let mut point = vec![None; names.len()];
+    for (name, v) in given {
+        let k = names
+            .iter()
+            .position(|n| *n == crate::expr::names::normalize(name))
+            .ok_or(MechError::UnknownCoordinate { name: name.clone() })?;
+        point[k] = Some(sys.read(v, &format!("--at {name}"), &ctx)?);
+    }
+    point
+        .into_iter()
+        .zip(names)
+        .map(|(p, name)| p.ok_or(ModesError::MissingPointValue { name }))
+        .collect()
+}
+
+/// The numeric modes at the given point, or at every equilibrium found; and whether the
+/// equilibria form a continuum.
+fn numeric_modes(
+    sys: &mut System,
+    d: &Derivation,
+    at: Option<&[Id]>,
+) -> Result<(Vec<Modes>, bool), ModesError> {
+    if let Some(ids) = at {
+        let q: Vec<f64> = ids
+            .iter()
+            .map(|&e| constant(sys, e).ok_or(ModesError::PointNotNumeric))
+            .collect::<Result<_, _>>()?;
+        return Ok((vec![sys.modes_at(d, &[], &q)?], false));
+    }
+    let eq = sys.equilibria(d, &[])?;
+    if !eq.continuum && eq.points.is_empty() {
+        return Err(MechError::NoEquilibrium.into());
+    }
+    let mut found = Vec::with_capacity(eq.points.len());
+    for (q, _) in eq.points {
+        found.push(sys.modes_at(d, &[], &q)?);
+    }
+    Ok((found, eq.continuum))
+}
+
+/// The value of a constant expression.
+fn constant(sys: &System, e: Id) -> Option<f64> {
+    if !sys.pool.variables(e).is_empty() {
+        return None;
+    }
+    Program::compile(&sys.pool, &[e], &[])
+        .ok()?
+        .eval(&[])
+        .ok()
+        .map(|v| v[0])
+}
+
+fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumModes {
+    EquilibriumModes {
+        frequencies: m.frequencies.clone(),
+        growth_rates: m.growth_rates.clone(),
+        gyroscopic: m.gyroscopic,
+        modes: m.modes.iter().map(|x| x.shape.clone()).collect(),
+        omega_squared: m.modes.iter().map(|x| x.omega_squared).collect(),
+        point: names.iter().cloned().zip(m.point.iter().copied()).collect(),
+        stability: m.stability,
+        stable: m.stability == Stability::Stable,
+        coordinates: m.point.clone(),
+        descriptions: m.describe(labels),
+    }
+}
+
+impl ModesReport {
+    /// The report as text, expressions and coordinates in `style`, marked up by `paint`.
+    pub fn render(&self, style: Style, paint: &dyn Paint) -> String {
+        let mut o = String::new();
+        if self.continuum {
+            let _ = writeln!(
+                o,
+                "every point in the search range is an equilibrium: they are not isolated (neutral)"
+            );
+        }
+        for m in &self.equilibria {
+            self.render_equilibrium(m, style, paint, &mut o);
+        }
+        if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
+            let _ = writeln!(
+                o,
+                "{} det(K − ω²M) = {}",
+                paint.heading("characteristic polynomial:"),
+                p.get(style)
+            );
+            for w in ws {
+                let _ = writeln!(o, "ω² = {}", paint.good(w.get(style)));
+            }
+            if ws.is_empty() {
+                let _ = writeln!(
+                    o,
+                    "(closed-form roots are given for one or two coordinates)"
+                );
+            }
+        }
+        o
+    }
+
+    fn render_equilibrium(
+        &self,
+        m: &EquilibriumModes,
+        style: Style,
+        paint: &dyn Paint,
+        o: &mut String,
+    ) {
+        let point: Vec<String> = self
+            .coordinate_labels
+            .iter()
+            .zip(&m.coordinates)
+            .map(|(n, v)| format!("{} = {}", n.get(style), fmt_value(*v)))
+            .collect();
+        let st = match m.stability {
+            Stability::Stable => paint.good("stable"),
+            Stability::Unstable => paint.bad("unstable"),
+            Stability::Marginal => paint.warn("marginal"),
+        };
+        let _ = writeln!(
+            o,
+            "{} {}: {st}",
+            paint.heading("equilibrium"),
+            point.join(", ")
+        );
+        if m.gyroscopic {
+            let _ = writeln!(
+                o,
+                "  velocity-dependent terms survive here: solved as a first-order system"
+            );
+        }
+        let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
+        if !m.frequencies.is_empty() {
+            let _ = writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "));
+        }
+        if !m.growth_rates.is_empty() {
+            let _ = writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "));
+        }
+        for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
+            let desc = m.descriptions.get(k).map_or("", String::as_str);
+            let _ = writeln!(
+                o,
+                "  mode {}: ω² = {}, shape ({}){}",
+                k + 1,
+                fmt_value(*w2),
+                list(shape).join(", "),
+                if desc.is_empty() {
+                    String::new()
+                } else {
+                    format!(" — {desc}")
+                }
+            );
+        }
+    }
+}

@@ -1,0 +1,306 @@
+//! Reports on the problem bank: [`ProblemList`] (`problems list`), [`ProblemSheet`]
+//! (`problems show`: a problem for a terminal) and [`Verification`] (`problems verify`: every
+//! stated answer proved against the physics).
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::Paint;
+use crate::bank::{Bank, Problem, verify::verify};
+use crate::expr::names;
+
+/// One line per problem of a bank, and the files that failed to load.
+#[derive(Clone, Debug, Serialize)]
+pub struct ProblemList {
+    /// The problems, in bank order.
+    pub problems: Vec<ListedProblem>,
+    /// Why each broken file failed to load.
+    pub failures: Vec<String>,
+}
+
+/// A problem as listed.
+#[derive(Clone, Debug, Serialize)]
+pub struct ListedProblem {
+    /// Its id.
+    pub id: String,
+    /// Its title.
+    pub title: String,
+    /// The ids of its parts.
+    pub parts: Vec<String>,
+}
+
+/// The list of `bank`.
+pub fn problem_list(bank: &Bank) -> ProblemList {
+    ProblemList {
+        problems: bank
+            .problems
+            .iter()
+            .map(|p| ListedProblem {
+                id: p.id.clone(),
+                title: p.title.clone(),
+                parts: p.parts.iter().map(|x| x.id.clone()).collect(),
+            })
+            .collect(),
+        failures: failures(bank),
+    }
+}
+
+fn failures(bank: &Bank) -> Vec<String> {
+    bank.failures.iter().map(ToString::to_string).collect()
+}
+
+fn render_failures(failures: &[String], paint: &dyn Paint, o: &mut String) {
+    for f in failures {
+        let _ = writeln!(o, "{} {f}", paint.bad("✗"));
+    }
+}
+
+impl ProblemList {
+    /// Two lines per problem (id and title; part ids), then the failures.
+    pub fn render(&self, paint: &dyn Paint) -> String {
+        let mut o = String::new();
+        let w = self.problems.iter().map(|p| p.id.len()).max().unwrap_or(0);
+        for p in &self.problems {
+            // Padded before painting, so that escape codes do not count towards the width.
+            let _ = writeln!(
+                o,
+                "{}  {}\n{:w$}  parts: {}",
+                paint.heading(&format!("{:w$}", p.id)),
+                p.title,
+                "",
+                p.parts.join(", ")
+            );
+        }
+        render_failures(&self.failures, paint, &mut o);
+        o
+    }
+}
+
+/// A problem as a student reads it, with the reference answers for an instructor.
+#[derive(Clone, Debug, Serialize)]
+pub struct ProblemSheet {
+    /// Its id.
+    pub id: String,
+    /// Its title.
+    pub title: String,
+    /// Where it comes from (empty: not given).
+    pub source: String,
+    /// The statement, with inline math made readable on a terminal.
+    pub statement: String,
+    /// The coordinates, in Unicode.
+    pub coordinates: Vec<String>,
+    /// The parameters in Unicode, with their dimensions when known.
+    pub parameters: Vec<String>,
+    /// The stated assumptions.
+    pub assumptions: Vec<String>,
+    /// The parts.
+    pub parts: Vec<SheetPart>,
+}
+
+/// A part of a problem sheet.
+#[derive(Clone, Debug, Serialize)]
+pub struct SheetPart {
+    /// Its id.
+    pub id: String,
+    /// What kind of answer it asks for.
+    pub kind: String,
+    /// Its weight.
+    pub points: f64,
+    /// The question, with inline math made readable on a terminal.
+    pub prompt: String,
+    /// The reference answers, when asked for.
+    pub answers: Option<Vec<String>>,
+}
+
+/// The sheet of `p`; with `answers`, the reference answers too.
+pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
+    let mut pool = p.system.pool.clone();
+    let coordinates = p
+        .system
+        .coordinates
+        .iter()
+        .map(|c| {
+            let v = pool.var(c.sym, 0);
+            pool.unicode(v)
+        })
+        .collect();
+    let parameters = p
+        .system
+        .parameters
+        .iter()
+        .map(|q| {
+            let v = pool.var(q.sym, 0);
+            match q.dimension {
+                Some(d) => format!("{} [{d}]", pool.unicode(v)),
+                None => pool.unicode(v),
+            }
+        })
+        .collect();
+    ProblemSheet {
+        id: p.id.clone(),
+        title: p.title.clone(),
+        source: p.source.clone(),
+        statement: terminal_math(p.statement.trim()),
+        coordinates,
+        parameters,
+        assumptions: p.assumptions.iter().map(|a| a.text.clone()).collect(),
+        parts: p
+            .parts
+            .iter()
+            .map(|part| SheetPart {
+                id: part.id.clone(),
+                kind: part.kind.name().to_string(),
+                points: part.points,
+                prompt: terminal_math(&part.prompt),
+                answers: answers.then(|| part.answers.clone()),
+            })
+            .collect(),
+    }
+}
+
+impl ProblemSheet {
+    /// The statement, symbols, assumptions and parts, and how to answer.
+    pub fn render(&self, paint: &dyn Paint) -> String {
+        let mut o = String::new();
+        let h = |t: &str| paint.heading(t);
+        let _ = writeln!(o, "{}  ({})", h(&self.title), self.id);
+        if !self.source.is_empty() {
+            let _ = writeln!(o, "{}", paint.dim(&self.source));
+        }
+        let _ = writeln!(o, "\n{}", self.statement);
+        let _ = writeln!(o, "\n{} {}", h("coordinates:"), self.coordinates.join(", "));
+        let _ = writeln!(o, "{} {}", h("parameters: "), self.parameters.join(", "));
+        if !self.assumptions.is_empty() {
+            let _ = writeln!(o, "{} {}", h("assuming:   "), self.assumptions.join(", "));
+        }
+        for (i, part) in self.parts.iter().enumerate() {
+            let _ = writeln!(
+                o,
+                "\n{} {} ({}, {} point{})",
+                h(&format!("{}.", i + 1)),
+                h(&part.id),
+                part.kind,
+                part.points,
+                if part.points == 1.0 { "" } else { "s" }
+            );
+            let _ = writeln!(o, "   {}", part.prompt);
+            if let Some(answers) = &part.answers {
+                let _ = writeln!(o, "   {} {}", paint.dim("answer:"), answers.join("; "));
+            }
+        }
+        let _ = writeln!(
+            o,
+            "\nAnswer with `lagrange check {} <part> \"<answer>\"`.",
+            self.id
+        );
+        o
+    }
+}
+
+/// LaTeX-ish inline math for a terminal: `$\theta_1$` → θ₁, `$m^2$` → m².
+pub fn terminal_math(text: &str) -> String {
+    let mut s = text.replace('$', "");
+    for (c, name) in names::GREEK {
+        s = s.replace(&format!("\\{name}"), &c.to_string());
+    }
+    for (from, to) in [
+        ("\\varphi", "φ"),
+        ("\\pi", "π"),
+        ("\\cdot", "·"),
+        ("\\,", " "),
+    ] {
+        s = s.replace(from, to);
+    }
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '_' | '^' if chars.peek().is_some_and(|d| d.is_ascii_digit()) => {
+                let mut digits = String::new();
+                while let Some(d) = chars.peek().filter(|d| d.is_ascii_digit()) {
+                    digits.push(*d);
+                    chars.next();
+                }
+                if c == '_' {
+                    out.push_str(&names::subscript(&digits));
+                } else {
+                    out.push_str(&names::superscript(digits.parse().unwrap_or(0)));
+                }
+            }
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// Every problem of a bank checked against the physics, and the files that failed to load.
+#[derive(Clone, Debug, Serialize)]
+pub struct Verification {
+    /// One entry per loaded problem, in bank order.
+    pub problems: Vec<VerifiedProblem>,
+    /// Why each broken file failed to load.
+    pub failures: Vec<String>,
+}
+
+/// One problem's verification.
+#[derive(Clone, Debug, Serialize)]
+pub struct VerifiedProblem {
+    /// Its id.
+    pub id: String,
+    /// How many parts it has.
+    pub parts: usize,
+    /// What is wrong with it (empty: every part proved).
+    pub findings: Vec<String>,
+}
+
+/// Verifies every problem of `bank`.
+pub fn verification(bank: &Bank) -> Verification {
+    Verification {
+        problems: bank
+            .problems
+            .iter()
+            .map(|p| VerifiedProblem {
+                id: p.id.clone(),
+                parts: p.parts.len(),
+                findings: verify(p).iter().map(ToString::to_string).collect(),
+            })
+            .collect(),
+        failures: failures(bank),
+    }
+}
+
+impl Verification {
+    /// How many problems fail: broken files and problems with findings.
+    pub fn failing(&self) -> usize {
+        self.failures.len()
+            + self
+                .problems
+                .iter()
+                .filter(|p| !p.findings.is_empty())
+                .count()
+    }
+
+    /// A ✓ or ✗ line per problem with its findings, the load failures, and a count.
+    pub fn render(&self, paint: &dyn Paint) -> String {
+        let mut o = String::new();
+        for p in &self.problems {
+            if p.findings.is_empty() {
+                let _ = writeln!(o, "{} {} ({} parts proved)", paint.good("✓"), p.id, p.parts);
+            } else {
+                let _ = writeln!(o, "{} {}", paint.bad("✗"), p.id);
+                for f in &p.findings {
+                    let _ = writeln!(o, "  {f}");
+                }
+            }
+        }
+        render_failures(&self.failures, paint, &mut o);
+        let _ = writeln!(
+            o,
+            "{} problems, {} failing",
+            self.problems.len() + self.failures.len(),
+            self.failing()
+        );
+        o
+    }
+}
