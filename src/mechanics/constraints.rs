@@ -104,9 +104,7 @@ impl System {
             }
             rhs[n + j] = -out(n * n + n + m * n + j);
         }
-        let x = s.lu().solve(&rhs).ok_or_else(|| {
-            MechError::Invalid("the constraints are not independent at this state".into())
-        })?;
+        let x = s.lu().solve(&rhs).ok_or(MechError::DependentConstraints)?;
         Ok((
             x.iter().take(n).copied().collect(),
             x.iter().skip(n).copied().collect(),

@@ -10,8 +10,28 @@ use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::generalized_eigen;
 use super::sample::Sampler;
+use super::state::Layout;
 use super::system::System;
 use crate::expr::{Id, Program};
+
+/// An eigenvalue ω² (or a growth rate, or a frequency) counts as zero below this fraction of
+/// the largest one: linear analysis cannot tell the sign of what rounding leaves.
+pub(crate) const EIGENVALUE_ZERO: f64 = 1e-9;
+
+/// A Newton root is kept when its residual is within this fraction of (1 + |J|) after the
+/// iteration budget (the iteration itself aims at [`NEWTON_TARGET`]).
+const NEWTON_ACCEPT: f64 = 1e-9;
+
+/// Residual, relative to (1 + |J|), at which Newton's iteration stops.
+const NEWTON_TARGET: f64 = 1e-11;
+
+/// A root may lie this fraction of the range outside a non-periodic coordinate's range
+/// (a root found exactly on the edge is not lost to rounding).
+const RANGE_MARGIN: f64 = 1e-9;
+
+/// Angles within this of ±π are reported as π (both are one angle; the tolerance is that of
+/// [`NEWTON_ACCEPT`]).
+const ANGLE_SNAP: f64 = 1e-9;
 
 /// Stability of an equilibrium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,14 +68,13 @@ pub struct Equilibria {
 /// Programs for the static problem: G(q) = f(q, 0, t = 0), J = ∂G/∂q, and M(q, 0).
 pub struct Statics {
     program: Program,
-    n: usize,
+    layout: Layout,
     base: Vec<f64>,
 }
 
 impl Statics {
     /// Compiles G, J and M with the parameter values `params` (in the system's order).
     pub fn new(sys: &mut System, d: &Derivation, params: &[f64]) -> Result<Statics, MechError> {
-        let n = sys.n();
         let coords = sys.coordinate_syms();
         let zero = sys.pool.zero();
         let at_rest: FxHashMap<_, _> = coords
@@ -79,14 +98,19 @@ impl Statics {
             }
         }
         let program = sys.compile(&roots)?;
-        let mut base = vec![0.0; 1 + 3 * n];
-        base.extend_from_slice(params);
         if params.len() != sys.parameters.len() {
-            return Err(MechError::Invalid(
-                "wrong number of parameter values".into(),
-            ));
+            return Err(MechError::ParameterCount {
+                expected: sys.parameters.len(),
+                given: params.len(),
+            });
         }
-        Ok(Statics { program, n, base })
+        let layout = sys.state_layout();
+        let base = layout.at_rest(&[], params);
+        Ok(Statics {
+            program,
+            layout,
+            base,
+        })
     }
 
     fn eval(
@@ -96,10 +120,10 @@ impl Statics {
     ) -> Option<(DVector<f64>, DMatrix<f64>, DMatrix<f64>)> {
         let mut x = self.base.clone();
         for (i, &v) in q.iter().enumerate() {
-            x[1 + 3 * i] = v;
+            x[self.layout.q(i)] = v;
         }
         self.program.run(&x, scratch).ok()?;
-        let n = self.n;
+        let n = self.layout.coordinates();
         let g = DVector::from_fn(n, |i, _| self.program.output(i, scratch));
         let j = DMatrix::from_fn(n, n, |r, c| self.program.output(n + r * n + c, scratch));
         let m = DMatrix::from_fn(n, n, |r, c| {
@@ -118,7 +142,7 @@ impl Statics {
         let k = (&k + k.transpose()) * 0.5;
         let (vals, vecs) = generalized_eigen(&k, &m)?;
         let scale = vals.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
-        let tol = 1e-9 * scale;
+        let tol = EIGENVALUE_ZERO * scale;
         let st = if vals.iter().any(|&v| v < -tol) {
             Stability::Unstable
         } else if vals.iter().any(|&v| v.abs() <= tol) || scale <= 1e-250 {
@@ -190,7 +214,7 @@ impl System {
                     q[i] = wrap_angle(q[i]);
                 } else {
                     let (lo, hi) = ranges[i];
-                    let margin = 1e-9 * (hi - lo);
+                    let margin = RANGE_MARGIN * (hi - lo);
                     inside &= q[i] >= lo - margin && q[i] <= hi + margin;
                 }
                 if q[i].abs() < 1e-12 {
@@ -258,7 +282,7 @@ fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>>
     for _ in 0..60 {
         let (g, j, _) = s.eval(&q, scratch)?;
         let scale = 1.0 + j.amax();
-        if g.amax() <= 1e-11 * scale {
+        if g.amax() <= NEWTON_TARGET * scale {
             return Some(q);
         }
         let step = j.clone().lu().solve(&(-&g))?;
@@ -287,7 +311,7 @@ fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>>
         }
     }
     let (g, j, _) = s.eval(&q, scratch)?;
-    (g.amax() <= 1e-9 * (1.0 + j.amax())).then_some(q)
+    (g.amax() <= NEWTON_ACCEPT * (1.0 + j.amax())).then_some(q)
 }
 
 /// An angle in (−π, π].
@@ -297,8 +321,7 @@ pub fn wrap_angle(x: f64) -> f64 {
     if y > pi {
         y -= tau;
     }
-    // −π and π are one angle; report π (within Newton's tolerance of it).
-    if (y + pi).abs() < 1e-9 || (y - pi).abs() < 1e-9 {
+    if (y + pi).abs() < ANGLE_SNAP || (y - pi).abs() < ANGLE_SNAP {
         y = pi;
     }
     y

@@ -70,14 +70,12 @@ pub fn generalized_eigen(
     m: &DMatrix<f64>,
 ) -> Result<(DVector<f64>, DMatrix<f64>), MechError> {
     let n = k.nrows();
-    let chol = m.clone().cholesky().ok_or_else(|| {
-        MechError::Invalid("the mass matrix is not positive definite here".into())
-    })?;
-    let l = chol.l();
-    let linv = l
+    let chol = m
         .clone()
-        .try_inverse()
-        .ok_or_else(|| MechError::Invalid("the mass matrix is singular here".into()))?;
+        .cholesky()
+        .ok_or(MechError::MassNotPositiveDefinite)?;
+    let l = chol.l();
+    let linv = l.clone().try_inverse().ok_or(MechError::SingularMassHere)?;
     let mut a = &linv * k * linv.transpose();
     // Symmetrize away rounding so SymmetricEigen sees an exactly symmetric matrix.
     a = (&a + a.transpose()) * 0.5;
