@@ -158,45 +158,11 @@ impl System {
     /// All equilibria inside the coordinate ranges for parameter values `params`.
     pub fn equilibria(&mut self, d: &Derivation, params: &[f64]) -> Result<Equilibria, MechError> {
         let statics = Statics::new(self, d, params)?;
-        let n = self.n();
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let mut scratch = statics.program.scratch();
-        let mut sampler = Sampler::new(0x5eed_0003);
-        // Starting points: a grid (≤ ~400 points) plus random ones.
-        let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
-        let mut starts: Vec<Vec<f64>> = Vec::new();
-        // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
-        let total = per_axis
-            .checked_pow(n as u32)
-            .filter(|&t| t <= 512)
-            .unwrap_or(0);
-        for k in 0..total {
-            let mut idx = k;
-            let mut q = Vec::with_capacity(n);
-            for r in &ranges {
-                let i = idx % per_axis;
-                idx /= per_axis;
-                q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
-            }
-            starts.push(q);
-        }
-        let random = if total == 0 { 256 } else { 64 };
-        for _ in 0..random {
-            starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
-        }
-        // Continuum: f ≈ 0 at almost every starting point.
-        let mut zero_at_start = 0;
-        let mut defined = 0;
-        for q in &starts {
-            if let Some((g, j, _)) = statics.eval(q, &mut scratch) {
-                defined += 1;
-                if g.amax() <= 1e-10 * (1.0 + j.amax()) {
-                    zero_at_start += 1;
-                }
-            }
-        }
-        if defined > 0 && zero_at_start * 10 >= defined * 9 {
+        let starts = start_points(&ranges);
+        if is_continuum(&statics, &starts, &mut scratch) {
             return Ok(Equilibria {
                 points: Vec::new(),
                 continuum: true,
@@ -207,34 +173,10 @@ impl System {
             let Some(q) = newton(&statics, q0, &mut scratch) else {
                 continue;
             };
-            let mut q = q;
-            let mut inside = true;
-            for i in 0..n {
-                if periodic[i] {
-                    q[i] = wrap_angle(q[i]);
-                } else {
-                    let (lo, hi) = ranges[i];
-                    let margin = RANGE_MARGIN * (hi - lo);
-                    inside &= q[i] >= lo - margin && q[i] <= hi + margin;
-                }
-                if q[i].abs() < 1e-12 {
-                    q[i] = 0.0;
-                }
-            }
-            if !inside {
+            let Some(q) = normalize_root(q, &ranges, &periodic) else {
                 continue;
-            }
-            let dup = found.iter().any(|p| {
-                p.iter().zip(&q).zip(&periodic).all(|((a, b), &per)| {
-                    let d = if per {
-                        wrap_angle(a - b).abs()
-                    } else {
-                        (a - b).abs()
-                    };
-                    d < 1e-6 * (1.0 + a.abs())
-                })
-            });
-            if !dup {
+            };
+            if !found.iter().any(|p| same_point(p, &q, &periodic)) {
                 found.push(q);
             }
         }
@@ -274,6 +216,83 @@ impl System {
             .collect();
         Ok(g.iter().all(|&gi| self.is_zero(gi)))
     }
+}
+
+/// Newton's starting points in `ranges`: a grid (≤ ~400 points) plus seeded random ones.
+fn start_points(ranges: &[(f64, f64)]) -> Vec<Vec<f64>> {
+    let n = ranges.len();
+    let mut sampler = Sampler::new(0x5eed_0003);
+    let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
+    let mut starts: Vec<Vec<f64>> = Vec::new();
+    // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
+    let total = per_axis
+        .checked_pow(n as u32)
+        .filter(|&t| t <= 512)
+        .unwrap_or(0);
+    for k in 0..total {
+        let mut idx = k;
+        let mut q = Vec::with_capacity(n);
+        for r in ranges {
+            let i = idx % per_axis;
+            idx /= per_axis;
+            q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
+        }
+        starts.push(q);
+    }
+    let random = if total == 0 { 256 } else { 64 };
+    for _ in 0..random {
+        starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
+    }
+    starts
+}
+
+/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum.
+fn is_continuum(statics: &Statics, starts: &[Vec<f64>], scratch: &mut [f64]) -> bool {
+    let mut zero_at_start = 0;
+    let mut defined = 0;
+    for q in starts {
+        if let Some((g, j, _)) = statics.eval(q, scratch) {
+            defined += 1;
+            if g.amax() <= 1e-10 * (1.0 + j.amax()) {
+                zero_at_start += 1;
+            }
+        }
+    }
+    defined > 0 && zero_at_start * 10 >= defined * 9
+}
+
+/// A root with periodic coordinates wrapped into (−π, π] and tiny values set to 0; `None`
+/// when a non-periodic coordinate lies outside its range.
+fn normalize_root(mut q: Vec<f64>, ranges: &[(f64, f64)], periodic: &[bool]) -> Option<Vec<f64>> {
+    for i in 0..q.len() {
+        if periodic[i] {
+            q[i] = wrap_angle(q[i]);
+        } else {
+            let (lo, hi) = ranges[i];
+            let margin = RANGE_MARGIN * (hi - lo);
+            // Written as "not inside" so that a NaN is outside too.
+            let inside = q[i] >= lo - margin && q[i] <= hi + margin;
+            if !inside {
+                return None;
+            }
+        }
+        if q[i].abs() < 1e-12 {
+            q[i] = 0.0;
+        }
+    }
+    Some(q)
+}
+
+/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π).
+fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
+    a.iter().zip(b).zip(periodic).all(|((x, y), &per)| {
+        let d = if per {
+            wrap_angle(x - y).abs()
+        } else {
+            (x - y).abs()
+        };
+        d < 1e-6 * (1.0 + x.abs())
+    })
 }
 
 /// Newton's method with backtracking from `q`; `None` when it does not converge.
