@@ -177,16 +177,40 @@ impl Pool {
 
     /// The canonical product of `factors`.
     pub fn product(&mut self, factors: impl IntoIterator<Item = Id>) -> Id {
+        let (mut coeff, bases) = match self.gather_bases(factors) {
+            Ok(x) => x,
+            Err(undefined) => return undefined,
+        };
+        if coeff.is_zero() {
+            return self.zero();
+        }
+        let mut out = Vec::with_capacity(bases.len());
+        let mut again = self.merge_exponents(bases, &mut coeff, &mut out);
+        again |= self.merge_radicals(&mut out, &mut coeff);
+        if again {
+            let c = self.num(coeff);
+            out.push(c);
+            return self.product(out);
+        }
+        self.finish_product(coeff, out)
+    }
+
+    /// Flattens `factors` into a coefficient and bases: for each base, its first exponent,
+    /// the factor it came from, and any further exponents. `Err` carries an undefined
+    /// factor, which makes the whole product undefined.
+    fn gather_bases(
+        &mut self,
+        factors: impl IntoIterator<Item = Id>,
+    ) -> Result<(BigRational, Vec<Base>), Id> {
         let mut coeff = BigRational::one();
-        // For each base: its first exponent, the factor it came from, and any further
-        // exponents. Products are short, so bases are found by scanning.
-        let mut bases: Vec<(Id, Id, Id, Vec<Id>)> = Vec::new();
+        // Products are short, so bases are found by scanning.
+        let mut bases: Vec<Base> = Vec::new();
         let mut stack: Vec<Id> = factors.into_iter().collect();
         stack.reverse();
         let one = self.one();
         while let Some(f) = stack.pop() {
             if self.is_undefined(f) {
-                return f;
+                return Err(f);
             }
             let (b, e) = match self.node(f) {
                 Node::Num(v) => {
@@ -211,29 +235,41 @@ impl Pool {
             } else {
                 f
             };
-            match bases.iter_mut().find(|x| x.0 == b) {
-                Some(x) => x.3.push(e),
-                None => bases.push((b, e, f, Vec::new())),
+            match bases.iter_mut().find(|x| x.base == b) {
+                Some(x) => x.more.push(e),
+                None => bases.push(Base {
+                    base: b,
+                    first: e,
+                    original: f,
+                    more: Vec::new(),
+                }),
             }
         }
-        if coeff.is_zero() {
-            return self.zero();
-        }
-        let mut out = Vec::with_capacity(bases.len());
+        Ok((coeff, bases))
+    }
+
+    /// Adds the exponents of each base into `out` (numbers go into `coeff`); true when a
+    /// power came out as a product, which needs another pass.
+    fn merge_exponents(
+        &mut self,
+        bases: Vec<Base>,
+        coeff: &mut BigRational,
+        out: &mut Vec<Id>,
+    ) -> bool {
         let mut again = false;
-        for (b, first, original, more) in bases {
+        for b in bases {
             // A lone factor is already canonical; only merged exponents need `pow` again
             // (calling it on a lone `2^(1/2)` would rebuild the same product forever).
-            let p = if more.is_empty() {
-                original
+            let p = if b.more.is_empty() {
+                b.original
             } else {
-                let mut es = more;
-                es.push(first);
+                let mut es = b.more;
+                es.push(b.first);
                 let e = self.sum(es);
-                self.pow(b, e)
+                self.pow(b.base, e)
             };
             match self.node(p) {
-                Node::Num(v) => mul_coeff(&mut coeff, v),
+                Node::Num(v) => mul_coeff(coeff, v),
                 Node::Mul(_) => {
                     again = true;
                     out.push(p);
@@ -241,7 +277,12 @@ impl Pool {
                 _ => out.push(p),
             }
         }
-        // Numeric radicals with one exponent merge: √2·√3 = √6, √2·√8 = 4.
+        again
+    }
+
+    /// Numeric radicals with one exponent merge: √2·√3 = √6, √2·√8 = 4. True when a merged
+    /// radical came out as a product, which needs another pass.
+    fn merge_radicals(&mut self, out: &mut Vec<Id>, coeff: &mut BigRational) -> bool {
         let radical = |pool: &Pool, f: Id| -> Option<(BigRational, Id)> {
             match pool.node(f) {
                 Node::Pow(b, e) => match (pool.as_num(*b), pool.as_num(*e)) {
@@ -251,6 +292,7 @@ impl Pool {
                 _ => None,
             }
         };
+        let mut again = false;
         let mut k = 0;
         while k < out.len() {
             let Some((bk, ek)) = radical(self, out[k]) else {
@@ -270,27 +312,28 @@ impl Pool {
                     _ => j += 1,
                 }
             }
-            if merged {
-                let b = self.num(base);
-                let p = self.pow(b, ek);
-                out.remove(k);
-                match self.node(p) {
-                    Node::Num(v) => mul_coeff(&mut coeff, v),
-                    Node::Mul(_) => {
-                        again = true;
-                        out.push(p);
-                    }
-                    _ => out.insert(k, p),
-                }
-            } else {
+            if !merged {
                 k += 1;
+                continue;
+            }
+            let b = self.num(base);
+            let p = self.pow(b, ek);
+            out.remove(k);
+            match self.node(p) {
+                Node::Num(v) => mul_coeff(coeff, v),
+                Node::Mul(_) => {
+                    again = true;
+                    out.push(p);
+                }
+                _ => out.insert(k, p),
             }
         }
-        if again {
-            let c = self.num(coeff);
-            out.push(c);
-            return self.product(out);
-        }
+        again
+    }
+
+    /// The product node of `coeff` and the merged factors `out`: a number alone, a lone
+    /// factor, a numeric factor distributed over a single sum, or a sorted `Mul`.
+    fn finish_product(&mut self, coeff: BigRational, mut out: Vec<Id>) -> Id {
         if coeff.is_zero() {
             return self.zero();
         }
@@ -454,6 +497,15 @@ impl Pool {
             _ => vec![t],
         }
     }
+}
+
+/// One base of a product being built: its first exponent, the factor it came from, and
+/// any further exponents to add.
+struct Base {
+    base: Id,
+    first: Id,
+    original: Id,
+    more: Vec<Id>,
 }
 
 /// acc ← acc · v, skipping the gcd normalization where it cannot change anything.

@@ -309,14 +309,24 @@ impl Pool {
         index: &FxHashMap<Vec<Id>, usize>,
         used: &[bool],
     ) -> Option<(usize, Vec<Id>)> {
-        let (cx, fx) = parts[i].clone();
         let lookup = |want: Vec<Id>| -> Option<usize> {
             index
                 .get(&sorted(want))
                 .copied()
                 .filter(|&j| j != i && !used[j])
         };
-        // pythagoras: R·sin²a with R·cos²a.
+        self.pythagoras_partner(i, parts, &lookup)
+            .or_else(|| self.angle_partner(i, parts, &lookup))
+    }
+
+    /// Rule `pythagoras` for term `i`: R·sin²a with R·cos²a.
+    fn pythagoras_partner(
+        &mut self,
+        i: usize,
+        parts: &[(BigRational, Vec<Id>)],
+        lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
+    ) -> Option<(usize, Vec<Id>)> {
+        let (cx, fx) = parts[i].clone();
         for (k, &f) in fx.iter().enumerate() {
             let Some(a) = self.trig_square(f, Func::Sin) else {
                 continue;
@@ -343,6 +353,17 @@ impl Pool {
             let t2 = self.scale(&diff, base);
             return Some((j, vec![t1, t2]));
         }
+        None
+    }
+
+    /// Rule `angle-difference` for term `i`.
+    fn angle_partner(
+        &mut self,
+        i: usize,
+        parts: &[(BigRational, Vec<Id>)],
+        lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
+    ) -> Option<(usize, Vec<Id>)> {
+        let (cx, fx) = parts[i].clone();
         // cos a cos b ± sin a sin b = cos(a ∓ b); sin a cos b ± cos a sin b = sin(a ± b).
         for (k, &p) in fx.iter().enumerate() {
             for (l, &q) in fx.iter().enumerate() {
