@@ -15,6 +15,7 @@ use super::names;
 use super::node::{Func, Id, Node};
 use super::order::{self, natural_cmp};
 use super::pool::Pool;
+use super::simplify::Factored;
 
 /// An output style.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -52,6 +53,29 @@ impl Pool {
     /// LaTeX.
     pub fn latex(&self, id: Id) -> String {
         self.display(id, Style::Latex)
+    }
+
+    /// Prints a factored form (see [`Pool::factored`]) in `style`, as the product node it
+    /// stands for would print.
+    pub fn display_factored(&self, f: &Factored, style: Style) -> String {
+        let parts = match f {
+            Factored::Plain(id) => return self.display(*id, style),
+            Factored::Product(parts) => parts,
+        };
+        let printer = Printer { pool: self, style };
+        let (coeff, factors) = match parts.split_first() {
+            Some((&c, rest)) if self.as_num(c).is_some() => (
+                self.as_num(c).cloned().unwrap_or_else(BigRational::one),
+                rest.to_vec(),
+            ),
+            _ => (BigRational::one(), parts.clone()),
+        };
+        let (neg, mag, _) = printer.product_term(&coeff, factors);
+        if neg {
+            format!("{}{mag}", printer.minus())
+        } else {
+            mag
+        }
     }
 
     /// Prints `lhs = rhs`.
