@@ -26,24 +26,24 @@ impl Pool {
     }
 
     /// −a.
-    pub fn neg(&mut self, a: Id) -> Id {
+    pub(crate) fn neg(&mut self, a: Id) -> Id {
         let m = self.minus_one();
         self.product([m, a])
     }
 
     /// a · b.
-    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+    pub(crate) fn mul(&mut self, a: Id, b: Id) -> Id {
         self.product([a, b])
     }
 
     /// a / b.
-    pub fn div(&mut self, a: Id, b: Id) -> Id {
+    pub(crate) fn div(&mut self, a: Id, b: Id) -> Id {
         let r = self.recip(b);
         self.product([a, r])
     }
 
     /// 1 / a.
-    pub fn recip(&mut self, a: Id) -> Id {
+    pub(crate) fn recip(&mut self, a: Id) -> Id {
         let m = self.minus_one();
         self.pow(a, m)
     }
@@ -61,7 +61,7 @@ impl Pool {
     }
 
     /// c · a for an exact rational c.
-    pub fn scale(&mut self, c: &BigRational, a: Id) -> Id {
+    pub(crate) fn scale(&mut self, c: &BigRational, a: Id) -> Id {
         let n = self.num(c.clone());
         self.product([n, a])
     }
@@ -75,7 +75,7 @@ impl Pool {
     }
 
     /// Whether `id` is the undefined value `1/0`.
-    pub fn is_undefined(&self, id: Id) -> bool {
+    pub(crate) fn is_undefined(&self, id: Id) -> bool {
         matches!(self.node(id), Node::Pow(b, _) if self.is_zero(*b))
     }
 
@@ -141,7 +141,7 @@ impl Pool {
     }
 
     /// Splits a term into its rational coefficient and the rest (`3·x·y` → (3, x·y)).
-    pub fn split_coeff(&mut self, t: Id) -> (BigRational, Id) {
+    pub(crate) fn split_coeff(&mut self, t: Id) -> (BigRational, Id) {
         if let Node::Mul(ch) = self.node(t)
             && let Node::Num(c) = self.node(ch[0])
         {
@@ -361,7 +361,7 @@ impl Pool {
     }
 
     /// The canonical power `b ^ e`.
-    pub fn pow(&mut self, b: Id, e: Id) -> Id {
+    pub(crate) fn pow(&mut self, b: Id, e: Id) -> Id {
         if self.is_undefined(b) || self.is_undefined(e) {
             return self.undefined();
         }
@@ -435,7 +435,7 @@ impl Pool {
     }
 
     /// The canonical `f(a)`.
-    pub fn func(&mut self, f: Func, a: Id) -> Id {
+    pub(crate) fn func(&mut self, f: Func, a: Id) -> Id {
         if self.is_undefined(a) {
             return a;
         }
@@ -452,7 +452,7 @@ impl Pool {
 
     /// Whether `a` is written with a leading minus: a negative number, a product with a
     /// negative coefficient, or a sum whose first term (in display order) is negative.
-    pub fn is_negative_form(&self, a: Id) -> bool {
+    pub(crate) fn is_negative_form(&self, a: Id) -> bool {
         match self.node(a) {
             Node::Num(v) => v.is_negative(),
             Node::Mul(ch) => self.as_num(ch[0]).is_some_and(|c| c.is_negative()),
@@ -473,7 +473,7 @@ impl Pool {
     }
 
     /// Orders terms by their coefficient-free part.
-    pub fn cmp_terms(&self, x: Id, y: Id) -> Ordering {
+    pub(crate) fn cmp_terms(&self, x: Id, y: Id) -> Ordering {
         let fx = self.factors_without_coeff(x);
         let fy = self.factors_without_coeff(y);
         let mut fx = fx.to_vec();
@@ -490,7 +490,7 @@ impl Pool {
     }
 
     /// The factors of a term without its numeric coefficient.
-    pub fn factors_without_coeff(&self, t: Id) -> Vec<Id> {
+    pub(crate) fn factors_without_coeff(&self, t: Id) -> Vec<Id> {
         match self.node(t) {
             Node::Mul(ch) if self.as_num(ch[0]).is_some() => ch[1..].to_vec(),
             Node::Mul(ch) => ch.to_vec(),

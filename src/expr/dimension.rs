@@ -48,7 +48,7 @@ impl Dimension {
     }
 
     /// Raised to a rational power.
-    pub fn pow(self, k: Rational32) -> Self {
+    pub(crate) fn pow(self, k: Rational32) -> Self {
         Dimension {
             m: self.m * k,
             l: self.l * k,

@@ -88,7 +88,7 @@ impl Pool {
     }
 
     /// The term printed first in a sum (each term's key computed once).
-    pub fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
+    pub(crate) fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
         let keyed: Vec<(Id, TermKey<'_>)> = terms.iter().map(|&t| (t, self.term_key(t))).collect();
         keyed
             .iter()
@@ -100,7 +100,7 @@ impl Pool {
     /// polynomial (higher degree first, then by variable name and its degree), constants
     /// last. So `m·l²·θ̈ + m·g·l·sin θ`, `a² + 2·a·b + b²`, `l²·ω⁴ − 4·g·l·ω² + 2·g²`.
     /// Each term's key is computed once.
-    pub fn display_sort_terms(&self, terms: &mut [Id]) {
+    pub(crate) fn display_sort_terms(&self, terms: &mut [Id]) {
         let mut keyed: Vec<(Id, TermKey<'_>)> =
             terms.iter().map(|&t| (t, self.term_key(t))).collect();
         keyed.sort_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb));

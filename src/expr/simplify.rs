@@ -52,7 +52,7 @@ impl Pool {
     }
 
     /// Rebuilds `e` bottom-up, applying `rule` to every rebuilt node.
-    pub fn rewrite(&mut self, e: Id, rule: &mut dyn FnMut(&mut Pool, Id) -> Id) -> Id {
+    pub(crate) fn rewrite(&mut self, e: Id, rule: &mut dyn FnMut(&mut Pool, Id) -> Id) -> Id {
         let mut cache = FxHashMap::default();
         self.rewrite_cached(e, &mut cache, false, rule)
     }
@@ -185,7 +185,7 @@ impl Pool {
     }
 
     /// Replaces variables by expressions (`theta'' → 0`, `m1 → m`).
-    pub fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
+    pub(crate) fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
         if map.is_empty() {
             return e;
         }
@@ -196,7 +196,7 @@ impl Pool {
     }
 
     /// Whether `e` is positive wherever it is defined, given positive symbols.
-    pub fn is_positive(&self, e: Id, positive: &FxHashSet<Sym>) -> bool {
+    pub(crate) fn is_positive(&self, e: Id, positive: &FxHashSet<Sym>) -> bool {
         match self.node(e) {
             Node::Num(v) => v.is_positive(),
             Node::Pi => true,

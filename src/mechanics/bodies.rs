@@ -41,7 +41,7 @@ pub enum Potential {
 }
 
 /// T = Σ ½ m |ṙ|² + Σ ½ I (d angle/dt)².
-pub fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Body]) -> Id {
+pub(crate) fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Body]) -> Id {
     let coords: Vec<Sym> = coordinates.iter().map(|c| c.sym).collect();
     let half = pool.ratio(1, 2);
     let mut terms = Vec::new();
@@ -67,7 +67,7 @@ pub fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Bod
 }
 
 /// V from the potentials (gravity acts on the point masses).
-pub fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[Potential]) -> Id {
+pub(crate) fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[Potential]) -> Id {
     let half = pool.ratio(1, 2);
     let mut terms = Vec::new();
     for p in potentials {

@@ -334,7 +334,7 @@ fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>>
 }
 
 /// An angle in (−π, π].
-pub fn wrap_angle(x: f64) -> f64 {
+pub(crate) fn wrap_angle(x: f64) -> f64 {
     let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
     let mut y = x.rem_euclid(tau);
     if y > pi {

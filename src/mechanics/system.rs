@@ -93,7 +93,7 @@ impl System {
     }
 
     /// A system from an already-built Lagrangian in `pool` (used by the problem bank).
-    pub fn from_parts(pool: Pool, coordinates: Vec<Coordinate>, lagrangian: Id) -> System {
+    pub(crate) fn from_parts(pool: Pool, coordinates: Vec<Coordinate>, lagrangian: Id) -> System {
         let n = coordinates.len();
         let zero = pool.zero();
         let mut sys = System {
@@ -228,7 +228,7 @@ impl System {
     }
 
     /// Registers every non-coordinate symbol as a parameter (keeping existing ones).
-    pub fn collect_parameters(&mut self) {
+    pub(crate) fn collect_parameters(&mut self) {
         let mut roots = vec![self.lagrangian];
         roots.extend(self.forces.iter().copied());
         roots.extend(self.constraints.iter().map(|c| c.expr));
@@ -266,12 +266,12 @@ impl System {
     }
 
     /// Coordinate symbols.
-    pub fn coordinate_syms(&self) -> Vec<Sym> {
+    pub(crate) fn coordinate_syms(&self) -> Vec<Sym> {
         self.coordinates.iter().map(|c| c.sym).collect()
     }
 
     /// Parameter symbols (treated as positive by the simplifier).
-    pub fn parameter_syms(&self) -> Vec<Sym> {
+    pub(crate) fn parameter_syms(&self) -> Vec<Sym> {
         self.parameters.iter().map(|p| p.sym).collect()
     }
 
@@ -411,7 +411,7 @@ impl System {
 }
 
 /// Names that are conventionally angles, and so periodic.
-pub fn looks_like_angle(name: &str) -> bool {
+pub(crate) fn looks_like_angle(name: &str) -> bool {
     let (letters, _) = crate::expr::names::split_digits(name);
     matches!(
         letters,
