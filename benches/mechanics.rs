@@ -12,7 +12,7 @@ use lagrange::mechanics::System;
 use lagrange::mechanics::equilibria::Statics;
 
 fn n_link(n: usize) -> System {
-    lagrange::mechanics::bodies::n_link_pendulum(n)
+    lagrange::mechanics::fixtures::n_link_pendulum(n)
 }
 
 fn printed_ops(n: usize) -> (usize, f64) {

@@ -12,7 +12,7 @@ fn main() {
         .unwrap_or(20);
     let t0 = std::time::Instant::now();
     for _ in 0..reps {
-        let mut sys = lagrange::mechanics::bodies::n_link_pendulum(n);
+        let mut sys = lagrange::mechanics::fixtures::n_link_pendulum(n);
         std::hint::black_box(sys.derive().expect("derives"));
     }
     println!(

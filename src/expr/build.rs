@@ -26,24 +26,24 @@ impl Pool {
     }
 
     /// −a.
-    pub fn neg(&mut self, a: Id) -> Id {
+    pub(crate) fn neg(&mut self, a: Id) -> Id {
         let m = self.minus_one();
         self.product([m, a])
     }
 
     /// a · b.
-    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+    pub(crate) fn mul(&mut self, a: Id, b: Id) -> Id {
         self.product([a, b])
     }
 
     /// a / b.
-    pub fn div(&mut self, a: Id, b: Id) -> Id {
+    pub(crate) fn div(&mut self, a: Id, b: Id) -> Id {
         let r = self.recip(b);
         self.product([a, r])
     }
 
     /// 1 / a.
-    pub fn recip(&mut self, a: Id) -> Id {
+    pub(crate) fn recip(&mut self, a: Id) -> Id {
         let m = self.minus_one();
         self.pow(a, m)
     }
@@ -61,7 +61,7 @@ impl Pool {
     }
 
     /// c · a for an exact rational c.
-    pub fn scale(&mut self, c: &BigRational, a: Id) -> Id {
+    pub(crate) fn scale(&mut self, c: &BigRational, a: Id) -> Id {
         let n = self.num(c.clone());
         self.product([n, a])
     }
@@ -75,7 +75,7 @@ impl Pool {
     }
 
     /// Whether `id` is the undefined value `1/0`.
-    pub fn is_undefined(&self, id: Id) -> bool {
+    pub(crate) fn is_undefined(&self, id: Id) -> bool {
         matches!(self.node(id), Node::Pow(b, _) if self.is_zero(*b))
     }
 
@@ -141,7 +141,7 @@ impl Pool {
     }
 
     /// Splits a term into its rational coefficient and the rest (`3·x·y` → (3, x·y)).
-    pub fn split_coeff(&mut self, t: Id) -> (BigRational, Id) {
+    pub(crate) fn split_coeff(&mut self, t: Id) -> (BigRational, Id) {
         if let Node::Mul(ch) = self.node(t)
             && let Node::Num(c) = self.node(ch[0])
         {
@@ -177,16 +177,40 @@ impl Pool {
 
     /// The canonical product of `factors`.
     pub fn product(&mut self, factors: impl IntoIterator<Item = Id>) -> Id {
+        let (mut coeff, bases) = match self.gather_bases(factors) {
+            Ok(x) => x,
+            Err(undefined) => return undefined,
+        };
+        if coeff.is_zero() {
+            return self.zero();
+        }
+        let mut out = Vec::with_capacity(bases.len());
+        let mut again = self.merge_exponents(bases, &mut coeff, &mut out);
+        again |= self.merge_radicals(&mut out, &mut coeff);
+        if again {
+            let c = self.num(coeff);
+            out.push(c);
+            return self.product(out);
+        }
+        self.finish_product(coeff, out)
+    }
+
+    /// Flattens `factors` into a coefficient and bases: for each base, its first exponent,
+    /// the factor it came from, and any further exponents. `Err` carries an undefined
+    /// factor, which makes the whole product undefined.
+    fn gather_bases(
+        &mut self,
+        factors: impl IntoIterator<Item = Id>,
+    ) -> Result<(BigRational, Vec<Base>), Id> {
         let mut coeff = BigRational::one();
-        // For each base: its first exponent, the factor it came from, and any further
-        // exponents. Products are short, so bases are found by scanning.
-        let mut bases: Vec<(Id, Id, Id, Vec<Id>)> = Vec::new();
+        // Products are short, so bases are found by scanning.
+        let mut bases: Vec<Base> = Vec::new();
         let mut stack: Vec<Id> = factors.into_iter().collect();
         stack.reverse();
         let one = self.one();
         while let Some(f) = stack.pop() {
             if self.is_undefined(f) {
-                return f;
+                return Err(f);
             }
             let (b, e) = match self.node(f) {
                 Node::Num(v) => {
@@ -211,29 +235,41 @@ impl Pool {
             } else {
                 f
             };
-            match bases.iter_mut().find(|x| x.0 == b) {
-                Some(x) => x.3.push(e),
-                None => bases.push((b, e, f, Vec::new())),
+            match bases.iter_mut().find(|x| x.base == b) {
+                Some(x) => x.more.push(e),
+                None => bases.push(Base {
+                    base: b,
+                    first: e,
+                    original: f,
+                    more: Vec::new(),
+                }),
             }
         }
-        if coeff.is_zero() {
-            return self.zero();
-        }
-        let mut out = Vec::with_capacity(bases.len());
+        Ok((coeff, bases))
+    }
+
+    /// Adds the exponents of each base into `out` (numbers go into `coeff`); true when a
+    /// power came out as a product, which needs another pass.
+    fn merge_exponents(
+        &mut self,
+        bases: Vec<Base>,
+        coeff: &mut BigRational,
+        out: &mut Vec<Id>,
+    ) -> bool {
         let mut again = false;
-        for (b, first, original, more) in bases {
+        for b in bases {
             // A lone factor is already canonical; only merged exponents need `pow` again
             // (calling it on a lone `2^(1/2)` would rebuild the same product forever).
-            let p = if more.is_empty() {
-                original
+            let p = if b.more.is_empty() {
+                b.original
             } else {
-                let mut es = more;
-                es.push(first);
+                let mut es = b.more;
+                es.push(b.first);
                 let e = self.sum(es);
-                self.pow(b, e)
+                self.pow(b.base, e)
             };
             match self.node(p) {
-                Node::Num(v) => mul_coeff(&mut coeff, v),
+                Node::Num(v) => mul_coeff(coeff, v),
                 Node::Mul(_) => {
                     again = true;
                     out.push(p);
@@ -241,7 +277,12 @@ impl Pool {
                 _ => out.push(p),
             }
         }
-        // Numeric radicals with one exponent merge: √2·√3 = √6, √2·√8 = 4.
+        again
+    }
+
+    /// Numeric radicals with one exponent merge: √2·√3 = √6, √2·√8 = 4. True when a merged
+    /// radical came out as a product, which needs another pass.
+    fn merge_radicals(&mut self, out: &mut Vec<Id>, coeff: &mut BigRational) -> bool {
         let radical = |pool: &Pool, f: Id| -> Option<(BigRational, Id)> {
             match pool.node(f) {
                 Node::Pow(b, e) => match (pool.as_num(*b), pool.as_num(*e)) {
@@ -251,6 +292,7 @@ impl Pool {
                 _ => None,
             }
         };
+        let mut again = false;
         let mut k = 0;
         while k < out.len() {
             let Some((bk, ek)) = radical(self, out[k]) else {
@@ -270,27 +312,28 @@ impl Pool {
                     _ => j += 1,
                 }
             }
-            if merged {
-                let b = self.num(base);
-                let p = self.pow(b, ek);
-                out.remove(k);
-                match self.node(p) {
-                    Node::Num(v) => mul_coeff(&mut coeff, v),
-                    Node::Mul(_) => {
-                        again = true;
-                        out.push(p);
-                    }
-                    _ => out.insert(k, p),
-                }
-            } else {
+            if !merged {
                 k += 1;
+                continue;
+            }
+            let b = self.num(base);
+            let p = self.pow(b, ek);
+            out.remove(k);
+            match self.node(p) {
+                Node::Num(v) => mul_coeff(coeff, v),
+                Node::Mul(_) => {
+                    again = true;
+                    out.push(p);
+                }
+                _ => out.insert(k, p),
             }
         }
-        if again {
-            let c = self.num(coeff);
-            out.push(c);
-            return self.product(out);
-        }
+        again
+    }
+
+    /// The product node of `coeff` and the merged factors `out`: a number alone, a lone
+    /// factor, a numeric factor distributed over a single sum, or a sorted `Mul`.
+    fn finish_product(&mut self, coeff: BigRational, mut out: Vec<Id>) -> Id {
         if coeff.is_zero() {
             return self.zero();
         }
@@ -318,7 +361,7 @@ impl Pool {
     }
 
     /// The canonical power `b ^ e`.
-    pub fn pow(&mut self, b: Id, e: Id) -> Id {
+    pub(crate) fn pow(&mut self, b: Id, e: Id) -> Id {
         if self.is_undefined(b) || self.is_undefined(e) {
             return self.undefined();
         }
@@ -392,7 +435,7 @@ impl Pool {
     }
 
     /// The canonical `f(a)`.
-    pub fn func(&mut self, f: Func, a: Id) -> Id {
+    pub(crate) fn func(&mut self, f: Func, a: Id) -> Id {
         if self.is_undefined(a) {
             return a;
         }
@@ -409,7 +452,7 @@ impl Pool {
 
     /// Whether `a` is written with a leading minus: a negative number, a product with a
     /// negative coefficient, or a sum whose first term (in display order) is negative.
-    pub fn is_negative_form(&self, a: Id) -> bool {
+    pub(crate) fn is_negative_form(&self, a: Id) -> bool {
         match self.node(a) {
             Node::Num(v) => v.is_negative(),
             Node::Mul(ch) => self.as_num(ch[0]).is_some_and(|c| c.is_negative()),
@@ -430,7 +473,7 @@ impl Pool {
     }
 
     /// Orders terms by their coefficient-free part.
-    pub fn cmp_terms(&self, x: Id, y: Id) -> Ordering {
+    pub(crate) fn cmp_terms(&self, x: Id, y: Id) -> Ordering {
         let fx = self.factors_without_coeff(x);
         let fy = self.factors_without_coeff(y);
         let mut fx = fx.to_vec();
@@ -447,13 +490,22 @@ impl Pool {
     }
 
     /// The factors of a term without its numeric coefficient.
-    pub fn factors_without_coeff(&self, t: Id) -> Vec<Id> {
+    pub(crate) fn factors_without_coeff(&self, t: Id) -> Vec<Id> {
         match self.node(t) {
             Node::Mul(ch) if self.as_num(ch[0]).is_some() => ch[1..].to_vec(),
             Node::Mul(ch) => ch.to_vec(),
             _ => vec![t],
         }
     }
+}
+
+/// One base of a product being built: its first exponent, the factor it came from, and
+/// any further exponents to add.
+struct Base {
+    base: Id,
+    first: Id,
+    original: Id,
+    more: Vec<Id>,
 }
 
 /// acc ← acc · v, skipping the gcd normalization where it cannot change anything.

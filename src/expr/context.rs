@@ -22,7 +22,7 @@ pub enum Call {
 }
 
 /// The call named `name`, if it is one (`dot` and `ddot` are handled by the parser).
-pub fn call_named(name: &str) -> Option<Call> {
+pub(crate) fn call_named(name: &str) -> Option<Call> {
     Some(match name {
         "sec" => Call::Sec,
         "csc" => Call::Csc,
@@ -92,7 +92,7 @@ impl Context {
     }
 
     /// Whether unknown names become parameters.
-    pub fn is_open(&self) -> bool {
+    pub(crate) fn is_open(&self) -> bool {
         self.open
     }
 
@@ -112,12 +112,12 @@ impl Context {
     }
 
     /// Whether `name` is a declared parameter.
-    pub fn is_parameter(&self, name: &str) -> bool {
+    pub(crate) fn is_parameter(&self, name: &str) -> bool {
         self.parameters.iter().any(|c| c == name)
     }
 
     /// Resolves a plain name (no derivative marks). `None` means unknown.
-    pub fn resolve(&self, raw: &str) -> Option<Resolved> {
+    pub(crate) fn resolve(&self, raw: &str) -> Option<Resolved> {
         let name = names::normalize(raw);
         if name == "pi" {
             return Some(Resolved::Pi);
@@ -146,7 +146,7 @@ impl Context {
     }
 
     /// The known name closest to `name`, if close enough to be a likely typo.
-    pub fn suggest(&self, name: &str) -> Option<String> {
+    pub(crate) fn suggest(&self, name: &str) -> Option<String> {
         let mut candidates: Vec<String> = Vec::new();
         for c in &self.coordinates {
             candidates.push(c.clone());
@@ -159,7 +159,7 @@ impl Context {
     }
 
     /// The function name closest to `name`.
-    pub fn suggest_function(name: &str) -> Option<String> {
+    pub(crate) fn suggest_function(name: &str) -> Option<String> {
         closest(name, FUNCTION_NAMES.iter().copied())
     }
 

@@ -48,7 +48,7 @@ impl Dimension {
     }
 
     /// Raised to a rational power.
-    pub fn pow(self, k: Rational32) -> Self {
+    pub(crate) fn pow(self, k: Rational32) -> Self {
         Dimension {
             m: self.m * k,
             l: self.l * k,
@@ -307,7 +307,7 @@ impl Pool {
         &self,
         e: Id,
         dims: &Dimensions,
-        memo: &mut FxHashMap<Id, Option<Dimension>>,
+        memo: &mut Memo,
     ) -> Result<Option<Dimension>, DimError> {
         if let Some(d) = memo.get(&e) {
             return Ok(*d);
@@ -325,84 +325,113 @@ impl Pool {
                 }
                 acc
             }
-            Node::Add(ch) => {
-                let mut seen: Vec<(String, Dimension)> = Vec::new();
-                let mut unknown = false;
-                let mut terms = ch.to_vec();
-                self.display_sort_terms(&mut terms);
-                for &c in &terms {
-                    match self.dim_of(c, dims, memo)? {
-                        Some(d) => {
-                            if !seen.iter().any(|(_, x)| *x == d) {
-                                seen.push((self.unicode(c), d));
-                            }
-                        }
-                        None => unknown = true,
-                    }
-                }
-                if seen.len() > 1 {
-                    return Err(DimError::UnlikeTerms { terms: seen });
-                }
-                if unknown {
-                    None
-                } else {
-                    seen.first().map(|x| x.1)
-                }
-            }
-            Node::Pow(b, x) => {
-                let db = self.dim_of(*b, dims, memo)?;
-                let dx = self.dim_of(*x, dims, memo)?;
-                if let Some(dx) = dx
-                    && !dx.is_none()
-                {
-                    return Err(DimError::DimensionfulExponent {
-                        exponent: self.unicode(*x),
-                        dim: dx,
-                    });
-                }
-                match (db, self.as_num(*x)) {
-                    (Some(d), _) if d.is_none() => Some(d),
-                    (Some(d), Some(v)) => {
-                        let r = v
-                            .numer()
-                            .to_i32()
-                            .zip(v.denom().to_i32())
-                            .map(|(n, k)| Rational32::new(n, k));
-                        r.map(|r| d.pow(r))
-                    }
-                    (Some(d), None) => {
-                        return Err(DimError::SymbolicExponent {
-                            base: self.unicode(*b),
-                            dim: d,
-                            exponent: self.unicode(*x),
-                        });
-                    }
-                    (None, _) => None,
-                }
-            }
-            Node::Func(f, a) => {
-                let da = self.dim_of(*a, dims, memo)?;
-                if f.needs_dimensionless() {
-                    if let Some(d) = da
-                        && !d.is_none()
-                    {
-                        return Err(DimError::DimensionfulArgument {
-                            func: f.name(),
-                            arg: self.unicode(*a),
-                            dim: d,
-                        });
-                    }
-                    Some(Dimension::NONE)
-                } else {
-                    debug_assert_eq!(*f, Func::Abs);
-                    da
-                }
-            }
+            Node::Add(ch) => self.dim_of_sum(ch, dims, memo)?,
+            Node::Pow(b, x) => self.dim_of_power(*b, *x, dims, memo)?,
+            Node::Func(f, a) => self.dim_of_func(*f, *a, dims, memo)?,
         };
         memo.insert(e, d);
         Ok(d)
     }
+
+    /// Every term of a sum must have one dimension; the error lists one term per dimension,
+    /// in display order.
+    fn dim_of_sum(
+        &self,
+        ch: &[Id],
+        dims: &Dimensions,
+        memo: &mut Memo,
+    ) -> Result<Option<Dimension>, DimError> {
+        let mut seen: Vec<(String, Dimension)> = Vec::new();
+        let mut unknown = false;
+        let mut terms = ch.to_vec();
+        self.display_sort_terms(&mut terms);
+        for &c in &terms {
+            match self.dim_of(c, dims, memo)? {
+                Some(d) => {
+                    if !seen.iter().any(|(_, x)| *x == d) {
+                        seen.push((self.unicode(c), d));
+                    }
+                }
+                None => unknown = true,
+            }
+        }
+        if seen.len() > 1 {
+            return Err(DimError::UnlikeTerms { terms: seen });
+        }
+        Ok(if unknown {
+            None
+        } else {
+            seen.first().map(|x| x.1)
+        })
+    }
+
+    /// `b ^ x`: x dimensionless, and a number unless b is dimensionless.
+    fn dim_of_power(
+        &self,
+        b: Id,
+        x: Id,
+        dims: &Dimensions,
+        memo: &mut Memo,
+    ) -> Result<Option<Dimension>, DimError> {
+        let db = self.dim_of(b, dims, memo)?;
+        let dx = self.dim_of(x, dims, memo)?;
+        if let Some(dx) = dx
+            && !dx.is_none()
+        {
+            return Err(DimError::DimensionfulExponent {
+                exponent: self.unicode(x),
+                dim: dx,
+            });
+        }
+        Ok(match (db, self.as_num(x)) {
+            (Some(d), _) if d.is_none() => Some(d),
+            (Some(d), Some(v)) => {
+                let r = v
+                    .numer()
+                    .to_i32()
+                    .zip(v.denom().to_i32())
+                    .map(|(n, k)| Rational32::new(n, k));
+                r.map(|r| d.pow(r))
+            }
+            (Some(d), None) => {
+                return Err(DimError::SymbolicExponent {
+                    base: self.unicode(b),
+                    dim: d,
+                    exponent: self.unicode(x),
+                });
+            }
+            (None, _) => None,
+        })
+    }
+
+    /// `f(a)`: a dimensionless argument for every function but `abs`.
+    fn dim_of_func(
+        &self,
+        f: Func,
+        a: Id,
+        dims: &Dimensions,
+        memo: &mut Memo,
+    ) -> Result<Option<Dimension>, DimError> {
+        let da = self.dim_of(a, dims, memo)?;
+        if !f.needs_dimensionless() {
+            debug_assert_eq!(f, Func::Abs);
+            return Ok(da);
+        }
+        if let Some(d) = da
+            && !d.is_none()
+        {
+            return Err(DimError::DimensionfulArgument {
+                func: f.name(),
+                arg: self.unicode(a),
+                dim: d,
+            });
+        }
+        Ok(Some(Dimension::NONE))
+    }
 }
+
+/// Dimensions already found, by node.
+type Memo = FxHashMap<Id, Option<Dimension>>;
 
 #[cfg(test)]
 mod tests {

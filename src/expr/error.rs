@@ -133,7 +133,7 @@ impl ParseErrorKind {
     }
 
     /// The short label placed under the span.
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         match self {
             Self::UnclosedParen => "opened here".into(),
             Self::UnknownName { .. } | Self::UnknownFunction { .. } => "not known here".into(),

@@ -77,7 +77,7 @@ impl Pool {
     /// Splits a sum into its rational content and a primitive sum: `−4x/3 − 2y` is
     /// (−2/3)·(2x + 3y). The content's sign makes the primitive sum's leading term positive
     /// (the same choice as [`is_negative_form`](Self::is_negative_form)).
-    pub fn content(&mut self, add: Id) -> (BigRational, Id) {
+    pub(crate) fn content(&mut self, add: Id) -> (BigRational, Id) {
         if let Some(r) = self.contents.get(&add) {
             return r.clone();
         }

@@ -78,7 +78,7 @@ pub struct Token {
 }
 
 /// Splits `src` into tokens.
-pub fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
+pub(crate) fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
     let mut out = Vec::new();
     let mut chars = src.char_indices().peekable();
     while let Some(&(i, c)) = chars.peek() {
@@ -86,95 +86,91 @@ pub fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
             chars.next();
             continue;
         }
-        if c.is_ascii_digit()
-            || (c == '.' && src[i + 1..].starts_with(|d: char| d.is_ascii_digit()))
-        {
+        let (tok, end) = if is_number_start(src, i, c) {
             let (value, end) = number(src, i)?;
-            while chars.peek().is_some_and(|&(j, _)| j < end) {
-                chars.next();
-            }
-            out.push(Token {
-                tok: Tok::Num(value),
-                span: i..end,
-            });
-            continue;
-        }
-        if is_name_start(c) {
-            let (tok, end) = name(src, i);
-            while chars.peek().is_some_and(|&(j, _)| j < end) {
-                chars.next();
-            }
-            out.push(Token { tok, span: i..end });
-            continue;
-        }
-        if names::superscript_digit(c).is_some() || c == '⁻' || c == '⁺' {
-            let mut end = i;
-            let mut text = String::new();
-            while let Some(&(j, d)) = chars.peek() {
-                if let Some(v) = names::superscript_digit(d) {
-                    text.push(char::from_digit(v, 10).unwrap_or('0'));
-                } else if (d == '⁻' || d == '⁺') && j == i {
-                    if d == '⁻' {
-                        text.push('-');
-                    }
-                } else {
-                    break;
-                }
-                end = j + d.len_utf8();
-                chars.next();
-            }
-            let n: i64 = text
-                .parse()
-                .map_err(|_| ParseError::new(ParseErrorKind::BadNumber, i..end))?;
-            out.push(Token {
-                tok: Tok::Super(n),
-                span: i..end,
-            });
-            continue;
-        }
-        chars.next();
-        let len = c.len_utf8();
-        let mut span = i..i + len;
-        let tok = match c {
-            '+' => Tok::Plus,
-            '-' | '−' | '–' => Tok::Minus,
-            '*' if src[i + 1..].starts_with('*') => {
-                chars.next();
-                span = i..i + 2;
-                Tok::Caret
-            }
-            '*' | '·' | '×' | '⋅' => Tok::Star,
-            '/' | '÷' => Tok::Slash,
-            '^' => Tok::Caret,
-            '(' | '[' => Tok::LParen,
-            ')' | ']' => Tok::RParen,
-            ',' => Tok::Comma,
-            ';' => Tok::Semi,
-            '=' => Tok::Eq,
-            '\'' | '′' => Tok::Prime,
-            '″' => {
-                out.push(Token {
-                    tok: Tok::Prime,
-                    span: span.clone(),
-                });
-                Tok::Prime
-            }
-            '√' => Tok::Root,
-            'π' => Tok::Name {
-                text: "pi".into(),
-                dots: 0,
-            },
-            _ => {
-                if let Some((n, d)) = names::fraction_value(c) {
-                    Tok::Num(BigRational::new(BigInt::from(n), BigInt::from(d)))
-                } else {
-                    return Err(ParseError::new(ParseErrorKind::UnexpectedChar(c), span));
-                }
-            }
+            (Tok::Num(value), end)
+        } else if is_name_start(c) {
+            name(src, i)
+        } else if is_superscript_start(c) {
+            superscript(src, i)?
+        } else {
+            symbol(src, i, c)?
         };
-        out.push(Token { tok, span });
+        if c == '″' {
+            // A double prime is two derivatives, both pointing at the one character.
+            out.push(Token {
+                tok: Tok::Prime,
+                span: i..end,
+            });
+        }
+        out.push(Token { tok, span: i..end });
+        while chars.peek().is_some_and(|&(j, _)| j < end) {
+            chars.next();
+        }
     }
     Ok(out)
+}
+
+fn is_number_start(src: &str, i: usize, c: char) -> bool {
+    c.is_ascii_digit() || (c == '.' && src[i + 1..].starts_with(|d: char| d.is_ascii_digit()))
+}
+
+fn is_superscript_start(c: char) -> bool {
+    names::superscript_digit(c).is_some() || c == '⁻' || c == '⁺'
+}
+
+/// Reads a superscript integer (`²`, `⁻¹`) starting at byte `start`; a sign only first.
+fn superscript(src: &str, start: usize) -> Result<(Tok, usize), ParseError> {
+    let mut end = start;
+    let mut text = String::new();
+    for (j, d) in src[start..].char_indices() {
+        if let Some(v) = names::superscript_digit(d) {
+            text.push(char::from_digit(v, 10).unwrap_or('0'));
+        } else if (d == '⁻' || d == '⁺') && j == 0 {
+            if d == '⁻' {
+                text.push('-');
+            }
+        } else {
+            break;
+        }
+        end = start + j + d.len_utf8();
+    }
+    let n: i64 = text
+        .parse()
+        .map_err(|_| ParseError::new(ParseErrorKind::BadNumber, start..end))?;
+    Ok((Tok::Super(n), end))
+}
+
+/// Reads an operator, bracket or other one-character token at byte `i` (`**` is two bytes;
+/// a `″` is returned as one prime, and the caller adds the other).
+fn symbol(src: &str, i: usize, c: char) -> Result<(Tok, usize), ParseError> {
+    let end = i + c.len_utf8();
+    let tok = match c {
+        '+' => Tok::Plus,
+        '-' | '−' | '–' => Tok::Minus,
+        '*' if src[i + 1..].starts_with('*') => return Ok((Tok::Caret, i + 2)),
+        '*' | '·' | '×' | '⋅' => Tok::Star,
+        '/' | '÷' => Tok::Slash,
+        '^' => Tok::Caret,
+        '(' | '[' => Tok::LParen,
+        ')' | ']' => Tok::RParen,
+        ',' => Tok::Comma,
+        ';' => Tok::Semi,
+        '=' => Tok::Eq,
+        '\'' | '′' | '″' => Tok::Prime,
+        '√' => Tok::Root,
+        'π' => Tok::Name {
+            text: "pi".into(),
+            dots: 0,
+        },
+        _ => match names::fraction_value(c) {
+            Some((n, d)) => Tok::Num(BigRational::new(BigInt::from(n), BigInt::from(d))),
+            None => {
+                return Err(ParseError::new(ParseErrorKind::UnexpectedChar(c), i..end));
+            }
+        },
+    };
+    Ok((tok, end))
 }
 
 fn is_name_start(c: char) -> bool {

@@ -31,7 +31,7 @@ impl Reading {
 }
 
 /// Lowers one syntax node. Recursion follows the syntax tree, whose depth the parser limits.
-pub fn lower(pool: &mut Pool, ast: &Ast) -> Id {
+pub(crate) fn lower(pool: &mut Pool, ast: &Ast) -> Id {
     match &ast.kind {
         AstKind::Num(v) => pool.num(v.clone()),
         AstKind::Pi => pool.pi(),
@@ -98,7 +98,7 @@ pub fn lower(pool: &mut Pool, ast: &Ast) -> Id {
 }
 
 /// Lowers a whole statement.
-pub fn lower_statement(pool: &mut Pool, st: &Statement) -> Reading {
+pub(crate) fn lower_statement(pool: &mut Pool, st: &Statement) -> Reading {
     match st {
         Statement::Expr(a) => Reading::Expr(lower(pool, a), a.span.clone()),
         Statement::Equation { lhs, rhs, span } => Reading::Equation {

@@ -29,3 +29,4 @@ pub use lower::{Reading, read, read_equation, read_expr};
 pub use node::{Func, Id, Node, Sym};
 pub use pool::Pool;
 pub use print::Style;
+pub use simplify::Factored;

@@ -47,7 +47,7 @@ const GREEK_VARIANTS: &[(char, &str)] = &[
 ];
 
 /// The spelled name of a Greek letter (`θ` → `theta`); π is not here (it is a constant).
-pub fn greek_name(c: char) -> Option<&'static str> {
+pub(crate) fn greek_name(c: char) -> Option<&'static str> {
     GREEK
         .iter()
         .chain(GREEK_VARIANTS)
@@ -56,7 +56,7 @@ pub fn greek_name(c: char) -> Option<&'static str> {
 }
 
 /// The Greek letter of a spelled name (`theta` → `θ`).
-pub fn greek_letter(name: &str) -> Option<char> {
+pub(crate) fn greek_letter(name: &str) -> Option<char> {
     GREEK.iter().find(|(_, n)| *n == name).map(|(g, _)| *g)
 }
 
@@ -102,7 +102,7 @@ const PRECOMPOSED: &[(char, char, u8)] = &[
 ];
 
 /// A precomposed dotted letter as (base letter, number of dots).
-pub fn precomposed(c: char) -> Option<(char, u8)> {
+pub(crate) fn precomposed(c: char) -> Option<(char, u8)> {
     PRECOMPOSED
         .iter()
         .find(|(p, _, _)| *p == c)
@@ -110,12 +110,12 @@ pub fn precomposed(c: char) -> Option<(char, u8)> {
 }
 
 /// The digit of a superscript character.
-pub fn superscript_digit(c: char) -> Option<u32> {
+pub(crate) fn superscript_digit(c: char) -> Option<u32> {
     SUPERSCRIPT.iter().position(|&s| s == c).map(|d| d as u32)
 }
 
 /// The digit of a subscript character.
-pub fn subscript_digit(c: char) -> Option<u32> {
+pub(crate) fn subscript_digit(c: char) -> Option<u32> {
     SUBSCRIPT.iter().position(|&s| s == c).map(|d| d as u32)
 }
 
@@ -159,7 +159,7 @@ pub const FRACTIONS: &[(char, i64, i64)] = &[
 ];
 
 /// The value of a vulgar-fraction character.
-pub fn fraction_value(c: char) -> Option<(i64, i64)> {
+pub(crate) fn fraction_value(c: char) -> Option<(i64, i64)> {
     FRACTIONS
         .iter()
         .find(|(f, _, _)| *f == c)
@@ -167,7 +167,7 @@ pub fn fraction_value(c: char) -> Option<(i64, i64)> {
 }
 
 /// The vulgar-fraction character for n/d, if there is one.
-pub fn fraction_char(n: i64, d: i64) -> Option<char> {
+pub(crate) fn fraction_char(n: i64, d: i64) -> Option<char> {
     FRACTIONS
         .iter()
         .find(|&&(_, a, b)| a == n && b == d)
@@ -187,7 +187,7 @@ pub fn normalize(name: &str) -> String {
 }
 
 /// Splits a name into its letters and its trailing digits (`theta12` → (`theta`, `12`)).
-pub fn split_digits(name: &str) -> (&str, &str) {
+pub(crate) fn split_digits(name: &str) -> (&str, &str) {
     let k = name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
     name.split_at(k)
 }

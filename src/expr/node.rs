@@ -11,7 +11,7 @@ pub struct Id(pub(crate) u32);
 
 impl Id {
     /// The position of the node in its pool.
-    pub fn index(self) -> usize {
+    pub(crate) fn index(self) -> usize {
         self.0 as usize
     }
 }
@@ -74,7 +74,7 @@ impl Func {
     }
 
     /// f(−x) = −f(x).
-    pub fn is_odd(self) -> bool {
+    pub(crate) fn is_odd(self) -> bool {
         matches!(
             self,
             Func::Sin | Func::Tan | Func::Asin | Func::Atan | Func::Sinh | Func::Tanh
@@ -82,17 +82,17 @@ impl Func {
     }
 
     /// f(−x) = f(x).
-    pub fn is_even(self) -> bool {
+    pub(crate) fn is_even(self) -> bool {
         matches!(self, Func::Cos | Func::Cosh | Func::Abs)
     }
 
     /// The argument must be dimensionless (every function here except `abs`).
-    pub fn needs_dimensionless(self) -> bool {
+    pub(crate) fn needs_dimensionless(self) -> bool {
         !matches!(self, Func::Abs)
     }
 
     /// Numeric value in f64.
-    pub fn apply(self, x: f64) -> f64 {
+    pub(crate) fn apply(self, x: f64) -> f64 {
         match self {
             Func::Sin => x.sin(),
             Func::Cos => x.cos(),

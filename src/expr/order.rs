@@ -23,7 +23,7 @@ fn rank(node: &Node) -> u8 {
 
 /// Compares names so that `theta2 < theta10` (digit runs compare by value); ties between
 /// different spellings of one number (`l02`, `l2`) fall back to byte order, so the order is total.
-pub fn natural_cmp(a: &str, b: &str) -> Ordering {
+pub(crate) fn natural_cmp(a: &str, b: &str) -> Ordering {
     natural_only(a, b).then_with(|| a.cmp(b))
 }
 
@@ -62,7 +62,7 @@ fn trim_zeros(d: &[u8]) -> &[u8] {
 }
 
 /// The structural order: by kind, then by contents (symbols by name).
-pub fn cmp(pool: &Pool, a: Id, b: Id) -> Ordering {
+pub(crate) fn cmp(pool: &Pool, a: Id, b: Id) -> Ordering {
     if a == b {
         return Ordering::Equal;
     }

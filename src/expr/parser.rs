@@ -408,73 +408,30 @@ impl Parser<'_> {
     }
 
     fn name(&mut self, text: String, dots: u8, span: Span) -> Result<Ast, ParseError> {
-        let followed_by_paren = self.peek() == Some(&Tok::LParen);
         if text == "dot" || text == "ddot" {
             return self.dot_call(&text, span);
         }
         if let Some(call) = call_named(&text) {
-            if !followed_by_paren {
-                return Err(ParseError::new(
-                    ParseErrorKind::FunctionWithoutArgs { name: text },
-                    span,
-                ));
-            }
-            let open = self.here();
-            self.pos += 1;
-            self.enter(&open)?;
-            let arg = self.sum();
-            self.leave();
-            let arg = arg?;
-            if !self.eat(&Tok::RParen) {
-                return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
-            }
-            let end = self.prev_end();
-            return Ok(Ast {
-                kind: AstKind::Call(call, Box::new(arg)),
-                span: span.start..end,
-            });
+            return self.function_call(call, text, span);
         }
         let resolved = self.ctx.resolve(&text);
         // `theta(t)`: a coordinate written as a function of time is the coordinate itself.
-        if matches!(resolved, Some(Resolved::Coordinate(..))) && self.at_time_argument() {
+        if let Some(Resolved::Coordinate(name, order)) = &resolved
+            && self.at_time_argument()
+        {
             self.pos += 3;
             let end = self.prev_end();
-            let Some(Resolved::Coordinate(name, order)) = resolved else {
-                return Err(ParseError::new(ParseErrorKind::PrimeWithoutName, span));
-            };
             let a = Ast {
-                kind: AstKind::Coordinate { name, order },
+                kind: AstKind::Coordinate {
+                    name: name.clone(),
+                    order: *order,
+                },
                 span: span.start..end,
             };
-            return if dots > 0 {
-                self.differentiate(a, dots, end)
-            } else {
-                Ok(a)
-            };
+            return self.with_dots(a, dots, end);
         }
-        if followed_by_paren {
-            let declared = matches!(
-                &resolved,
-                Some(Resolved::Coordinate(..) | Resolved::Pi | Resolved::Time)
-            ) || self.ctx.is_parameter(&text);
-            if !declared && let Some(s) = Context::suggest_function(&text) {
-                return Err(ParseError::new(
-                    ParseErrorKind::UnknownFunction {
-                        name: text,
-                        suggestion: Some(s),
-                    },
-                    span,
-                ));
-            }
-            if resolved.is_none() {
-                return Err(ParseError::new(
-                    ParseErrorKind::UnknownFunction {
-                        name: text,
-                        suggestion: None,
-                    },
-                    span,
-                ));
-            }
+        if self.peek() == Some(&Tok::LParen) {
+            self.check_called_name(&text, resolved.as_ref(), &span)?;
         }
         let Some(resolved) = resolved else {
             return Err(ParseError::new(
@@ -492,14 +449,75 @@ impl Parser<'_> {
             Resolved::Time => AstKind::Time,
             Resolved::Pi => AstKind::Pi,
         };
-        let a = Ast {
-            kind,
-            span: span.clone(),
-        };
+        let end = span.end;
+        self.with_dots(Ast { kind, span }, dots, end)
+    }
+
+    /// `a` differentiated `dots` times (combining dots over a name), or `a` itself.
+    fn with_dots(&mut self, a: Ast, dots: u8, end: usize) -> Result<Ast, ParseError> {
         if dots > 0 {
-            return self.differentiate(a, dots, span.end);
+            self.differentiate(a, dots, end)
+        } else {
+            Ok(a)
         }
-        Ok(a)
+    }
+
+    /// `sin(…)` and the other named functions: the name must be followed by `(`.
+    fn function_call(&mut self, call: Call, text: String, span: Span) -> Result<Ast, ParseError> {
+        if self.peek() != Some(&Tok::LParen) {
+            return Err(ParseError::new(
+                ParseErrorKind::FunctionWithoutArgs { name: text },
+                span,
+            ));
+        }
+        let open = self.here();
+        self.pos += 1;
+        self.enter(&open)?;
+        let arg = self.sum();
+        self.leave();
+        let arg = arg?;
+        if !self.eat(&Tok::RParen) {
+            return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
+        }
+        let end = self.prev_end();
+        Ok(Ast {
+            kind: AstKind::Call(call, Box::new(arg)),
+            span: span.start..end,
+        })
+    }
+
+    /// A name that is not a function but is followed by `(`: an unknown function (with a
+    /// suggestion when it looks like a misspelt one) unless it is a declared name, which
+    /// then multiplies the parenthesis.
+    fn check_called_name(
+        &self,
+        text: &str,
+        resolved: Option<&Resolved>,
+        span: &Span,
+    ) -> Result<(), ParseError> {
+        let declared = matches!(
+            resolved,
+            Some(Resolved::Coordinate(..) | Resolved::Pi | Resolved::Time)
+        ) || self.ctx.is_parameter(text);
+        if !declared && let Some(s) = Context::suggest_function(text) {
+            return Err(ParseError::new(
+                ParseErrorKind::UnknownFunction {
+                    name: text.to_string(),
+                    suggestion: Some(s),
+                },
+                span.clone(),
+            ));
+        }
+        if resolved.is_none() {
+            return Err(ParseError::new(
+                ParseErrorKind::UnknownFunction {
+                    name: text.to_string(),
+                    suggestion: None,
+                },
+                span.clone(),
+            ));
+        }
+        Ok(())
     }
 
     /// `dot(q)` and `ddot(q)`.

@@ -140,17 +140,17 @@ impl Pool {
     }
 
     /// −1.
-    pub fn minus_one(&self) -> Id {
+    pub(crate) fn minus_one(&self) -> Id {
         self.minus_one
     }
 
     /// An exact rational number.
-    pub fn num(&mut self, value: BigRational) -> Id {
+    pub(crate) fn num(&mut self, value: BigRational) -> Id {
         self.intern(Node::Num(value))
     }
 
     /// An integer.
-    pub fn int(&mut self, value: i64) -> Id {
+    pub(crate) fn int(&mut self, value: i64) -> Id {
         self.num(BigRational::from_integer(BigInt::from(value)))
     }
 
@@ -176,7 +176,7 @@ impl Pool {
     }
 
     /// The number, if `id` is one.
-    pub fn as_num(&self, id: Id) -> Option<&BigRational> {
+    pub(crate) fn as_num(&self, id: Id) -> Option<&BigRational> {
         match self.node(id) {
             Node::Num(v) => Some(v),
             _ => None,
@@ -188,18 +188,8 @@ impl Pool {
         id == self.zero
     }
 
-    /// The children of a node, in order.
-    pub fn children(&self, id: Id) -> Vec<Id> {
-        match self.node(id) {
-            Node::Num(_) | Node::Var(..) | Node::Pi => Vec::new(),
-            Node::Add(c) | Node::Mul(c) => c.to_vec(),
-            Node::Pow(b, e) => vec![*b, *e],
-            Node::Func(_, a) => vec![*a],
-        }
-    }
-
     /// Pushes the children of a node onto `out` (no allocation, for traversals).
-    pub fn push_children(&self, id: Id, out: &mut Vec<Id>) {
+    pub(crate) fn push_children(&self, id: Id, out: &mut Vec<Id>) {
         match self.node(id) {
             Node::Num(_) | Node::Var(..) | Node::Pi => {}
             Node::Add(c) | Node::Mul(c) => out.extend_from_slice(c),

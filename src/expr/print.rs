@@ -15,6 +15,7 @@ use super::names;
 use super::node::{Func, Id, Node};
 use super::order::{self, natural_cmp};
 use super::pool::Pool;
+use super::simplify::Factored;
 
 /// An output style.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -54,6 +55,29 @@ impl Pool {
         self.display(id, Style::Latex)
     }
 
+    /// Prints a factored form (see [`Pool::factored`]) in `style`, as the product node it
+    /// stands for would print.
+    pub fn display_factored(&self, f: &Factored, style: Style) -> String {
+        let parts = match f {
+            Factored::Plain(id) => return self.display(*id, style),
+            Factored::Product(parts) => parts,
+        };
+        let printer = Printer { pool: self, style };
+        let (coeff, factors) = match parts.split_first() {
+            Some((&c, rest)) if self.as_num(c).is_some() => (
+                self.as_num(c).cloned().unwrap_or_else(BigRational::one),
+                rest.to_vec(),
+            ),
+            _ => (BigRational::one(), parts.clone()),
+        };
+        let (neg, mag, _) = printer.product_term(&coeff, factors);
+        if neg {
+            format!("{}{mag}", printer.minus())
+        } else {
+            mag
+        }
+    }
+
     /// Prints `lhs = rhs`.
     pub fn display_equation(&self, lhs: Id, rhs: Id, style: Style) -> String {
         format!(
@@ -64,7 +88,7 @@ impl Pool {
     }
 
     /// The term printed first in a sum (each term's key computed once).
-    pub fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
+    pub(crate) fn display_first_term(&self, terms: &[Id]) -> Option<Id> {
         let keyed: Vec<(Id, TermKey<'_>)> = terms.iter().map(|&t| (t, self.term_key(t))).collect();
         keyed
             .iter()
@@ -76,7 +100,7 @@ impl Pool {
     /// polynomial (higher degree first, then by variable name and its degree), constants
     /// last. So `m·l²·θ̈ + m·g·l·sin θ`, `a² + 2·a·b + b²`, `l²·ω⁴ − 4·g·l·ω² + 2·g²`.
     /// Each term's key is computed once.
-    pub fn display_sort_terms(&self, terms: &mut [Id]) {
+    pub(crate) fn display_sort_terms(&self, terms: &mut [Id]) {
         let mut keyed: Vec<(Id, TermKey<'_>)> =
             terms.iter().map(|&t| (t, self.term_key(t))).collect();
         keyed.sort_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb));
@@ -293,6 +317,12 @@ impl Printer<'_> {
             },
             _ => (BigRational::one(), vec![id]),
         };
+        self.product_term(&coeff, factors)
+    }
+
+    /// The product `coeff · factors` as a term: (negative?, magnitude text, precedence).
+    fn product_term(&self, coeff: &BigRational, factors: Vec<Id>) -> (bool, String, u8) {
+        let pool = self.pool;
         let neg = coeff.is_negative();
         let coeff = coeff.abs();
         let mut num: Vec<Id> = Vec::new();
@@ -309,11 +339,31 @@ impl Printer<'_> {
         }
         num.sort_by(|&a, &b| pool.display_cmp_factors(a, b));
         den.sort_by(|a, b| pool.display_cmp_factors(a.0, b.0));
+        let (num_items, den_from_coeff) = self.numerator_items(&coeff, &num, den.is_empty());
+        let mut den_items: Vec<(String, u8)> = Vec::new();
+        if den_from_coeff {
+            den_items.push((coeff.denom().to_string(), ATOM));
+        }
+        for (b, e) in &den {
+            den_items.push(self.power(*b, e.clone()));
+        }
+        let (text, prec) = self.fraction(&num_items, &den_items, &den);
+        (neg, text, prec)
+    }
+
+    /// The numerator's items (the coefficient's numerator, or the whole coefficient as a
+    /// vulgar fraction or `\frac`, then the factors), and whether the coefficient's
+    /// denominator still has to go below the line.
+    fn numerator_items(
+        &self,
+        coeff: &BigRational,
+        num: &[Id],
+        no_den: bool,
+    ) -> (Vec<(String, u8)>, bool) {
         let p = BigRational::from_integer(coeff.numer().clone());
         let q = coeff.denom().clone();
-
-        let mut num_items: Vec<(String, u8)> = Vec::new();
-        let vulgar = (self.style == Style::Unicode && den.is_empty() && !q.is_one())
+        let mut items: Vec<(String, u8)> = Vec::new();
+        let vulgar = (self.style == Style::Unicode && no_den && !q.is_one())
             .then(|| {
                 let (n, d) = (coeff.numer().to_i64()?, q.to_i64()?);
                 names::fraction_char(n, d)
@@ -321,65 +371,59 @@ impl Printer<'_> {
             .flatten();
         let mut den_from_coeff = !q.is_one();
         if let Some(v) = vulgar {
-            num_items.push((v.to_string(), ATOM));
+            items.push((v.to_string(), ATOM));
             den_from_coeff = false;
-        } else if self.style == Style::Latex && den.is_empty() && !q.is_one() && !num.is_empty() {
-            num_items.push((format!("\\frac{{{}}}{{{}}}", p, q), ATOM));
+        } else if self.style == Style::Latex && no_den && !q.is_one() && !num.is_empty() {
+            items.push((format!("\\frac{{{}}}{{{}}}", p, q), ATOM));
             den_from_coeff = false;
         } else if !p.is_one() || num.is_empty() {
-            num_items.push((p.to_string(), ATOM));
+            items.push((p.to_string(), ATOM));
         }
-        for &f in &num {
-            num_items.push(self.factor(f));
+        for &f in num {
+            items.push(self.factor(f));
         }
-        let mut den_items: Vec<(String, u8)> = Vec::new();
-        if den_from_coeff {
-            den_items.push((q.to_string(), ATOM));
-        }
-        for (b, e) in &den {
-            den_items.push(self.power(*b, e.clone()));
-        }
-        let numerator = self.join(&num_items);
+        (items, den_from_coeff)
+    }
+
+    /// Numerator over denominator (or the numerator alone), with its precedence. `den` is
+    /// the denominator's factors, for the lone-sum case of LaTeX.
+    fn fraction(
+        &self,
+        num_items: &[(String, u8)],
+        den_items: &[(String, u8)],
+        den: &[(Id, Exp)],
+    ) -> (String, u8) {
+        let numerator = self.join(num_items);
         if den_items.is_empty() {
             let prec = if num_items.len() == 1 {
                 num_items[0].1
             } else {
                 PRODUCT
             };
-            return (neg, numerator, prec);
+            return (numerator, prec);
         }
         let lone_den = den_items.len() == 1 && den.len() == 1;
-        let denominator = match &den[..] {
+        let denominator = match den {
             // \frac needs no parentheses around a lone sum: \frac{g}{m_{1} + m_{2}}.
             [(b, Exp::Num(v))] if lone_den && v.is_one() && self.style == Style::Latex => {
                 self.sum(*b)
             }
-            _ => self.join(&den_items),
+            _ => self.join(den_items),
         };
-        let text = if self.style == Style::Latex {
-            format!("\\frac{{{numerator}}}{{{denominator}}}")
+        if self.style == Style::Latex {
+            return (format!("\\frac{{{numerator}}}{{{denominator}}}"), ATOM);
+        }
+        let n = if num_items.len() == 1 {
+            self.wrap(num_items[0].clone(), PRODUCT)
         } else {
-            let n = if num_items.len() == 1 {
-                self.wrap(num_items[0].clone(), PRODUCT)
-            } else {
-                numerator
-            };
-            let d = if den_items.len() == 1 {
-                self.wrap(den_items[0].clone(), POWER)
-            } else {
-                format!("({denominator})")
-            };
-            format!("{n}/{d}")
+            numerator
         };
-        (
-            neg,
-            text,
-            if self.style == Style::Latex {
-                ATOM
-            } else {
-                PRODUCT
-            },
-        )
+        let d = if den_items.len() == 1 {
+            self.wrap(den_items[0].clone(), POWER)
+        } else {
+            format!("({denominator})")
+        };
+        (format!("{n}/{d}"), PRODUCT)
     }
 
     fn join(&self, items: &[(String, u8)]) -> String {

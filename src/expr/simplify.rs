@@ -52,7 +52,7 @@ impl Pool {
     }
 
     /// Rebuilds `e` bottom-up, applying `rule` to every rebuilt node.
-    pub fn rewrite(&mut self, e: Id, rule: &mut dyn FnMut(&mut Pool, Id) -> Id) -> Id {
+    pub(crate) fn rewrite(&mut self, e: Id, rule: &mut dyn FnMut(&mut Pool, Id) -> Id) -> Id {
         let mut cache = FxHashMap::default();
         self.rewrite_cached(e, &mut cache, false, rule)
     }
@@ -185,7 +185,7 @@ impl Pool {
     }
 
     /// Replaces variables by expressions (`theta'' → 0`, `m1 → m`).
-    pub fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
+    pub(crate) fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
         if map.is_empty() {
             return e;
         }
@@ -196,7 +196,7 @@ impl Pool {
     }
 
     /// Whether `e` is positive wherever it is defined, given positive symbols.
-    pub fn is_positive(&self, e: Id, positive: &FxHashSet<Sym>) -> bool {
+    pub(crate) fn is_positive(&self, e: Id, positive: &FxHashSet<Sym>) -> bool {
         match self.node(e) {
             Node::Num(v) => v.is_positive(),
             Node::Pi => true,
@@ -309,14 +309,24 @@ impl Pool {
         index: &FxHashMap<Vec<Id>, usize>,
         used: &[bool],
     ) -> Option<(usize, Vec<Id>)> {
-        let (cx, fx) = parts[i].clone();
         let lookup = |want: Vec<Id>| -> Option<usize> {
             index
                 .get(&sorted(want))
                 .copied()
                 .filter(|&j| j != i && !used[j])
         };
-        // pythagoras: R·sin²a with R·cos²a.
+        self.pythagoras_partner(i, parts, &lookup)
+            .or_else(|| self.angle_partner(i, parts, &lookup))
+    }
+
+    /// Rule `pythagoras` for term `i`: R·sin²a with R·cos²a.
+    fn pythagoras_partner(
+        &mut self,
+        i: usize,
+        parts: &[(BigRational, Vec<Id>)],
+        lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
+    ) -> Option<(usize, Vec<Id>)> {
+        let (cx, fx) = parts[i].clone();
         for (k, &f) in fx.iter().enumerate() {
             let Some(a) = self.trig_square(f, Func::Sin) else {
                 continue;
@@ -343,6 +353,17 @@ impl Pool {
             let t2 = self.scale(&diff, base);
             return Some((j, vec![t1, t2]));
         }
+        None
+    }
+
+    /// Rule `angle-difference` for term `i`.
+    fn angle_partner(
+        &mut self,
+        i: usize,
+        parts: &[(BigRational, Vec<Id>)],
+        lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
+    ) -> Option<(usize, Vec<Id>)> {
+        let (cx, fx) = parts[i].clone();
         // cos a cos b ± sin a sin b = cos(a ∓ b); sin a cos b ± cos a sin b = sin(a ± b).
         for (k, &p) in fx.iter().enumerate() {
             for (l, &q) in fx.iter().enumerate() {
@@ -444,32 +465,85 @@ impl Pool {
         for k in keys {
             let cs = groups.remove(&k).unwrap_or_default();
             let c = self.sum(cs);
-            let c = self.factor_common(c);
-            out.push(self.mul(c, k));
+            // The factored coefficient is only a way of building the product: its node is
+            // never interned.
+            let mut parts = self.factored(c).into_parts();
+            parts.push(k);
+            out.push(self.product(parts));
         }
         self.sum(out)
     }
 
     /// Pulls the factors common to every term of a sum out in front, for display:
-    /// `2·m·l²·θ̈ + 2·m·g·l·sin θ` → `2·m·l·(l·θ̈ + g·sin θ)`. Not a canonical form.
-    pub fn factor_common(&mut self, e: Id) -> Id {
+    /// `2·m·l²·θ̈ + 2·m·g·l·sin θ` → `2·m·l·(l·θ̈ + g·sin θ)`. The result is not canonical, so
+    /// it stays out of the pool: print it with [`display_factored`](Pool::display_factored),
+    /// or take its canonical [`value`](Factored::value).
+    pub fn factored(&mut self, e: Id) -> Factored {
         let Node::Add(terms) = self.node(e).clone() else {
-            return e;
+            return Factored::Plain(e);
         };
+        let common = self.common_factors(&terms);
+        // The sign is chosen on the factored sum, so that it is the one that reads first.
+        let (content, _) = self.content(e);
+        let content = content.abs();
+        if common.is_empty() && content.is_one() {
+            return Factored::Plain(e);
+        }
+        let mut factors: Vec<Id> = common
+            .iter()
+            .map(|(b, x)| {
+                let xe = self.num(x.clone());
+                self.pow(*b, xe)
+            })
+            .collect();
+        let c = self.num(content);
+        factors.push(c);
+        let divisor = self.product(factors.clone());
+        let quotients: Vec<Id> = terms.iter().map(|&t| self.div(t, divisor)).collect();
+        let mut inner = self.sum(quotients);
+        let mut coeff = BigRational::one();
+        if self.is_negative_form(inner) {
+            inner = self.neg(inner);
+            coeff = -coeff;
+        }
+        let (nums, rest): (Vec<Id>, Vec<Id>) =
+            factors.into_iter().partition(|&f| self.as_num(f).is_some());
+        for f in nums {
+            if let Some(v) = self.as_num(f) {
+                coeff *= v;
+            }
+        }
+        // Laid out as the product node `product` would not build: it would distribute a
+        // lone numeric factor over the sum.
+        let mut rest: Vec<Id> = rest.into_iter().filter(|&f| f != self.one()).collect();
+        rest.push(inner);
+        rest.sort_unstable();
+        let mut parts = Vec::with_capacity(rest.len() + 1);
+        if !coeff.is_one() {
+            parts.push(self.num(coeff));
+        }
+        parts.extend(rest);
+        if parts.len() == 1 {
+            return Factored::Plain(parts[0]);
+        }
+        Factored::Product(parts)
+    }
+
+    /// The bases common to every term of a sum, each with the exponent to pull out.
+    fn common_factors(&mut self, terms: &[Id]) -> Vec<(Id, BigRational)> {
         let mut common: Option<Vec<(Id, BigRational)>> = None;
-        for &t in terms.iter() {
+        for &t in terms {
             let (_, fs) = self.term_factors(t);
-            let mut mine: Vec<(Id, BigRational)> = Vec::new();
-            for f in fs {
-                let (b, ex) = match self.node(f) {
+            let mine: Vec<(Id, BigRational)> = fs
+                .into_iter()
+                .map(|f| match self.node(f) {
                     Node::Pow(b, x) => match self.as_num(*x) {
                         Some(v) => (*b, v.clone()),
                         None => (f, BigRational::one()),
                     },
                     _ => (f, BigRational::one()),
-                };
-                mine.push((b, ex));
-            }
+                })
+                .collect();
             // A base is common when every term has it with exponents of one sign; it is
             // pulled out with the exponent nearest zero (g/l from 2g/l + √2 g/l).
             common = Some(match common {
@@ -484,55 +558,18 @@ impl Pool {
                     .collect(),
             });
         }
-        // The sign is chosen on the factored sum, so that it is the one that reads first.
-        let (content, _) = self.content(e);
-        let content = content.abs();
-        let common = common.unwrap_or_default();
-        if common.is_empty() && content.is_one() {
-            return e;
+        common.unwrap_or_default()
+    }
+
+    /// [`factored`](Self::factored) as one node. Deprecated: the node is not canonical, so it
+    /// breaks the pool's contract; kept only for callers that store the display form as an
+    /// [`Id`] (the symbolic modes, the CLI's `derive`, the bank's messages, benchmarks) until
+    /// they print a [`Factored`] instead.
+    pub fn factor_common(&mut self, e: Id) -> Id {
+        match self.factored(e) {
+            Factored::Plain(id) => id,
+            Factored::Product(parts) => self.intern(Node::Mul(parts.into_boxed_slice())),
         }
-        let mut factors: Vec<Id> = common
-            .iter()
-            .map(|(b, x)| {
-                let xe = self.num(x.clone());
-                self.pow(*b, xe)
-            })
-            .collect();
-        let c = self.num(content);
-        factors.push(c);
-        let divisor = self.product(factors.clone());
-        let quotients: Vec<Id> = terms.iter().map(|&t| self.div(t, divisor)).collect();
-        let mut inner = self.sum(quotients);
-        if self.is_negative_form(inner) {
-            inner = self.neg(inner);
-            let m = self.minus_one();
-            factors.push(m);
-        }
-        let factors: Vec<Id> = {
-            let (nums, rest): (Vec<Id>, Vec<Id>) =
-                factors.into_iter().partition(|&f| self.as_num(f).is_some());
-            let c = nums
-                .iter()
-                .filter_map(|&f| self.as_num(f).cloned())
-                .fold(BigRational::one(), |a, b| a * b);
-            let mut v = vec![self.num(c)];
-            v.extend(rest);
-            v
-        };
-        // Built by hand: `product` would distribute a lone numeric factor over the sum.
-        let mut ch = factors;
-        ch.retain(|&f| f != self.one());
-        ch.push(inner);
-        let (coeff, rest): (Vec<Id>, Vec<Id>) =
-            ch.into_iter().partition(|&f| self.as_num(f).is_some());
-        let mut all = coeff;
-        let mut rest = rest;
-        rest.sort_unstable();
-        all.extend(rest);
-        if all.len() == 1 {
-            return all[0];
-        }
-        self.intern(Node::Mul(all.into_boxed_slice()))
     }
 
     /// `Some(a)` when `f` is `g(a)²`.
@@ -559,4 +596,62 @@ fn without(v: &[Id], i: usize) -> Vec<Id> {
 fn sorted(mut v: Vec<Id>) -> Vec<Id> {
     v.sort_unstable();
     v
+}
+
+/// A sum with its common factors pulled out, for display only (`2·m·l·(l·θ̈ + g·sin θ)`).
+/// Not a node of the pool: the pool holds canonical forms, and this one is not.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Factored {
+    /// Nothing to pull out: the expression itself.
+    Plain(Id),
+    /// The factors of the product, laid out as a product node would be (a numeric
+    /// coefficient first, then the rest by id); one of them is the remaining sum.
+    Product(Vec<Id>),
+}
+
+impl Factored {
+    /// The factors (one, for a plain expression).
+    pub fn into_parts(self) -> Vec<Id> {
+        match self {
+            Factored::Plain(id) => vec![id],
+            Factored::Product(parts) => parts,
+        }
+    }
+
+    /// The canonical expression this equals.
+    pub fn value(&self, pool: &mut Pool) -> Id {
+        match self {
+            Factored::Plain(id) => *id,
+            Factored::Product(parts) => pool.product(parts.iter().copied()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::expr::{Context, Pool, Style, read_expr};
+
+    #[test]
+    fn factored_forms_print_as_their_product_node_did() {
+        let ctx = Context::open().with_coordinates(["theta", "x"]);
+        for text in [
+            "2*m*l^2*theta'' + 2*m*g*l*sin(theta)",
+            "-2*g/l - sqrt(2)*g/l",
+            "3*x + 6",
+            "-m*x - m",
+            "1/2*k*x^2 + 1/4*k*x",
+            "x + theta",
+        ] {
+            let mut pool = Pool::new();
+            let e = read_expr(text, &ctx, &mut pool).unwrap();
+            let f = pool.factored(e);
+            let value = f.value(&mut pool);
+            let node = pool.factor_common(e);
+            for style in [Style::Plain, Style::Unicode, Style::Latex] {
+                assert_eq!(pool.display_factored(&f, style), pool.display(node, style));
+            }
+            let back = pool.sub(value, e);
+            assert!(pool.expand(back) == pool.zero(), "{text}");
+        }
+    }
 }

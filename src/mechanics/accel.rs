@@ -29,7 +29,7 @@ impl Dynamics {
     }
 
     /// M and f at `point` (the standard layout; accelerations in it are ignored).
-    pub fn mass_and_forcing(
+    pub(crate) fn mass_and_forcing(
         &self,
         point: &[f64],
         scratch: &mut [f64],
@@ -59,7 +59,7 @@ impl Dynamics {
 
 /// Solves M x = f: Cholesky when M is positive definite, LU otherwise; a singular M is an
 /// error naming the coordinate whose row vanishes (or all of them).
-pub fn solve(
+pub(crate) fn solve(
     m: &DMatrix<f64>,
     f: &DVector<f64>,
     names: &[String],

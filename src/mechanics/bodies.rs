@@ -2,8 +2,8 @@
 //! or 3D, rigid bodies rotating about a fixed axis, uniform gravity, springs and explicit
 //! potentials. From them follow T and V.
 
-use super::system::Coordinate;
-use crate::expr::{Func, Id, Pool, Sym};
+use super::coordinate::Coordinate;
+use crate::expr::{Id, Pool, Sym};
 
 /// A body.
 #[derive(Clone, Debug)]
@@ -40,46 +40,8 @@ pub enum Potential {
     Explicit(Id),
 }
 
-/// The planar n-link pendulum (equal masses m, equal lengths l, angles q1…qn from the
-/// downward vertical, gravity g), built from its bodies' positions — the benchmark system.
-pub fn n_link_pendulum(n: usize) -> super::System {
-    let mut pool = Pool::new();
-    let coordinates: Vec<Coordinate> = (1..=n)
-        .map(|i| {
-            let name = format!("q{i}");
-            Coordinate {
-                sym: pool.symbol(&name),
-                name,
-                periodic: true,
-                range: (-std::f64::consts::PI, std::f64::consts::PI),
-            }
-        })
-        .collect();
-    let (m, l, g) = (pool.sym("m"), pool.sym("l"), pool.sym("g"));
-    let mut bodies = Vec::with_capacity(n);
-    let (mut x, mut y) = (pool.zero(), pool.zero());
-    for c in &coordinates {
-        let q = pool.var(c.sym, 0);
-        let (s, co) = (pool.func(Func::Sin, q), pool.func(Func::Cos, q));
-        let dx = pool.mul(l, s);
-        let dy = pool.mul(l, co);
-        x = pool.add(x, dx);
-        y = pool.sub(y, dy);
-        bodies.push(Body::Point {
-            mass: m,
-            position: vec![x, y],
-        });
-    }
-    super::System::from_bodies(
-        pool,
-        coordinates,
-        &bodies,
-        &[Potential::Gravity { g, axis: 1 }],
-    )
-}
-
 /// T = Σ ½ m |ṙ|² + Σ ½ I (d angle/dt)².
-pub fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Body]) -> Id {
+pub(crate) fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Body]) -> Id {
     let coords: Vec<Sym> = coordinates.iter().map(|c| c.sym).collect();
     let half = pool.ratio(1, 2);
     let mut terms = Vec::new();
@@ -105,7 +67,7 @@ pub fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Bod
 }
 
 /// V from the potentials (gravity acts on the point masses).
-pub fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[Potential]) -> Id {
+pub(crate) fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[Potential]) -> Id {
     let half = pool.ratio(1, 2);
     let mut terms = Vec::new();
     for p in potentials {

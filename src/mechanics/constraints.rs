@@ -11,7 +11,7 @@ use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::cramer;
 use super::system::{ConstraintKind, System};
-use crate::expr::Id;
+use crate::expr::{Factored, Id};
 
 /// The constraint rows: A (m×n) and r (m).
 #[derive(Clone, Debug)]
@@ -104,13 +104,27 @@ impl System {
             }
             rhs[n + j] = -out(n * n + n + m * n + j);
         }
-        let x = s.lu().solve(&rhs).ok_or_else(|| {
-            MechError::Invalid("the constraints are not independent at this state".into())
-        })?;
+        let x = s.lu().solve(&rhs).ok_or(MechError::DependentConstraints)?;
         Ok((
             x.iter().take(n).copied().collect(),
             x.iter().skip(n).copied().collect(),
         ))
+    }
+
+    /// num/den built from their factored forms (so the quotient keeps the common factors
+    /// together: 2·m₁·m₂·g/(m₁ + m₂)) without putting a factored form into the pool.
+    fn factored_quotient(&mut self, num: Id, den: Id) -> Id {
+        let mut parts = self.pool.factored(num).into_parts();
+        // 1/(a·b·…) is built as the pool builds the reciprocal of a product node.
+        let inverse = match self.pool.factored(den) {
+            Factored::Plain(d) => self.pool.recip(d),
+            Factored::Product(ds) => {
+                let inv: Vec<Id> = ds.into_iter().map(|d| self.pool.recip(d)).collect();
+                self.pool.product(inv)
+            }
+        };
+        parts.push(inverse);
+        self.pool.product(parts)
     }
 
     /// The multipliers in closed form (Cramer's rule on the augmented system), for systems
@@ -148,9 +162,7 @@ impl System {
                 .map(|&(num, den)| {
                     let num = self.simplify(num);
                     let den = self.simplify(den);
-                    let num = self.pool.factor_common(num);
-                    let den = self.pool.factor_common(den);
-                    self.pool.div(num, den)
+                    self.factored_quotient(num, den)
                 })
                 .collect(),
         )

@@ -10,8 +10,28 @@ use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::generalized_eigen;
 use super::sample::Sampler;
+use super::state::Layout;
 use super::system::System;
 use crate::expr::{Id, Program};
+
+/// An eigenvalue ω² (or a growth rate, or a frequency) counts as zero below this fraction of
+/// the largest one: linear analysis cannot tell the sign of what rounding leaves.
+pub(crate) const EIGENVALUE_ZERO: f64 = 1e-9;
+
+/// A Newton root is kept when its residual is within this fraction of (1 + |J|) after the
+/// iteration budget (the iteration itself aims at [`NEWTON_TARGET`]).
+const NEWTON_ACCEPT: f64 = 1e-9;
+
+/// Residual, relative to (1 + |J|), at which Newton's iteration stops.
+const NEWTON_TARGET: f64 = 1e-11;
+
+/// A root may lie this fraction of the range outside a non-periodic coordinate's range
+/// (a root found exactly on the edge is not lost to rounding).
+const RANGE_MARGIN: f64 = 1e-9;
+
+/// Angles within this of ±π are reported as π (both are one angle; the tolerance is that of
+/// [`NEWTON_ACCEPT`]).
+const ANGLE_SNAP: f64 = 1e-9;
 
 /// Stability of an equilibrium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,14 +68,13 @@ pub struct Equilibria {
 /// Programs for the static problem: G(q) = f(q, 0, t = 0), J = ∂G/∂q, and M(q, 0).
 pub struct Statics {
     program: Program,
-    n: usize,
+    layout: Layout,
     base: Vec<f64>,
 }
 
 impl Statics {
     /// Compiles G, J and M with the parameter values `params` (in the system's order).
     pub fn new(sys: &mut System, d: &Derivation, params: &[f64]) -> Result<Statics, MechError> {
-        let n = sys.n();
         let coords = sys.coordinate_syms();
         let zero = sys.pool.zero();
         let at_rest: FxHashMap<_, _> = coords
@@ -79,14 +98,19 @@ impl Statics {
             }
         }
         let program = sys.compile(&roots)?;
-        let mut base = vec![0.0; 1 + 3 * n];
-        base.extend_from_slice(params);
         if params.len() != sys.parameters.len() {
-            return Err(MechError::Invalid(
-                "wrong number of parameter values".into(),
-            ));
+            return Err(MechError::ParameterCount {
+                expected: sys.parameters.len(),
+                given: params.len(),
+            });
         }
-        Ok(Statics { program, n, base })
+        let layout = sys.state_layout();
+        let base = layout.at_rest(&[], params);
+        Ok(Statics {
+            program,
+            layout,
+            base,
+        })
     }
 
     fn eval(
@@ -96,10 +120,10 @@ impl Statics {
     ) -> Option<(DVector<f64>, DMatrix<f64>, DMatrix<f64>)> {
         let mut x = self.base.clone();
         for (i, &v) in q.iter().enumerate() {
-            x[1 + 3 * i] = v;
+            x[self.layout.q(i)] = v;
         }
         self.program.run(&x, scratch).ok()?;
-        let n = self.n;
+        let n = self.layout.coordinates();
         let g = DVector::from_fn(n, |i, _| self.program.output(i, scratch));
         let j = DMatrix::from_fn(n, n, |r, c| self.program.output(n + r * n + c, scratch));
         let m = DMatrix::from_fn(n, n, |r, c| {
@@ -118,7 +142,7 @@ impl Statics {
         let k = (&k + k.transpose()) * 0.5;
         let (vals, vecs) = generalized_eigen(&k, &m)?;
         let scale = vals.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
-        let tol = 1e-9 * scale;
+        let tol = EIGENVALUE_ZERO * scale;
         let st = if vals.iter().any(|&v| v < -tol) {
             Stability::Unstable
         } else if vals.iter().any(|&v| v.abs() <= tol) || scale <= 1e-250 {
@@ -134,45 +158,11 @@ impl System {
     /// All equilibria inside the coordinate ranges for parameter values `params`.
     pub fn equilibria(&mut self, d: &Derivation, params: &[f64]) -> Result<Equilibria, MechError> {
         let statics = Statics::new(self, d, params)?;
-        let n = self.n();
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let mut scratch = statics.program.scratch();
-        let mut sampler = Sampler::new(0x5eed_0003);
-        // Starting points: a grid (≤ ~400 points) plus random ones.
-        let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
-        let mut starts: Vec<Vec<f64>> = Vec::new();
-        // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
-        let total = per_axis
-            .checked_pow(n as u32)
-            .filter(|&t| t <= 512)
-            .unwrap_or(0);
-        for k in 0..total {
-            let mut idx = k;
-            let mut q = Vec::with_capacity(n);
-            for r in &ranges {
-                let i = idx % per_axis;
-                idx /= per_axis;
-                q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
-            }
-            starts.push(q);
-        }
-        let random = if total == 0 { 256 } else { 64 };
-        for _ in 0..random {
-            starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
-        }
-        // Continuum: f ≈ 0 at almost every starting point.
-        let mut zero_at_start = 0;
-        let mut defined = 0;
-        for q in &starts {
-            if let Some((g, j, _)) = statics.eval(q, &mut scratch) {
-                defined += 1;
-                if g.amax() <= 1e-10 * (1.0 + j.amax()) {
-                    zero_at_start += 1;
-                }
-            }
-        }
-        if defined > 0 && zero_at_start * 10 >= defined * 9 {
+        let starts = start_points(&ranges);
+        if is_continuum(&statics, &starts, &mut scratch) {
             return Ok(Equilibria {
                 points: Vec::new(),
                 continuum: true,
@@ -183,34 +173,10 @@ impl System {
             let Some(q) = newton(&statics, q0, &mut scratch) else {
                 continue;
             };
-            let mut q = q;
-            let mut inside = true;
-            for i in 0..n {
-                if periodic[i] {
-                    q[i] = wrap_angle(q[i]);
-                } else {
-                    let (lo, hi) = ranges[i];
-                    let margin = 1e-9 * (hi - lo);
-                    inside &= q[i] >= lo - margin && q[i] <= hi + margin;
-                }
-                if q[i].abs() < 1e-12 {
-                    q[i] = 0.0;
-                }
-            }
-            if !inside {
+            let Some(q) = normalize_root(q, &ranges, &periodic) else {
                 continue;
-            }
-            let dup = found.iter().any(|p| {
-                p.iter().zip(&q).zip(&periodic).all(|((a, b), &per)| {
-                    let d = if per {
-                        wrap_angle(a - b).abs()
-                    } else {
-                        (a - b).abs()
-                    };
-                    d < 1e-6 * (1.0 + a.abs())
-                })
-            });
-            if !dup {
+            };
+            if !found.iter().any(|p| same_point(p, &q, &periodic)) {
                 found.push(q);
             }
         }
@@ -252,13 +218,90 @@ impl System {
     }
 }
 
+/// Newton's starting points in `ranges`: a grid (≤ ~400 points) plus seeded random ones.
+fn start_points(ranges: &[(f64, f64)]) -> Vec<Vec<f64>> {
+    let n = ranges.len();
+    let mut sampler = Sampler::new(0x5eed_0003);
+    let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
+    let mut starts: Vec<Vec<f64>> = Vec::new();
+    // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
+    let total = per_axis
+        .checked_pow(n as u32)
+        .filter(|&t| t <= 512)
+        .unwrap_or(0);
+    for k in 0..total {
+        let mut idx = k;
+        let mut q = Vec::with_capacity(n);
+        for r in ranges {
+            let i = idx % per_axis;
+            idx /= per_axis;
+            q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
+        }
+        starts.push(q);
+    }
+    let random = if total == 0 { 256 } else { 64 };
+    for _ in 0..random {
+        starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
+    }
+    starts
+}
+
+/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum.
+fn is_continuum(statics: &Statics, starts: &[Vec<f64>], scratch: &mut [f64]) -> bool {
+    let mut zero_at_start = 0;
+    let mut defined = 0;
+    for q in starts {
+        if let Some((g, j, _)) = statics.eval(q, scratch) {
+            defined += 1;
+            if g.amax() <= 1e-10 * (1.0 + j.amax()) {
+                zero_at_start += 1;
+            }
+        }
+    }
+    defined > 0 && zero_at_start * 10 >= defined * 9
+}
+
+/// A root with periodic coordinates wrapped into (−π, π] and tiny values set to 0; `None`
+/// when a non-periodic coordinate lies outside its range.
+fn normalize_root(mut q: Vec<f64>, ranges: &[(f64, f64)], periodic: &[bool]) -> Option<Vec<f64>> {
+    for i in 0..q.len() {
+        if periodic[i] {
+            q[i] = wrap_angle(q[i]);
+        } else {
+            let (lo, hi) = ranges[i];
+            let margin = RANGE_MARGIN * (hi - lo);
+            // Written as "not inside" so that a NaN is outside too.
+            let inside = q[i] >= lo - margin && q[i] <= hi + margin;
+            if !inside {
+                return None;
+            }
+        }
+        if q[i].abs() < 1e-12 {
+            q[i] = 0.0;
+        }
+    }
+    Some(q)
+}
+
+/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π).
+fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
+    a.iter().zip(b).zip(periodic).all(|((x, y), &per)| {
+        let d = if per {
+            wrap_angle(x - y).abs()
+        } else {
+            (x - y).abs()
+        };
+        d < 1e-6 * (1.0 + x.abs())
+    })
+}
+
 /// Newton's method with backtracking from `q`; `None` when it does not converge.
 fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>> {
     let n = q.len();
     for _ in 0..60 {
         let (g, j, _) = s.eval(&q, scratch)?;
         let scale = 1.0 + j.amax();
-        if g.amax() <= 1e-11 * scale {
+        if g.amax() <= NEWTON_TARGET * scale {
             return Some(q);
         }
         let step = j.clone().lu().solve(&(-&g))?;
@@ -287,18 +330,17 @@ fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>>
         }
     }
     let (g, j, _) = s.eval(&q, scratch)?;
-    (g.amax() <= 1e-9 * (1.0 + j.amax())).then_some(q)
+    (g.amax() <= NEWTON_ACCEPT * (1.0 + j.amax())).then_some(q)
 }
 
 /// An angle in (−π, π].
-pub fn wrap_angle(x: f64) -> f64 {
+pub(crate) fn wrap_angle(x: f64) -> f64 {
     let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
     let mut y = x.rem_euclid(tau);
     if y > pi {
         y -= tau;
     }
-    // −π and π are one angle; report π (within Newton's tolerance of it).
-    if (y + pi).abs() < 1e-9 || (y - pi).abs() < 1e-9 {
+    if (y + pi).abs() < ANGLE_SNAP || (y - pi).abs() < ANGLE_SNAP {
         y = pi;
     }
     y

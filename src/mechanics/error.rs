@@ -1,38 +1,111 @@
-//! Errors of the mechanics layer: data, with a one-line help each.
+//! Errors of the mechanics layer: one variant per situation, with the data a face needs to
+//! phrase it, a one-line help that names no face's flags, and a stable code each (through
+//! [`Diagnostic`]).
 
+use crate::diagnostic::Diagnostic;
 use crate::expr::ParseError;
 
 /// What can go wrong building or analysing a system.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MechError {
+    /// Some text (a Lagrangian, a force, a constraint, a value) did not read.
     #[error("cannot read {what}: {error}")]
     Parse {
         what: String,
         source_text: String,
         error: Box<ParseError>,
     },
+    /// A name used as a coordinate is not one.
     #[error("`{name}` is not a coordinate of this system")]
     UnknownCoordinate { name: String },
+    /// A coordinate's velocity does not enter L quadratically.
     #[error("L does not depend on {name}' quadratically: the system is degenerate")]
     NoKineticTerm { name: String },
+    /// The mass matrix is singular everywhere (`names`: the velocities, comma-separated).
     #[error("the mass matrix is singular: the velocities {names} enter L only in a combination")]
     SingularMass { names: String },
+    /// A numeric analysis needs a value for this parameter.
     #[error("parameter `{name}` has no value")]
     MissingValue { name: String },
+    /// The equilibrium search found nothing.
     #[error("no equilibrium was found in the coordinate ranges")]
     NoEquilibrium,
+    /// Something cannot be evaluated at the state asked for.
     #[error("{what} is undefined at this state")]
     Undefined { what: String },
+    /// More generalized forces than coordinates.
+    #[error("{given} generalized forces given for {coordinates} coordinates")]
+    TooManyForces { given: usize, coordinates: usize },
+    /// A constraint involves accelerations.
+    #[error("a constraint may involve positions and velocities, not accelerations")]
+    AccelerationInConstraint,
+    /// A velocity constraint is not linear in the velocities.
+    #[error("a velocity constraint must be linear in the velocities")]
+    NonlinearVelocityConstraint,
+    /// An expression uses a symbol that is neither a coordinate nor a parameter.
+    #[error("`{name}` is not a symbol of this system")]
+    UnknownSymbol { name: String },
+    /// A value was given for a coordinate where parameter values were expected.
+    #[error("`{name}` is a coordinate; give its value with --at")]
+    ValueForCoordinate { name: String },
+    /// A value was given for a name that is not a parameter.
+    #[error("`{name}` is not a parameter of this system")]
+    UnknownParameter { name: String },
+    /// Numeric parameter values do not match the system's parameters.
+    #[error("wrong number of parameter values")]
+    ParameterCount { expected: usize, given: usize },
+    /// The mass matrix is not positive definite at the state asked for.
+    #[error("the mass matrix is not positive definite here")]
+    MassNotPositiveDefinite,
+    /// The mass matrix is singular at the state asked for.
+    #[error("the mass matrix is singular here")]
+    SingularMassHere,
+    /// Closed forms of small oscillations are for small systems only.
+    #[error(
+        "the characteristic polynomial is given in closed form for up to {max} coordinates, not {n}; drop --symbolic for the numeric modes"
+    )]
+    ClosedFormTooLarge { n: usize, max: usize },
+    /// The constraint rows are dependent at the state asked for.
+    #[error("the constraints are not independent at this state")]
+    DependentConstraints,
+    /// Deprecated: argument errors of a face; to be removed. Nothing in the library
+    /// constructs it.
     #[error("{0}")]
     Invalid(String),
 }
 
 impl MechError {
-    /// One line telling the user what to do.
+    /// A stable kebab-case code.
+    pub fn code(&self) -> &'static str {
+        match self {
+            MechError::Parse { .. } => "parse-error",
+            MechError::UnknownCoordinate { .. } => "unknown-coordinate",
+            MechError::NoKineticTerm { .. } => "no-kinetic-term",
+            MechError::SingularMass { .. } => "singular-mass",
+            MechError::MissingValue { .. } => "missing-value",
+            MechError::NoEquilibrium => "no-equilibrium",
+            MechError::Undefined { .. } => "undefined",
+            MechError::TooManyForces { .. } => "too-many-forces",
+            MechError::AccelerationInConstraint => "acceleration-in-constraint",
+            MechError::NonlinearVelocityConstraint => "nonlinear-velocity-constraint",
+            MechError::UnknownSymbol { .. } => "unknown-symbol",
+            MechError::ValueForCoordinate { .. } => "value-for-coordinate",
+            MechError::UnknownParameter { .. } => "unknown-parameter",
+            MechError::ParameterCount { .. } => "parameter-count",
+            MechError::MassNotPositiveDefinite => "mass-not-positive-definite",
+            MechError::SingularMassHere => "singular-mass-here",
+            MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
+            MechError::DependentConstraints => "dependent-constraints",
+            MechError::Invalid(_) => "invalid",
+        }
+    }
+
+    /// One line telling the user what to do, in terms of the system (a face may rephrase
+    /// it for its own flags with [`Diagnostic::with_help`]).
     pub fn help(&self) -> String {
         match self {
             MechError::Parse { error, .. } => error.help(),
-            MechError::UnknownCoordinate { .. } => "list it in --coords".into(),
+            MechError::UnknownCoordinate { .. } => "declare it as a coordinate".into(),
             MechError::NoKineticTerm { name } => {
                 format!(
                     "give {name} a kinetic term such as 1/2*m*{name}'^2, or drop it from the coordinates"
@@ -41,10 +114,45 @@ impl MechError {
             MechError::SingularMass { .. } => {
                 "choose independent coordinates, or add the missing kinetic terms".into()
             }
-            MechError::MissingValue { name } => format!("add `{name}=<value>` to --params"),
-            MechError::NoEquilibrium => "widen the ranges, or give --at".into(),
+            MechError::MissingValue { name } => format!("give a value for `{name}`"),
+            MechError::NoEquilibrium => "widen the ranges, or give the equilibrium".into(),
             MechError::Undefined { .. } => "choose another state".into(),
+            MechError::TooManyForces { .. } => "give at most one force per coordinate".into(),
+            MechError::AccelerationInConstraint => {
+                "write the constraint on positions, or on velocities".into()
+            }
+            MechError::NonlinearVelocityConstraint => {
+                "write the velocity constraint as a linear combination of the velocities".into()
+            }
+            MechError::UnknownSymbol { .. } => {
+                "use only the system's coordinates and parameters".into()
+            }
+            MechError::ValueForCoordinate { .. } => {
+                "give coordinate values as the equilibrium, not as parameters".into()
+            }
+            MechError::UnknownParameter { .. } => "give values only for the parameters".into(),
+            MechError::ParameterCount { expected, .. } => {
+                format!("give exactly {expected} parameter values, in the system's order")
+            }
+            MechError::MassNotPositiveDefinite | MechError::SingularMassHere => {
+                "choose another state".into()
+            }
+            MechError::ClosedFormTooLarge { .. } => "ask for the numeric modes instead".into(),
+            MechError::DependentConstraints => {
+                "drop a redundant constraint, or choose another state".into()
+            }
             MechError::Invalid(_) => "check the input".into(),
+        }
+    }
+}
+
+impl From<&MechError> for Diagnostic {
+    /// A parse error keeps its own code, span and label (the caret points into the text
+    /// that failed to read); every other error is a plain message with its help.
+    fn from(e: &MechError) -> Self {
+        match e {
+            MechError::Parse { error, .. } => Diagnostic::from(error.as_ref()),
+            other => Diagnostic::new(other.code(), other.to_string(), other.help()),
         }
     }
 }

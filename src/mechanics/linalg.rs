@@ -39,7 +39,7 @@ pub fn det(pool: &mut Pool, m: &[Vec<Id>]) -> Id {
 }
 
 /// Solves `a x = b` symbolically by Cramer's rule; `None` when det(a) is identically 0.
-pub fn cramer(pool: &mut Pool, a: &[Vec<Id>], b: &[Id]) -> Option<Vec<(Id, Id)>> {
+pub(crate) fn cramer(pool: &mut Pool, a: &[Vec<Id>], b: &[Id]) -> Option<Vec<(Id, Id)>> {
     let d = det(pool, a);
     let d = pool.expand(d);
     if pool.is_zero(d) {
@@ -65,19 +65,17 @@ pub fn cramer(pool: &mut Pool, a: &[Vec<Id>], b: &[Id]) -> Option<Vec<(Id, Id)>>
 
 /// Eigenvalues (ascending) and M-orthonormal eigenvectors (columns) of K v = λ M v, for
 /// symmetric K and symmetric positive definite M.
-pub fn generalized_eigen(
+pub(crate) fn generalized_eigen(
     k: &DMatrix<f64>,
     m: &DMatrix<f64>,
 ) -> Result<(DVector<f64>, DMatrix<f64>), MechError> {
     let n = k.nrows();
-    let chol = m.clone().cholesky().ok_or_else(|| {
-        MechError::Invalid("the mass matrix is not positive definite here".into())
-    })?;
-    let l = chol.l();
-    let linv = l
+    let chol = m
         .clone()
-        .try_inverse()
-        .ok_or_else(|| MechError::Invalid("the mass matrix is singular here".into()))?;
+        .cholesky()
+        .ok_or(MechError::MassNotPositiveDefinite)?;
+    let l = chol.l();
+    let linv = l.clone().try_inverse().ok_or(MechError::SingularMassHere)?;
     let mut a = &linv * k * linv.transpose();
     // Symmetrize away rounding so SymmetricEigen sees an exactly symmetric matrix.
     a = (&a + a.transpose()) * 0.5;

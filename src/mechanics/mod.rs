@@ -6,16 +6,20 @@
 pub mod accel;
 pub mod bodies;
 pub mod constraints;
+pub mod coordinate;
 pub mod derive;
 pub mod energy;
 pub mod equilibria;
 pub mod error;
+pub mod fixtures;
 pub mod linalg;
 pub mod modes;
 pub mod sample;
+pub mod state;
 pub mod system;
 
 pub use bodies::{Body, Potential};
 pub use derive::{CoordinateSteps, Derivation};
 pub use error::MechError;
+pub use state::Layout;
 pub use system::{Constraint, ConstraintKind, Coordinate, Parameter, System};

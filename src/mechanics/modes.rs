@@ -8,11 +8,15 @@ use nalgebra::DMatrix;
 use rustc_hash::FxHashMap;
 
 use super::derive::Derivation;
-use super::equilibria::{Stability, Statics};
+use super::equilibria::{EIGENVALUE_ZERO, Stability, Statics};
 use super::error::MechError;
 use super::linalg::det;
 use super::system::System;
 use crate::expr::{Id, Sym};
+
+/// Closed forms (a cofactor expansion has n! terms) are given for at most this many
+/// coordinates.
+const MAX_CLOSED_FORM_COORDINATES: usize = 3;
 
 /// One normal mode.
 #[derive(Clone, Debug)]
@@ -68,7 +72,7 @@ impl System {
         // Velocity-linear terms at the equilibrium: C = ∂f/∂q' at (q₀, 0).
         let c = self.velocity_coupling(d, params, q0)?;
         if c.amax() > 1e-12 {
-            return self.first_order_modes(d, params, q0, c, stability);
+            return self.first_order_modes(d, params, q0, c);
         }
         let mut modes = Vec::with_capacity(n);
         let mut frequencies = Vec::new();
@@ -123,20 +127,10 @@ impl System {
         q0: &[f64],
     ) -> Result<Vec<f64>, MechError> {
         let prog = self.compile(roots)?;
-        prog.eval(&self.rest_point(params, q0))
+        prog.eval(&self.state_layout().at_rest(q0, params))
             .map_err(|_| MechError::Undefined {
                 what: "the linearized equations".into(),
             })
-    }
-
-    /// The standard-layout point at rest at `q0`.
-    fn rest_point(&self, params: &[f64], q0: &[f64]) -> Vec<f64> {
-        let mut x = vec![0.0; 1 + 3 * self.n()];
-        for (i, &v) in q0.iter().enumerate() {
-            x[1 + 3 * i] = v;
-        }
-        x.extend_from_slice(params);
-        x
     }
 
     /// The first-order problem ẋ = A x, x = (δq, δq'), A = [[0, I], [M⁻¹(−K), M⁻¹C]].
@@ -146,7 +140,6 @@ impl System {
         params: &[f64],
         q0: &[f64],
         c: DMatrix<f64>,
-        _static_stability: Stability,
     ) -> Result<Modes, MechError> {
         let n = self.n();
         let coords = self.coordinate_syms();
@@ -159,9 +152,7 @@ impl System {
         let v = self.values_at_rest(&roots, params, q0)?;
         let m = DMatrix::from_fn(n, n, |r, cc| v[r * n + cc]);
         let fq = DMatrix::from_fn(n, n, |r, cc| v[n * n + r * n + cc]);
-        let minv = m
-            .try_inverse()
-            .ok_or_else(|| MechError::Invalid("the mass matrix is singular here".into()))?;
+        let minv = m.try_inverse().ok_or(MechError::SingularMassHere)?;
         let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
         for i in 0..n {
             a[(i, n + i)] = 1.0;
@@ -179,9 +170,9 @@ impl System {
         let mut frequencies = Vec::new();
         let mut growth_rates = Vec::new();
         for z in eig.iter() {
-            if z.re > 1e-9 * scale {
+            if z.re > EIGENVALUE_ZERO * scale {
                 growth_rates.push(z.re);
-            } else if z.im > 1e-9 * scale {
+            } else if z.im > EIGENVALUE_ZERO * scale {
                 frequencies.push(z.im);
             }
         }
@@ -212,10 +203,11 @@ impl System {
     ) -> Result<SymbolicModes, MechError> {
         let n = self.n();
         // A cofactor expansion has n! terms: closed forms are for small systems only.
-        if n > 3 {
-            return Err(MechError::Invalid(format!(
-                "the characteristic polynomial is given in closed form for up to 3 coordinates, not {n}; drop --symbolic for the numeric modes"
-            )));
+        if n > MAX_CLOSED_FORM_COORDINATES {
+            return Err(MechError::ClosedFormTooLarge {
+                n,
+                max: MAX_CLOSED_FORM_COORDINATES,
+            });
         }
         let coords = self.coordinate_syms();
         let zero = self.pool.zero();

@@ -5,7 +5,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 /// A 64-bit seed from strings (e.g. a problem id and a part id).
-pub fn seed_from(parts: &[&str]) -> u64 {
+pub(crate) fn seed_from(parts: &[&str]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for p in parts {
         for b in p.bytes().chain(std::iter::once(0xff)) {
@@ -30,7 +30,7 @@ impl Sampler {
     }
 
     /// Uniform in [lo, hi).
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+    pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         if hi > lo {
             self.rng.random_range(lo..hi)
         } else {

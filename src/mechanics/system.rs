@@ -5,30 +5,13 @@
 use rustc_hash::FxHashMap;
 
 use super::bodies::{Body, Potential, kinetic_energy, potential_energy};
+pub use super::coordinate::{
+    Coordinate, DEFAULT_COORDINATE_RANGE, DEFAULT_PARAMETER_RANGE, Parameter,
+};
 use super::error::MechError;
 use super::sample::Sampler;
-use crate::expr::{Context, Dimension, Id, Pool, Program, Sym, read_expr};
-
-/// A generalized coordinate.
-#[derive(Clone, Debug)]
-pub struct Coordinate {
-    pub name: String,
-    pub sym: Sym,
-    /// An angle: values are compared modulo 2π.
-    pub periodic: bool,
-    /// Where equilibria are searched and values are sampled.
-    pub range: (f64, f64),
-}
-
-/// A parameter (a constant of the system).
-#[derive(Clone, Debug)]
-pub struct Parameter {
-    pub name: String,
-    pub sym: Sym,
-    pub dimension: Option<Dimension>,
-    /// Sampling range (positive).
-    pub range: (f64, f64),
-}
+use super::state::Layout;
+use crate::expr::{Context, Id, Pool, Program, Sym, read_expr};
 
 /// Holonomic (on positions) or nonholonomic (on velocities, not integrable).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,12 +42,12 @@ pub struct System {
     pub constraints: Vec<Constraint>,
 }
 
-/// Default sampling range of a non-periodic coordinate.
-pub const DEFAULT_COORDINATE_RANGE: (f64, f64) = (-2.0, 2.0);
-/// Default sampling range of a parameter.
-pub const DEFAULT_PARAMETER_RANGE: (f64, f64) = (0.5, 2.0);
 /// Sampling range of velocities and accelerations.
 pub const RATE_RANGE: (f64, f64) = (-2.0, 2.0);
+
+/// [`System::is_zero`]'s tolerance, relative to the largest term at the point: cancellation
+/// in a sum of O(1) terms leaves rounding far below it, a real difference far above.
+const ZERO_TEST_TOLERANCE: f64 = 1e-9;
 
 impl System {
     /// A system with `coordinates` whose Lagrangian is typed text. Every other symbol is a
@@ -110,7 +93,7 @@ impl System {
     }
 
     /// A system from an already-built Lagrangian in `pool` (used by the problem bank).
-    pub fn from_parts(pool: Pool, coordinates: Vec<Coordinate>, lagrangian: Id) -> System {
+    pub(crate) fn from_parts(pool: Pool, coordinates: Vec<Coordinate>, lagrangian: Id) -> System {
         let n = coordinates.len();
         let zero = pool.zero();
         let mut sys = System {
@@ -187,11 +170,10 @@ impl System {
         let ctx = self.open_context();
         let parts: Vec<&str> = text.split(';').collect();
         if parts.len() > self.coordinates.len() {
-            return Err(MechError::Invalid(format!(
-                "{} generalized forces given for {} coordinates",
-                parts.len(),
-                self.coordinates.len()
-            )));
+            return Err(MechError::TooManyForces {
+                given: parts.len(),
+                coordinates: self.coordinates.len(),
+            });
         }
         for (i, p) in parts.iter().enumerate() {
             if !p.trim().is_empty() {
@@ -225,9 +207,7 @@ impl System {
             0 => ConstraintKind::Holonomic,
             1 => ConstraintKind::Nonholonomic,
             _ => {
-                return Err(MechError::Invalid(
-                    "a constraint may involve positions and velocities, not accelerations".into(),
-                ));
+                return Err(MechError::AccelerationInConstraint);
             }
         };
         if kind == ConstraintKind::Nonholonomic {
@@ -237,9 +217,7 @@ impl System {
                 for c2 in &self.coordinates.clone() {
                     let d2 = self.pool.diff(d1, c2.sym, 1);
                     if !self.is_zero(d2) {
-                        return Err(MechError::Invalid(
-                            "a velocity constraint must be linear in the velocities".into(),
-                        ));
+                        return Err(MechError::NonlinearVelocityConstraint);
                     }
                 }
             }
@@ -250,7 +228,7 @@ impl System {
     }
 
     /// Registers every non-coordinate symbol as a parameter (keeping existing ones).
-    pub fn collect_parameters(&mut self) {
+    pub(crate) fn collect_parameters(&mut self) {
         let mut roots = vec![self.lagrangian];
         roots.extend(self.forces.iter().copied());
         roots.extend(self.constraints.iter().map(|c| c.expr));
@@ -288,12 +266,12 @@ impl System {
     }
 
     /// Coordinate symbols.
-    pub fn coordinate_syms(&self) -> Vec<Sym> {
+    pub(crate) fn coordinate_syms(&self) -> Vec<Sym> {
         self.coordinates.iter().map(|c| c.sym).collect()
     }
 
     /// Parameter symbols (treated as positive by the simplifier).
-    pub fn parameter_syms(&self) -> Vec<Sym> {
+    pub(crate) fn parameter_syms(&self) -> Vec<Sym> {
         self.parameters.iter().map(|p| p.sym).collect()
     }
 
@@ -305,8 +283,14 @@ impl System {
         self.pool.collect(s, &positive)
     }
 
-    /// The standard input layout of compiled programs: t, then each coordinate's q, q', q'',
-    /// then each parameter.
+    /// Where t, each q, q', q'' and each parameter sit in a sample point.
+    pub fn state_layout(&self) -> Layout {
+        Layout::new(self.n())
+    }
+
+    /// The standard input layout of compiled programs, as variables in the order of
+    /// [`state_layout`](Self::state_layout): t, then each coordinate's q, q', q'', then each
+    /// parameter.
     pub fn layout(&self) -> Vec<(Sym, u8)> {
         let mut v = vec![(self.pool.time(), 0)];
         for c in &self.coordinates {
@@ -323,19 +307,22 @@ impl System {
     /// Compiles expressions over the standard layout.
     pub fn compile(&self, roots: &[Id]) -> Result<Program, MechError> {
         Program::compile(&self.pool, roots, &self.layout())
-            .map_err(|u| MechError::Invalid(format!("`{}` is not a symbol of this system", u.name)))
+            .map_err(|u| MechError::UnknownSymbol { name: u.name })
     }
 
     /// A random point in the standard layout.
     pub fn sample_point(&self, s: &mut Sampler) -> Vec<f64> {
-        let mut v = vec![s.uniform(0.0, 2.0)];
-        for c in &self.coordinates {
-            v.push(s.uniform(c.range.0, c.range.1));
-            v.push(s.uniform(RATE_RANGE.0, RATE_RANGE.1));
-            v.push(s.uniform(RATE_RANGE.0, RATE_RANGE.1));
+        // Draws happen in layout order, so a seed gives the same point as it always has.
+        let layout = self.state_layout();
+        let mut v = vec![0.0; layout.len(self.parameters.len())];
+        v[layout.time()] = s.uniform(0.0, 2.0);
+        for (i, c) in self.coordinates.iter().enumerate() {
+            v[layout.q(i)] = s.uniform(c.range.0, c.range.1);
+            v[layout.qdot(i)] = s.uniform(RATE_RANGE.0, RATE_RANGE.1);
+            v[layout.qddot(i)] = s.uniform(RATE_RANGE.0, RATE_RANGE.1);
         }
-        for p in &self.parameters {
-            v.push(s.uniform(p.range.0, p.range.1));
+        for (j, p) in self.parameters.iter().enumerate() {
+            v[layout.param(j)] = s.uniform(p.range.0, p.range.1);
         }
         v
     }
@@ -368,7 +355,7 @@ impl System {
             let scale = (0..terms.len())
                 .map(|k| tp.output(k, &tscratch).abs())
                 .fold(0.0, f64::max);
-            if p.output(0, &scratch).abs() > 1e-9 * (1.0 + scale) {
+            if p.output(0, &scratch).abs() > ZERO_TEST_TOLERANCE * (1.0 + scale) {
                 return false;
             }
             checked += 1;
@@ -391,13 +378,9 @@ impl System {
             let name = crate::expr::names::normalize(name.trim());
             let Some(p) = self.parameters.iter().find(|p| p.name == name) else {
                 if self.coordinates.iter().any(|c| c.name == name) {
-                    return Err(MechError::Invalid(format!(
-                        "`{name}` is a coordinate; give its value with --at"
-                    )));
+                    return Err(MechError::ValueForCoordinate { name });
                 }
-                return Err(MechError::Invalid(format!(
-                    "`{name}` is not a parameter of this system"
-                )));
+                return Err(MechError::UnknownParameter { name });
             };
             let sym = p.sym;
             let v = self.read(text, &format!("the value of {name}"), &ctx)?;
@@ -428,7 +411,7 @@ impl System {
 }
 
 /// Names that are conventionally angles, and so periodic.
-pub fn looks_like_angle(name: &str) -> bool {
+pub(crate) fn looks_like_angle(name: &str) -> bool {
     let (letters, _) = crate::expr::names::split_digits(name);
     matches!(
         letters,

@@ -1,0 +1,45 @@
+//! Standard systems for benchmarks, examples and tests, built the way the bank builds its
+//! problems (from bodies and potentials), so that they exercise the whole engine.
+
+use super::bodies::{Body, Potential};
+use super::coordinate::Coordinate;
+use super::system::System;
+use crate::expr::{Func, Pool};
+
+/// The planar n-link pendulum (equal masses m, equal lengths l, angles q1…qn from the
+/// downward vertical, gravity g), built from its bodies' positions — the benchmark system.
+pub fn n_link_pendulum(n: usize) -> System {
+    let mut pool = Pool::new();
+    let coordinates: Vec<Coordinate> = (1..=n)
+        .map(|i| {
+            let name = format!("q{i}");
+            Coordinate {
+                sym: pool.symbol(&name),
+                name,
+                periodic: true,
+                range: (-std::f64::consts::PI, std::f64::consts::PI),
+            }
+        })
+        .collect();
+    let (m, l, g) = (pool.sym("m"), pool.sym("l"), pool.sym("g"));
+    let mut bodies = Vec::with_capacity(n);
+    let (mut x, mut y) = (pool.zero(), pool.zero());
+    for c in &coordinates {
+        let q = pool.var(c.sym, 0);
+        let (s, co) = (pool.func(Func::Sin, q), pool.func(Func::Cos, q));
+        let dx = pool.mul(l, s);
+        let dy = pool.mul(l, co);
+        x = pool.add(x, dx);
+        y = pool.sub(y, dy);
+        bodies.push(Body::Point {
+            mass: m,
+            position: vec![x, y],
+        });
+    }
+    System::from_bodies(
+        pool,
+        coordinates,
+        &bodies,
+        &[Potential::Gravity { g, axis: 1 }],
+    )
+}
