@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::Args;
 use colored::Colorize;
 
-use lagrange::diagnostic::render_parse_error;
+use lagrange::diagnostic::{Diagnostic, render, render_plain};
 use lagrange::mechanics::{MechError, System};
 use lagrange::report::Paint;
 
@@ -106,19 +106,19 @@ impl From<MechError> for CliError {
     }
 }
 
-/// Prints an error (with the input and a caret for a parse error) and returns exit code 2.
+/// Prints an error through the one diagnostic renderer (with the input and a caret for a
+/// parse error) and returns exit code 2.
 pub fn report(e: &CliError, color: bool) -> ExitCode {
-    match e {
-        CliError::Usage(message) => eprintln!("error: {message}\n  help: check the input"),
-        CliError::Mech(MechError::Parse {
-            what,
-            source_text,
-            error,
-        }) => {
-            eprint!("{}", render_parse_error(what, source_text, error, color));
+    let text = match e {
+        CliError::Usage(message) => {
+            render_plain(&Diagnostic::new("usage", message.as_str(), "check the input"))
         }
-        CliError::Mech(other) => eprintln!("error: {other}\n  help: {}", help(other)),
-    }
+        CliError::Mech(m @ MechError::Parse {
+            what, source_text, ..
+        }) => render(what, source_text, &Diagnostic::from(m), color),
+        CliError::Mech(m) => render_plain(&Diagnostic::from(m).with_help(help(m))),
+    };
+    eprint!("{text}");
     ExitCode::from(2)
 }
 
@@ -128,6 +128,8 @@ fn help(e: &MechError) -> String {
         MechError::UnknownCoordinate { .. } => "list it in --coords".into(),
         MechError::MissingValue { name } => format!("add `{name}=<value>` to --params"),
         MechError::NoEquilibrium => "widen the ranges, or give --at".into(),
+        MechError::ValueForCoordinate { .. } => "give a coordinate's value with --at".into(),
+        MechError::ClosedFormTooLarge { .. } => "drop --symbolic for the numeric modes".into(),
         other => other.help(),
     }
 }

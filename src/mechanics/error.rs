@@ -46,7 +46,7 @@ pub enum MechError {
     #[error("`{name}` is not a symbol of this system")]
     UnknownSymbol { name: String },
     /// A value was given for a coordinate where parameter values were expected.
-    #[error("`{name}` is a coordinate; give its value with --at")]
+    #[error("`{name}` is a coordinate, not a parameter")]
     ValueForCoordinate { name: String },
     /// A value was given for a name that is not a parameter.
     #[error("`{name}` is not a parameter of this system")]
@@ -62,16 +62,12 @@ pub enum MechError {
     SingularMassHere,
     /// Closed forms of small oscillations are for small systems only.
     #[error(
-        "the characteristic polynomial is given in closed form for up to {max} coordinates, not {n}; drop --symbolic for the numeric modes"
+        "the characteristic polynomial is given in closed form for up to {max} coordinates, not {n}"
     )]
     ClosedFormTooLarge { n: usize, max: usize },
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
-    /// Deprecated: argument errors of a face; to be removed. Nothing in the library
-    /// constructs it.
-    #[error("{0}")]
-    Invalid(String),
 }
 
 impl MechError {
@@ -96,7 +92,6 @@ impl MechError {
             MechError::SingularMassHere => "singular-mass-here",
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
             MechError::DependentConstraints => "dependent-constraints",
-            MechError::Invalid(_) => "invalid",
         }
     }
 
@@ -128,7 +123,7 @@ impl MechError {
                 "use only the system's coordinates and parameters".into()
             }
             MechError::ValueForCoordinate { .. } => {
-                "give coordinate values as the equilibrium, not as parameters".into()
+                "give coordinate values as the state to analyse, not as parameters".into()
             }
             MechError::UnknownParameter { .. } => "give values only for the parameters".into(),
             MechError::ParameterCount { expected, .. } => {
@@ -141,7 +136,6 @@ impl MechError {
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
             }
-            MechError::Invalid(_) => "check the input".into(),
         }
     }
 }
