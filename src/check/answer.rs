@@ -8,7 +8,7 @@ use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
 use super::points::PointSet;
 use super::prepare::{Prepared, prepare};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, ParseErrorKind, Reading, read, read_expr};
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
@@ -98,13 +98,13 @@ pub fn invalid_reading(problem: &Problem, part: &Part, e: crate::expr::ParseErro
                 .find(|(k, _)| crate::expr::names::normalize(k) == *name)
             {
                 Some((k, val)) => Diagnosis::new(
-                    "substituted-symbol",
+                    Code::SubstitutedSymbol,
                     format!("this part sets {k} = {val}: write your answer with {val}, not {k}"),
                 ),
-                None => Diagnosis::new("unknown-symbol", format!("{}; {}", e.kind, e.help())),
+                None => Diagnosis::new(Code::UnknownSymbol, format!("{}; {}", e.kind, e.help())),
             }
         }
-        _ => Diagnosis::new("syntax", format!("{}; {}", e.kind, e.help())),
+        _ => Diagnosis::new(Code::Syntax, format!("{}; {}", e.kind, e.help())),
     };
     v.diagnoses.push(d);
     v.parse_error = Some(e);
@@ -130,7 +130,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         Reading::Equation { .. } => {
             let mut v = verdict(problem, part, Status::Invalid);
             v.diagnoses.push(Diagnosis::new(
-                "wrong-kind",
+                Code::WrongKind,
                 "this part asks for an expression, not an equation",
             ));
             return v;
@@ -138,7 +138,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         Reading::List(..) | Reading::System(..) => {
             let mut v = verdict(problem, part, Status::Invalid);
             v.diagnoses.push(Diagnosis::new(
-                "wrong-kind",
+                Code::WrongKind,
                 "this part asks for one expression, not a list",
             ));
             return v;
@@ -163,21 +163,23 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     let Ok(reference) = reference else {
         v.status = Status::Invalid;
         v.diagnoses.push(Diagnosis::new(
-            "syntax",
+            Code::Syntax,
             "the reference answer of this part cannot be read",
         ));
         return v;
     };
     // Dimensions: a sum of unlike terms, or a different dimension from the reference.
     match p.system.pool.dimension(s, &problem.dims) {
-        Err(e) => v.diagnoses.push(Diagnosis::new("dimension", e.to_string())),
+        Err(e) => v
+            .diagnoses
+            .push(Diagnosis::new(Code::Dimension, e.to_string())),
         Ok(Some(ds)) => {
             if let Ok(Some(dr)) = p.system.pool.dimension(reference, &problem.dims)
                 && ds != dr
                 && !p.system.pool.is_zero(s)
             {
                 v.diagnoses.push(Diagnosis::new(
-                    "dimension",
+                    Code::Dimension,
                     format!("your answer has dimension {ds}, but the answer must be {dr}"),
                 ));
             }
@@ -187,7 +189,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
         Ok(r) => r,
         Err(e) => {
-            v.diagnoses.push(Diagnosis::new("not-equal", e));
+            v.diagnoses.push(Diagnosis::new(Code::NotEqual, e));
             return v;
         }
     };
@@ -196,15 +198,13 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         Relation::Equal => v.status = Status::Correct,
         Relation::UpToConstant(_) if part.up_to_constant || lagrangian => {
             v.status = Status::Correct;
-            v.diagnoses.push(Diagnosis::new(
-                "up-to-constant",
+            v.diagnoses.push(Diagnosis::new(Code::UpToConstant,
                 "your answer differs from the reference by a constant; that is allowed here (the zero of potential energy is a free choice)",
             ));
         }
         Relation::Factor(f) if lagrangian => {
             v.status = Status::Correct;
-            v.diagnoses.push(Diagnosis::new(
-                "equivalent-lagrangian",
+            v.diagnoses.push(Diagnosis::new(Code::EquivalentLagrangian,
                 format!("your L is {} times the reference; a constant factor gives the same equations of motion", nice_fraction(f).unwrap_or_else(|| fmt_value(f))),
             ));
         }
@@ -215,12 +215,12 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         }
         Relation::Factor(f) if (f + 1.0).abs() < 1e-9 => {
             v.diagnoses.push(Diagnosis::new(
-                "sign-error",
+                Code::SignError,
                 "sign error: your answer is the negative of the right one",
             ));
         }
         Relation::Factor(f) => v.diagnoses.push(Diagnosis::new(
-            "constant-factor",
+            Code::ConstantFactor,
             match nice_fraction(f) {
                 Some(n) => format!(
                     "your answer is {n} times the right one: check the numerical factors (a ½, a 2)"
@@ -232,7 +232,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
             },
         )),
         Relation::Undefined { point } => v.diagnoses.push(Diagnosis::new(
-            "undefined",
+            Code::Undefined,
             format!(
                 "your answer is undefined at {}, where the correct one is defined",
                 point_text(p, point)
@@ -241,8 +241,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         Relation::UpToConstant(_) | Relation::Different { .. } => {
             if lagrangian && equivalent_lagrangian(p, s, reference) {
                 v.status = Status::Correct;
-                v.diagnoses.push(Diagnosis::new(
-                    "equivalent-lagrangian",
+                v.diagnoses.push(Diagnosis::new(Code::EquivalentLagrangian,
                     "your L differs from the reference by a total time derivative (or a constant); it gives the same equations of motion",
                 ));
             } else {
@@ -253,7 +252,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     if v.status == Status::Correct {
         v.score = 1.0;
         v.diagnoses
-            .retain(|d| matches!(d.code, "up-to-constant" | "equivalent-lagrangian"));
+            .retain(|d| matches!(d.code, Code::UpToConstant | Code::EquivalentLagrangian));
     }
     v
 }
@@ -314,7 +313,7 @@ fn diagnose_expression(
         let tv = p.system.pool.add(t, vv);
         if eq_const(p, s, tv) {
             v.diagnoses.push(Diagnosis::new(
-                "t-plus-v",
+                Code::TPlusV,
                 "you wrote T + V; the Lagrangian is L = T − V",
             ));
         }
@@ -324,8 +323,7 @@ fn diagnose_expression(
     {
         let tv = p.system.pool.add(t, vv);
         if eq_const(p, s, tv) {
-            v.diagnoses.push(Diagnosis::new(
-                "t-plus-v",
+            v.diagnoses.push(Diagnosis::new(Code::TPlusV,
                 "you wrote T + V, but here h = Σ q̇ ∂L/∂q̇ − L is not T + V: T is not a quadratic form in the velocities (the frame moves), so compute h from its definition",
             ));
         }
@@ -343,7 +341,7 @@ fn diagnose_expression(
                 _ => "the momentum",
             };
             v.diagnoses.push(Diagnosis::new(
-                "gave-lagrangian",
+                Code::GaveLagrangian,
                 format!("that is the Lagrangian L; this part asks for {what}"),
             ));
         }
@@ -371,8 +369,7 @@ fn diagnose_expression(
         && relate(&p.system, s, reference, &still, 1e-9).ok() == Some(Relation::Equal)
         && !p.system.pool.variables(reference).iter().all(|x| x.1 == 0)
     {
-        v.diagnoses.push(Diagnosis::new(
-            "velocity-term",
+        v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
             "your answer is right when nothing moves, so the mistake is in a velocity-dependent term (a missing or wrong q'² or q'₁q'₂ term)",
         ));
     }
@@ -397,7 +394,7 @@ fn diagnose_expression(
             }
             _ => "not equal to the expected answer".into(),
         };
-        v.diagnoses.push(Diagnosis::new("not-equal", msg));
+        v.diagnoses.push(Diagnosis::new(Code::NotEqual, msg));
     }
     let _ = problem;
 }

@@ -5,7 +5,7 @@
 
 use super::compare::{Relation, relate};
 use super::prepare::Prepared;
-use super::verdict::Diagnosis;
+use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Sym};
 use rustc_hash::FxHashMap;
 
@@ -65,7 +65,7 @@ pub fn sign_in_term(
         let cand = p.system.pool.sub(e, t2);
         if holds(p, cand) {
             return Some(Diagnosis::new(
-                "sign-error",
+                Code::SignError,
                 format!(
                     "sign error: the term {} should have the opposite sign",
                     p.system.pool.unicode(t)
@@ -101,7 +101,7 @@ pub fn factor_in_term(
         let cand = p.system.pool.add(e, add);
         if holds(p, cand) {
             return Some(Diagnosis::new(
-                "constant-factor",
+                Code::ConstantFactor,
                 format!(
                     "the term {} is off by a factor: it should be {nice} times what you wrote",
                     p.system.pool.unicode(t)
@@ -157,7 +157,7 @@ pub fn swapped(
                 );
                 let (va, vb) = (p.system.pool.sym(&na), p.system.pool.sym(&nb));
                 return Some(Diagnosis::new(
-                    "swapped-symbols",
+                    Code::SwappedSymbols,
                     format!(
                         "{} and {} are swapped: exchanging them gives the right answer",
                         p.system.pool.unicode(va),
@@ -182,7 +182,7 @@ pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
         .find(|k| relate(&p.system, a, b, &p.points, 10f64.powi(-k)).ok() == Some(Relation::Equal))
         .unwrap_or(1);
     Some(Diagnosis::new(
-        "rounded-constant",
+        Code::RoundedConstant,
         format!(
             "your answer agrees only to about {digits} significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"
         ),

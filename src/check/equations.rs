@@ -11,7 +11,7 @@ use super::compare::{Relation, close, relate, values};
 use super::diagnose::{factor_in_term, sign_in_term, swapped};
 use super::points::PointSet;
 use super::prepare::{Failure, Prepared};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Reading};
 use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
@@ -240,7 +240,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
             _ => {
                 let mut w = verdict(problem, part, Status::Invalid);
                 w.diagnoses.push(Diagnosis::new(
-                    "wrong-kind",
+                    Code::WrongKind,
                     "write equations separated by `;`",
                 ));
                 return w;
@@ -270,7 +270,8 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     };
     for &(l, r) in &eqs {
         if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
-            v.diagnoses.push(Diagnosis::new("dimension", e.to_string()));
+            v.diagnoses
+                .push(Diagnosis::new(Code::Dimension, e.to_string()));
         }
     }
     let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
@@ -295,7 +296,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         {
             if res.len() != 1 {
                 v.diagnoses.push(Diagnosis::new(
-                    "equation-count",
+                    Code::EquationCount,
                     format!("one equation is asked for, but you gave {}", res.len()),
                 ));
                 return v;
@@ -313,7 +314,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                     v.score = 1.0;
                 }
                 Ok(Relation::Undefined { point }) => v.diagnoses.push(Diagnosis::new(
-                    "undefined",
+                    Code::Undefined,
                     format!(
                         "your equation is undefined at {}, where the correct one is defined",
                         point_text(p, point)
@@ -328,7 +329,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                         .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
                     v.diagnoses.push(d.unwrap_or_else(|| {
                         Diagnosis::new(
-                            "not-equal",
+                            Code::NotEqual,
                             "this condition is not equivalent to the right one",
                         )
                     }));
@@ -341,7 +342,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let truth = match true_accelerations(p) {
         Ok(t) => t,
         Err((_, m)) => {
-            v.diagnoses.push(Diagnosis::new("not-equal", m));
+            v.diagnoses.push(Diagnosis::new(Code::NotEqual, m));
             return v;
         }
     };
@@ -362,7 +363,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let rank = rank_of(p, &holding);
     if res.len() != want {
         v.diagnoses.push(Diagnosis::new(
-            "equation-count",
+            Code::EquationCount,
             format!(
                 "{want} equation{} {} asked for, but you gave {}",
                 if want == 1 { "" } else { "s" },
@@ -374,8 +375,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         if rank == want {
             v.status = Status::Correct;
         } else {
-            v.diagnoses.push(Diagnosis::new(
-                "dependent-equations",
+            v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
                 "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
             ));
         }
@@ -391,7 +391,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         };
         if res.len() > 1 || part.kind == PartKind::Equations {
             v.diagnoses.push(Diagnosis::new(
-                "wrong-equation",
+                Code::WrongEquation,
                 format!("{which} ({}) does not hold for the true motion", shown_u[i]),
             ));
         }
@@ -399,7 +399,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     }
     if v.status != Status::Correct && v.diagnoses.is_empty() {
         v.diagnoses.push(Diagnosis::new(
-            "not-equal",
+            Code::NotEqual,
             "your equation does not hold for the true motion",
         ));
     }
@@ -453,8 +453,7 @@ fn diagnose_equation(
     let pts = p.points.clone();
     let lin = linearized_accelerations(p);
     if holds(p, r, &pts, &lin) {
-        v.diagnoses.push(Diagnosis::new(
-            "small-angle",
+        v.diagnoses.push(Diagnosis::new(Code::SmallAngle,
             format!("{which} is the small-angle (linearized) equation, but the full equation is asked: keep sin θ and cos θ, and the velocity terms"),
         ));
         return;
@@ -492,8 +491,7 @@ fn diagnose_equation(
     if let Some(still) = at_rest(p) {
         let acc = accelerations_at(p, &still);
         if holds(p, r, &still, &acc) {
-            v.diagnoses.push(Diagnosis::new(
-                "velocity-term",
+            v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
                 format!("{which} is right when nothing moves, so a velocity term is missing or wrong (a q'² or q'₁q'₂ term)"),
             ));
             return;

@@ -3,7 +3,7 @@
 
 use super::compare::{close, values};
 use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, ParseError, Reading, read, read_expr};
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem};
@@ -230,7 +230,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         Err(m) => {
             v.status = Status::Invalid;
             v.diagnoses.push(Diagnosis::new(
-                "syntax",
+                Code::Syntax,
                 format!("the reference answer cannot be read: {m}"),
             ));
             return v;
@@ -240,7 +240,8 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     for it in &items {
         for &x in it {
             if let Err(e) = p.system.pool.dimension(x, &problem.dims) {
-                v.diagnoses.push(Diagnosis::new("dimension", e.to_string()));
+                v.diagnoses
+                    .push(Diagnosis::new(Code::Dimension, e.to_string()));
             }
         }
     }
@@ -288,14 +289,14 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
                 let _ = j;
                 let (code, msg) = if part.squared {
                     (
-                        "omega-squared",
+                        Code::OmegaSquared,
                         format!(
                             "{label} is the square of an ω²: this part asks for ω², square it back"
                         ),
                     )
                 } else {
                     (
-                        "omega-squared",
+                        Code::OmegaSquared,
                         format!("{label} is ω², but this part asks for ω: take the square root"),
                     )
                 };
@@ -309,7 +310,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
                 } else {
                     format!("{label} is √ω: square it")
                 };
-                v.diagnoses.push(Diagnosis::new("omega-root", msg));
+                v.diagnoses.push(Diagnosis::new(Code::OmegaRoot, msg));
                 continue;
             }
             // Agreement to a few digits only.
@@ -318,8 +319,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
                 .position(|&j| same_item(part, p, s, &rv[j], 1e-2))
             {
                 free_refs.remove(k);
-                v.diagnoses.push(Diagnosis::new(
-                    "rounded-constant",
+                v.diagnoses.push(Diagnosis::new(Code::RoundedConstant,
                     format!("{label} agrees only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3"),
                 ));
                 continue;
@@ -344,7 +344,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
                 free_refs.remove(0);
             }
             v.diagnoses.push(Diagnosis::new(
-                "dimension",
+                Code::Dimension,
                 format!("{label} has dimension {h}, but a frequency is {w}"),
             ));
             continue;
@@ -352,20 +352,20 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         if !free_refs.is_empty() {
             free_refs.remove(0);
             v.diagnoses
-                .push(Diagnosis::new("wrong-item", format!("{label} is wrong")));
+                .push(Diagnosis::new(Code::WrongItem, format!("{label} is wrong")));
         } else {
             let msg = if part.kind == PartKind::Equilibria {
                 format!("one extra item: {label} is not an equilibrium")
             } else {
                 format!("one extra item: {label} is not one of the {what} values asked for")
             };
-            v.diagnoses.push(Diagnosis::new("extra-item", msg));
+            v.diagnoses.push(Diagnosis::new(Code::ExtraItem, msg));
         }
     }
     if !free_refs.is_empty() {
         let k = free_refs.len();
         v.diagnoses.push(Diagnosis::new(
-            "missing-item",
+            Code::MissingItem,
             if k == 1 {
                 format!("one {what} is missing")
             } else {
@@ -377,7 +377,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     v.score = matched as f64 / total as f64;
     if matched == refs.len()
         && items.len() == refs.len()
-        && v.diagnoses.iter().all(|d| d.code != "dimension")
+        && v.diagnoses.iter().all(|d| d.code != Code::Dimension)
     {
         v.status = Status::Correct;
         v.score = 1.0;

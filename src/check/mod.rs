@@ -16,4 +16,4 @@ pub mod verdict;
 pub use answer::{Checker, check};
 pub use compare::{Relation, relate};
 pub use points::{Assumption, PointSet};
-pub use verdict::{Diagnosis, Status, Verdict};
+pub use verdict::{Code, Diagnosis, Status, Verdict};
