@@ -5,13 +5,13 @@
 //! constraint forces; and every `wrong` example must indeed be wrong.
 
 use super::finding::Finding;
-use crate::check::PointSet;
 use crate::check::compare::{Relation, close, fmt_value, parameter_text, relate, values};
 use crate::check::equations::equations_hold;
 use crate::check::prepare::{
     Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
     same_coordinate,
 };
+use crate::check::{CheckError, PointSet};
 use crate::expr::{Dimension, Id, read_expr};
 use crate::mechanics::accel::Dynamics;
 use crate::mechanics::equilibria::Stability;
@@ -85,7 +85,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
                     ),
                 ));
             }
-            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e)),
+            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e.to_string())),
         }
     }
     for part in &problem.parts {
@@ -105,19 +105,19 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         code,
         message,
     };
-    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e))?;
+    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
     let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
-            verify_expression(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_expression(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Equation | PartKind::Equations => {
-            verify_equations(part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_equations(part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Equilibria => {
-            verify_equilibria(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_equilibria(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Frequencies => {
-            verify_frequencies(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_frequencies(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Values => Ok(()),
     };
@@ -147,7 +147,26 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     Ok(())
 }
 
-type Check = Result<(), (&'static str, String)>;
+/// A failed verification: the finding's code and message.
+struct Failed {
+    code: &'static str,
+    message: String,
+}
+
+impl Failed {
+    fn new(code: &'static str, message: String) -> Self {
+        Failed { code, message }
+    }
+}
+
+/// A checker error met while verifying keeps its own code (`unreadable`, `bad-at`, …).
+impl From<CheckError> for Failed {
+    fn from(e: CheckError) -> Self {
+        Failed::new(e.code(), e.to_string())
+    }
+}
+
+type Check = Result<(), Failed>;
 
 /// The dimension an answer of this quantity must have.
 fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
@@ -169,15 +188,20 @@ fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
 
 fn check_dimension(problem: &Problem, p: &Prepared, e: Id, want: Option<Dimension>) -> Check {
     match p.system.pool.dimension(e, &problem.dims) {
-        Err(err) => Err(("dimension", format!("{}: {err}", p.system.pool.unicode(e)))),
-        Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => Err((
+        Err(err) => Err(Failed::new(
             "dimension",
-            format!(
-                "{} has dimension {d}, but this part asks for {}",
-                p.system.pool.unicode(e),
-                want.unwrap_or(Dimension::NONE)
-            ),
+            format!("{}: {err}", p.system.pool.unicode(e)),
         )),
+        Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => {
+            Err(Failed::new(
+                "dimension",
+                format!(
+                    "{} has dimension {d}, but this part asks for {}",
+                    p.system.pool.unicode(e),
+                    want.unwrap_or(Dimension::NONE)
+                ),
+            ))
+        }
         _ => Ok(()),
     }
 }
@@ -188,19 +212,15 @@ enum Truth {
     Numbers(Vec<Option<f64>>),
 }
 
-fn truth(
-    problem: &Problem,
-    part: &Part,
-    p: &mut Prepared,
-) -> Result<Option<Truth>, (&'static str, String)> {
+fn truth(problem: &Problem, part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
     let sys = &mut p.system;
     let d = &p.derivation;
     Ok(Some(match part.quantity {
-        Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or((
+        Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or(Failed::new(
             "no-truth",
             "a kinetic part needs bodies (or T and V) to check against".to_string(),
         ))?),
-        Quantity::Potential => Truth::Expr(sys.potential.ok_or((
+        Quantity::Potential => Truth::Expr(sys.potential.ok_or(Failed::new(
             "no-truth",
             "a potential part needs bodies (or T and V) to check against".to_string(),
         ))?),
@@ -209,7 +229,8 @@ fn truth(
         Quantity::EnergyFunction => Truth::Expr(sys.energy(d).function),
         Quantity::Multiplier(j) | Quantity::Acceleration(j) => {
             let rows = sys.constraint_rows();
-            let dynamics = Dynamics::new(sys, d).map_err(|e| ("unusable", e.to_string()))?;
+            let dynamics =
+                Dynamics::new(sys, d).map_err(|e| Failed::new("unusable", e.to_string()))?;
             let mut scratch = dynamics.scratch();
             let nums = p
                 .points
@@ -239,16 +260,11 @@ fn truth(
 }
 
 /// Whether `answer` matches the truth (exactly, or up to a constant where allowed).
-fn matches_truth(
-    part: &Part,
-    p: &mut Prepared,
-    answer: Id,
-    truth: &Truth,
-) -> Result<bool, (&'static str, String)> {
+fn matches_truth(part: &Part, p: &mut Prepared, answer: Id, truth: &Truth) -> Result<bool, Failed> {
     match truth {
         Truth::Expr(t) => {
             let r = relate(&p.system, answer, *t, &p.points, part.tolerance)
-                .map_err(|e| ("sampling", e))?;
+                .map_err(|e| Failed::new("sampling", e.to_string()))?;
             Ok(match r {
                 Relation::Equal => true,
                 Relation::UpToConstant(_) => {
@@ -258,7 +274,8 @@ fn matches_truth(
             })
         }
         Truth::Numbers(nums) => {
-            let vals = values(&p.system, &[answer], &p.points).map_err(|e| ("sampling", e))?;
+            let vals = values(&p.system, &[answer], &p.points)
+                .map_err(|e| Failed::new("sampling", e.to_string()))?;
             let scale = nums.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
             Ok(nums.iter().zip(&vals).all(|(t, v)| match (t, v) {
                 (Some(t), Some(v)) => close(v[0], *t, scale, part.tolerance),
@@ -289,7 +306,7 @@ fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         return Ok(());
     };
     if !matches_truth(part, p, answer, &t)? {
-        return Err((
+        return Err(Failed::new(
             "wrong-answer",
             format!(
                 "the stated answer {} is not what the physics gives: {}",
@@ -303,7 +320,7 @@ fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
             continue;
         };
         if matches_truth(part, p, id, &t)? {
-            return Err((
+            return Err(Failed::new(
                 "wrong-accepted",
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
@@ -331,7 +348,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
                 return Ok(());
             }
         }
-        return Err((
+        return Err(Failed::new(
             "wrong-condition",
             format!(
                 "the stated condition {} = 0 is not a generalized force at rest set to zero",
@@ -354,7 +371,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
                 format!("{} = 0", p.system.pool.unicode(f))
             })
             .collect();
-        return Err((
+        return Err(Failed::new(
             "wrong-eom",
             format!(
                 "the stated equations {} are not the equations of motion ({why}); the physics gives {}",
@@ -368,7 +385,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             continue;
         };
         if equations_hold(p, &r, system)?.is_none() {
-            return Err((
+            return Err(Failed::new(
                 "wrong-accepted",
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
@@ -391,9 +408,9 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         if !p
             .system
             .verify_equilibrium(&p.derivation, point)
-            .map_err(|e| ("unusable", e.to_string()))?
+            .map_err(|e| Failed::new("unusable", e.to_string()))?
         {
-            return Err((
+            return Err(Failed::new(
                 "spurious-equilibrium",
                 format!(
                     "`{item}` is not an equilibrium: the generalized forces do not vanish there"
@@ -402,7 +419,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         }
     }
     if !part.stability.is_empty() && part.stability.len() != stated.len() {
-        return Err((
+        return Err(Failed::new(
             "bad-stability",
             format!(
                 "{} stabilities for {} equilibria",
@@ -417,9 +434,10 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         seed_from(&[&problem.id, &part.id, "equilibria"]),
         EQUILIBRIUM_SAMPLES,
     )
-    .map_err(|e| ("sampling", e))?;
+    .map_err(|e| Failed::new("sampling", e.to_string()))?;
     let flat: Vec<Id> = stated.iter().flatten().copied().collect();
-    let vals = values(&p.system, &flat, &samples).map_err(|e| ("sampling", e))?;
+    let vals =
+        values(&p.system, &flat, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
     let n = p.system.n();
     let periodic: Vec<bool> = p.system.coordinates.iter().map(|c| c.periodic).collect();
     let names: Vec<String> = p
@@ -434,10 +452,10 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         let found = p
             .system
             .equilibria(&p.derivation, &params)
-            .map_err(|e| ("unusable", e.to_string()))?;
+            .map_err(|e| Failed::new("unusable", e.to_string()))?;
         let pstr = parameter_text(&p.system, &params);
         if found.continuum {
-            return Err((
+            return Err(Failed::new(
                 "not-isolated",
                 format!(
                     "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
@@ -468,7 +486,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
                         .map(|(c, x)| format!("{c} = {}", fmt_value(*x)))
                         .collect::<Vec<_>>()
                         .join(", ");
-                    return Err((
+                    return Err(Failed::new(
                         "missing-equilibrium",
                         format!(
                             "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
@@ -479,7 +497,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
                     if let Some(want) = part.stability.get(j)
                         && want != st.name()
                     {
-                        return Err((
+                        return Err(Failed::new(
                             "wrong-stability",
                             format!(
                                 "`{}` is stated {want}, but it is {} (for {pstr})",
@@ -500,7 +518,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
                         .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
                 })
             {
-                return Err((
+                return Err(Failed::new(
                     "spurious-equilibrium",
                     format!(
                         "`{}` is not among the equilibria the engine finds for {pstr}",
@@ -535,10 +553,11 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         seed_from(&[&problem.id, &part.id, "frequencies"]),
         FREQUENCY_SAMPLES,
     )
-    .map_err(|e| ("sampling", e))?;
+    .map_err(|e| Failed::new("sampling", e.to_string()))?;
     let mut roots = stated.clone();
     roots.extend(at.iter().copied());
-    let vals = values(&p.system, &roots, &samples).map_err(|e| ("sampling", e))?;
+    let vals =
+        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
@@ -546,7 +565,7 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         let modes = p
             .system
             .modes_at(&p.derivation, &params, q0)
-            .map_err(|e| ("unusable", e.to_string()))?;
+            .map_err(|e| Failed::new("unusable", e.to_string()))?;
         let mut want: Vec<f64> = if part.squared {
             modes.frequencies.iter().map(|w| w * w).collect()
         } else {
@@ -563,7 +582,7 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
                 .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(1e-8)))
         {
             let pstr = parameter_text(&p.system, &params);
-            return Err((
+            return Err(Failed::new(
                 "wrong-frequency",
                 format!(
                     "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}"

@@ -6,6 +6,7 @@ use rustc_hash::FxHashMap;
 
 use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
+use super::error::CheckError;
 use super::points::PointSet;
 use super::prepare::{Prepared, prepare};
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
@@ -30,25 +31,24 @@ impl<'a> Checker<'a> {
 
     /// Checks `input` against part `part_id`. Errors are usage errors (no such part, a part
     /// that cannot be prepared), never a judgement of the input.
-    pub fn check(&mut self, part_id: &str, input: &str) -> Result<Verdict, String> {
+    pub fn check(&mut self, part_id: &str, input: &str) -> Result<Verdict, CheckError> {
         let part = self
             .problem
             .part(part_id)
-            .ok_or_else(|| format!("problem `{}` has no part `{part_id}`", self.problem.id))?;
-        if !self.prepared.contains_key(part_id) {
-            let p = prepare(self.problem, part)?;
-            self.prepared.insert(part_id.to_string(), p);
-        }
-        let p = self
-            .prepared
-            .get_mut(part_id)
-            .ok_or_else(|| "internal: preparation vanished".to_string())?;
+            .ok_or_else(|| CheckError::UnknownPart {
+                problem: self.problem.id.clone(),
+                part: part_id.to_string(),
+            })?;
+        let p = match self.prepared.entry(part_id.to_string()) {
+            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
+            std::collections::hash_map::Entry::Vacant(v) => v.insert(prepare(self.problem, part)?),
+        };
         Ok(check_prepared(self.problem, part, p, input))
     }
 }
 
 /// Checks one answer (preparing the part afresh; use [`Checker`] for many answers).
-pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, String> {
+pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, CheckError> {
     let mut p = prepare(problem, part)?;
     Ok(check_prepared(problem, part, &mut p, input))
 }
@@ -189,7 +189,8 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
         Ok(r) => r,
         Err(e) => {
-            v.diagnoses.push(Diagnosis::new(Code::NotEqual, e));
+            v.diagnoses
+                .push(Diagnosis::new(Code::NotEqual, e.to_string()));
             return v;
         }
     };

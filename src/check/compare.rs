@@ -1,5 +1,6 @@
 //! Numeric relations between two expressions over a point set.
 
+use super::error::CheckError;
 use super::points::PointSet;
 use crate::expr::{Id, Program};
 use crate::mechanics::System;
@@ -29,9 +30,13 @@ pub fn close(x: f64, y: f64, scale: f64, tol: f64) -> bool {
 }
 
 /// Evaluates `ids` at each point; `None` where undefined.
-pub fn values(sys: &System, ids: &[Id], pts: &PointSet) -> Result<Vec<Option<Vec<f64>>>, String> {
+pub fn values(
+    sys: &System,
+    ids: &[Id],
+    pts: &PointSet,
+) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     let prog = Program::compile(&sys.pool, ids, &sys.layout())
-        .map_err(|u| format!("`{}` is not a symbol of this problem", u.name))?;
+        .map_err(|u| CheckError::UnknownSymbol { name: u.name })?;
     let mut scratch = prog.scratch();
     Ok(pts
         .points
@@ -45,7 +50,13 @@ pub fn values(sys: &System, ids: &[Id], pts: &PointSet) -> Result<Vec<Option<Vec
 
 /// How `a` relates to `b` (the reference) over `pts`. Points where `b` is undefined are
 /// skipped.
-pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Relation, String> {
+pub fn relate(
+    sys: &System,
+    a: Id,
+    b: Id,
+    pts: &PointSet,
+    tol: f64,
+) -> Result<Relation, CheckError> {
     let vals = values(sys, &[b], pts)?;
     let avals = values(sys, &[a], pts)?;
     let mut pairs = Vec::new();
@@ -57,7 +68,7 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
         pairs.push((k, va[0], vb[0]));
     }
     if pairs.is_empty() {
-        return Err("the reference is undefined at every sample point".into());
+        return Err(CheckError::ReferenceUndefined);
     }
     let scale = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
     if pairs.iter().all(|&(_, x, y)| close(x, y, scale, tol)) {

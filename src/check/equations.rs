@@ -9,15 +9,16 @@ use rustc_hash::FxHashMap;
 use super::answer::{at_rest, point_text, verdict};
 use super::compare::{Relation, close, relate, values};
 use super::diagnose::{factor_in_term, sign_in_term, swapped};
+use super::error::CheckError;
 use super::points::PointSet;
-use super::prepare::{Failure, Prepared};
+use super::prepare::Prepared;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Reading};
 use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
 
 /// True accelerations at every point.
-pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
+pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     if let Some(a) = p.accelerations.get() {
         return Ok(a.clone());
     }
@@ -26,7 +27,7 @@ pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure
     Ok(a)
 }
 
-fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
+fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     let sys = &p.system;
     if !sys.constraints.is_empty() {
         let mut s = sys.clone();
@@ -42,7 +43,8 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure>
             })
             .collect());
     }
-    let dynamics = Dynamics::new(sys, &p.derivation).map_err(|e| ("unusable", e.to_string()))?;
+    let dynamics =
+        Dynamics::new(sys, &p.derivation).map_err(|error| CheckError::Dynamics { error })?;
     let mut scratch = dynamics.scratch();
     Ok(p.points
         .points
@@ -58,7 +60,7 @@ pub fn equations_hold(
     p: &mut Prepared,
     res: &[Id],
     system: bool,
-) -> Result<Option<String>, Failure> {
+) -> Result<Option<String>, CheckError> {
     let n = p.system.n();
     if system && res.len() != n {
         return Ok(Some(format!("{} equations for {n} coordinates", res.len())));
@@ -95,7 +97,7 @@ pub fn equations_hold(
 type AffineRow = (Vec<f64>, f64);
 
 /// One equation's affine form at each point: the row A (coefficients of q'') and b (the rest).
-fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, String> {
+fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, CheckError> {
     let coords = p.system.coordinate_syms();
     let mut roots: Vec<Id> = coords
         .iter()
@@ -341,8 +343,9 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let n = p.system.n();
     let truth = match true_accelerations(p) {
         Ok(t) => t,
-        Err((_, m)) => {
-            v.diagnoses.push(Diagnosis::new(Code::NotEqual, m));
+        Err(e) => {
+            v.diagnoses
+                .push(Diagnosis::new(Code::NotEqual, e.to_string()));
             return v;
         }
     };

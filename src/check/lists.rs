@@ -2,6 +2,7 @@
 //! sample point, with partial credit and the items named: missing, extra, wrong, ω² for ω.
 
 use super::compare::{close, values};
+use super::error::CheckError;
 use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate};
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, ParseError, Reading, read, read_expr};
@@ -120,7 +121,7 @@ fn read_items(part: &Part, p: &mut Prepared, input: &str) -> Result<Vec<Vec<Id>>
     Ok(items)
 }
 
-fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, String> {
+fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, CheckError> {
     part.answers
         .iter()
         .map(|a| match part.kind {
@@ -128,8 +129,7 @@ fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, String
             PartKind::Frequencies => read_frequency(p, a).map(|x| vec![x]),
             _ => read_one(p, a).map(|x| vec![x]),
         })
-        .collect::<Result<_, _>>()
-        .map_err(|(_, m)| m)
+        .collect()
 }
 
 /// Values of each item's components at every point (None where undefined).
