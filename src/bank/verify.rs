@@ -11,10 +11,10 @@ use crate::check::prepare::{
     Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
     same_coordinate,
 };
+use crate::check::tolerance;
 use crate::check::{CheckError, PointSet};
 use crate::expr::{Dimension, Id, read_expr};
 use crate::mechanics::accel::Dynamics;
-use crate::mechanics::equilibria::Stability;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
@@ -70,7 +70,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
             seed_from(&[&problem.id, "lagrangian"]),
             POINTS,
         )
-        .and_then(|pts| relate(&s, stated, s.lagrangian, &pts, 1e-9))
+        .and_then(|pts| relate(&s, stated, s.lagrangian, &pts, tolerance::SAME))
         {
             Ok(Relation::Equal | Relation::UpToConstant(_)) => {}
             Ok(_) => {
@@ -212,7 +212,7 @@ enum Truth {
     Numbers(Vec<Option<f64>>),
 }
 
-fn truth(problem: &Problem, part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
+fn truth(part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
     let sys = &mut p.system;
     let d = &p.derivation;
     Ok(Some(match part.quantity {
@@ -252,10 +252,7 @@ fn truth(problem: &Problem, part: &Part, p: &mut Prepared) -> Result<Option<Trut
                 .collect();
             Truth::Numbers(nums)
         }
-        Quantity::None => {
-            let _ = problem;
-            return Ok(None);
-        }
+        Quantity::None => return Ok(None),
     }))
 }
 
@@ -302,7 +299,7 @@ fn show_truth(p: &mut Prepared, t: &Truth) -> String {
 fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
     let answer = read_one(p, &part.answers[0])?;
     check_dimension(problem, p, answer, expected_dimension(problem, part))?;
-    let Some(t) = truth(problem, part, p)? else {
+    let Some(t) = truth(part, p)? else {
         return Ok(());
     };
     if !matches_truth(part, p, answer, &t)? {
@@ -344,7 +341,13 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             .collect();
         for &f in &p.derivation.forcing.clone() {
             let f0 = p.system.pool.substitute(f, &rest);
-            if crate::check::compare::proportional(&p.system, res[0], f0, &p.points, 1e-9) {
+            if crate::check::compare::proportional(
+                &p.system,
+                res[0],
+                f0,
+                &p.points,
+                tolerance::SAME,
+            ) {
                 return Ok(());
             }
         }
@@ -466,8 +469,8 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         let in_range = |q: &[f64]| {
             q.iter().enumerate().all(|(i, x)| {
                 periodic[i]
-                    || (p.system.coordinates[i].range.0 - 1e-9
-                        ..=p.system.coordinates[i].range.1 + 1e-9)
+                    || (p.system.coordinates[i].range.0 - tolerance::RANGE_SLACK
+                        ..=p.system.coordinates[i].range.1 + tolerance::RANGE_SLACK)
                         .contains(x)
             })
         };
@@ -527,7 +530,6 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
                 ));
             }
         }
-        let _ = Stability::Stable;
     }
     Ok(())
 }
@@ -579,7 +581,7 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
             || !want
                 .iter()
                 .zip(&got)
-                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(1e-8)))
+                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(tolerance::EIGEN)))
         {
             let pstr = parameter_text(&p.system, &params);
             return Err(Failed::new(

@@ -4,14 +4,15 @@
 
 use rustc_hash::FxHashMap;
 
+use super::common::{at_rest, invalid_reading, point_text, verdict};
 use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
 use super::error::CheckError;
-use super::points::PointSet;
 use super::prepare::{Prepared, prepare};
+use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, ParseErrorKind, Reading, read, read_expr};
-use crate::mechanics::sample::seed_from;
+use super::{equations, lists};
+use crate::expr::{Id, Reading, read, read_expr};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 /// Checks answers to one problem, preparing each part once.
@@ -53,31 +54,17 @@ pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, Che
     Ok(check_prepared(problem, part, &mut p, input))
 }
 
-/// A verdict skeleton.
-pub(super) fn verdict(problem: &Problem, part: &Part, status: Status) -> Verdict {
-    Verdict {
-        problem: problem.id.clone(),
-        part: part.id.clone(),
-        status,
-        score: if status == Status::Correct { 1.0 } else { 0.0 },
-        reading: ReadAs::default(),
-        diagnoses: Vec::new(),
-        seed: seed_from(&[&problem.id, &part.id]),
-        parse_error: None,
-    }
-}
-
 /// Checks against a prepared part.
 pub fn check_prepared(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
-            super::lists::check_list(problem, part, p, input)
+            lists::check_list(problem, part, p, input)
         }
         _ => match read(input, &p.context, &mut p.system.pool) {
             Err(e) => invalid_reading(problem, part, e),
             Ok(r) => match part.kind {
                 PartKind::Equation | PartKind::Equations => {
-                    super::equations::check_equations(problem, part, p, r)
+                    equations::check_equations(problem, part, p, r)
                 }
                 _ => check_expression(problem, part, p, r),
             },
@@ -85,43 +72,6 @@ pub fn check_prepared(problem: &Problem, part: &Part, p: &mut Prepared, input: &
     };
     v.sort();
     v
-}
-
-/// The verdict on an input that could not be read.
-pub fn invalid_reading(problem: &Problem, part: &Part, e: crate::expr::ParseError) -> Verdict {
-    let mut v = verdict(problem, part, Status::Invalid);
-    let d = match &e.kind {
-        ParseErrorKind::UnknownName { name, .. } => {
-            match part
-                .substitute
-                .iter()
-                .find(|(k, _)| crate::expr::names::normalize(k) == *name)
-            {
-                Some((k, val)) => Diagnosis::new(
-                    Code::SubstitutedSymbol,
-                    format!("this part sets {k} = {val}: write your answer with {val}, not {k}"),
-                ),
-                None => Diagnosis::new(Code::UnknownSymbol, format!("{}; {}", e.kind, e.help())),
-            }
-        }
-        _ => Diagnosis::new(Code::Syntax, format!("{}; {}", e.kind, e.help())),
-    };
-    v.diagnoses.push(d);
-    v.parse_error = Some(e);
-    v
-}
-
-pub(super) fn point_text(p: &Prepared, k: usize) -> String {
-    let x = &p.points.points[k];
-    let mut parts = Vec::new();
-    for (i, c) in p.system.coordinates.iter().enumerate() {
-        parts.push(format!("{} = {}", c.name, fmt_value(x[1 + 3 * i])));
-    }
-    let off = 1 + 3 * p.system.n();
-    for (j, q) in p.system.parameters.iter().enumerate() {
-        parts.push(format!("{} = {}", q.name, fmt_value(x[off + j])));
-    }
-    parts.join(", ")
 }
 
 fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
@@ -154,10 +104,9 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         Some(r) => r.first().and_then(|x| x.first()).copied().ok_or(()),
         None => {
             let r = read_expr(&part.answers[0], &p.context, &mut p.system.pool).map_err(|_| ());
-            if let Ok(id) = r {
-                let _ = p.reference.set(vec![vec![id]]);
-            }
-            r
+            r.inspect(|&id| {
+                p.reference.get_or_init(|| vec![vec![id]]);
+            })
         }
     };
     let Ok(reference) = reference else {
@@ -209,12 +158,14 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
                 format!("your L is {} times the reference; a constant factor gives the same equations of motion", nice_fraction(f).unwrap_or_else(|| fmt_value(f))),
             ));
         }
-        Relation::Factor(f) if (f - 1.0).abs() < 1e-2 && rounded(p, s, reference).is_some() => {
+        Relation::Factor(f)
+            if (f - 1.0).abs() < tolerance::ROUNDED && rounded(p, s, reference).is_some() =>
+        {
             if let Some(d) = rounded(p, s, reference) {
                 v.diagnoses.push(d);
             }
         }
-        Relation::Factor(f) if (f + 1.0).abs() < 1e-9 => {
+        Relation::Factor(f) if (f + 1.0).abs() < tolerance::NUMBER => {
             v.diagnoses.push(Diagnosis::new(
                 Code::SignError,
                 "sign error: your answer is the negative of the right one",
@@ -246,7 +197,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
                     "your L differs from the reference by a total time derivative (or a constant); it gives the same equations of motion",
                 ));
             } else {
-                diagnose_expression(problem, part, p, s, reference, rel, &mut v);
+                diagnose_expression(part, p, s, reference, rel, &mut v);
             }
         }
     }
@@ -273,10 +224,10 @@ fn equivalent_lagrangian(p: &mut Prepared, a: Id, b: Id) -> bool {
     }
     let mut factor: Option<f64> = None;
     for (x, y) in ea.into_iter().zip(eb) {
-        match relate(&p.system, x, y, &p.points, 1e-9) {
+        match relate(&p.system, x, y, &p.points, tolerance::SAME) {
             Ok(Relation::Equal) => factor = factor.or(Some(1.0)),
             Ok(Relation::Factor(f)) => {
-                if factor.is_some_and(|g| (g - f).abs() > 1e-9 * f.abs()) {
+                if factor.is_some_and(|g| (g - f).abs() > tolerance::NUMBER * f.abs()) {
                     return false;
                 }
                 factor = Some(f);
@@ -288,7 +239,6 @@ fn equivalent_lagrangian(p: &mut Prepared, a: Id, b: Id) -> bool {
 }
 
 fn diagnose_expression(
-    problem: &Problem,
     part: &Part,
     p: &mut Prepared,
     s: Id,
@@ -297,11 +247,11 @@ fn diagnose_expression(
     v: &mut Verdict,
 ) {
     let eq = |p: &mut Prepared, cand: Id| {
-        relate(&p.system, cand, reference, &p.points, 1e-9).ok() == Some(Relation::Equal)
+        relate(&p.system, cand, reference, &p.points, tolerance::SAME).ok() == Some(Relation::Equal)
     };
     let eq_const = |p: &mut Prepared, cand: Id, r: Id| {
         matches!(
-            relate(&p.system, cand, r, &p.points, 1e-9),
+            relate(&p.system, cand, r, &p.points, tolerance::SAME),
             Ok(Relation::Equal | Relation::UpToConstant(_))
         )
     };
@@ -358,7 +308,10 @@ fn diagnose_expression(
     }
     let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
         let vals = values(&p.system, &[s, reference, t], &p.points).ok()?;
-        let x = vals.into_iter().flatten().find(|x| x[2].abs() > 1e-9)?;
+        let x = vals
+            .into_iter()
+            .flatten()
+            .find(|x| x[2].abs() > tolerance::ZERO)?;
         Some(1.0 + (x[1] - x[0]) / x[2])
     };
     if let Some(d) = factor_in_term(p, s, &mut factor_at, &mut |p, c| eq(p, c)) {
@@ -367,7 +320,7 @@ fn diagnose_expression(
     // Velocity-dependent terms: equal when every velocity is zero.
     if v.diagnoses.len() == before
         && let Some(still) = at_rest(p)
-        && relate(&p.system, s, reference, &still, 1e-9).ok() == Some(Relation::Equal)
+        && relate(&p.system, s, reference, &still, tolerance::SAME).ok() == Some(Relation::Equal)
         && !p.system.pool.variables(reference).iter().all(|x| x.1 == 0)
     {
         v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
@@ -397,24 +350,4 @@ fn diagnose_expression(
         };
         v.diagnoses.push(Diagnosis::new(Code::NotEqual, msg));
     }
-    let _ = problem;
-}
-
-/// The sample points with every velocity (and acceleration) set to zero.
-pub(super) fn at_rest(p: &Prepared) -> Option<PointSet> {
-    let n = p.system.n();
-    let points = p
-        .points
-        .points
-        .iter()
-        .map(|x| {
-            let mut y = x.clone();
-            for i in 0..n {
-                y[1 + 3 * i + 1] = 0.0;
-                y[1 + 3 * i + 2] = 0.0;
-            }
-            y
-        })
-        .collect();
-    Some(PointSet { points })
 }

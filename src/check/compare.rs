@@ -2,6 +2,7 @@
 
 use super::error::CheckError;
 use super::points::PointSet;
+use super::tolerance;
 use crate::expr::{Id, Program};
 use crate::mechanics::System;
 
@@ -20,13 +21,11 @@ pub enum Relation {
     Undefined { point: usize },
 }
 
-/// Relative tolerance of numeric comparison, with an absolute floor relative to the scale
-/// of the values compared.
-pub const TOLERANCE: f64 = 1e-9;
+pub use super::tolerance::TOLERANCE;
 
 /// Whether `x` and `y` agree to `tol` relative to `scale`.
 pub fn close(x: f64, y: f64, scale: f64, tol: f64) -> bool {
-    (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + 1e-300)
+    (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + tolerance::TINY)
 }
 
 /// Evaluates `ids` at each point; `None` where undefined.
@@ -97,7 +96,10 @@ pub fn relate(
             return Ok(Relation::UpToConstant(c));
         }
     }
-    if let Some(&(_, x0, y0)) = pairs.iter().find(|p| p.2.abs() > 1e-12 * (scale + 1e-300)) {
+    if let Some(&(_, x0, y0)) = pairs
+        .iter()
+        .find(|p| p.2.abs() > tolerance::FACTOR_FLOOR * (scale + tolerance::TINY))
+    {
         let f = x0 / y0;
         if f.is_finite()
             && f != 0.0
@@ -189,8 +191,8 @@ fn monomial_ratio(sys: &System, a: Id, b: Id, pts: &PointSet) -> bool {
                 return false;
             }
             let e = q.log2();
-            if (e * 2.0 - (e * 2.0).round()).abs() > 1e-6
-                || exponent.is_some_and(|f| (f - e).abs() > 1e-6)
+            if (e * 2.0 - (e * 2.0).round()).abs() > tolerance::EXPONENT
+                || exponent.is_some_and(|f| (f - e).abs() > tolerance::EXPONENT)
             {
                 return false;
             }
@@ -232,7 +234,7 @@ pub fn parameter_text(sys: &System, params: &[f64]) -> String {
 pub fn fmt_value(x: f64) -> String {
     let pi = std::f64::consts::PI;
     for (k, name) in [(1.0, "π"), (-1.0, "−π"), (0.5, "π/2"), (-0.5, "−π/2")] {
-        if (x - k * pi).abs() < 1e-9 {
+        if (x - k * pi).abs() < tolerance::ANGLE {
             return name.to_string();
         }
     }

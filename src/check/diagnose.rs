@@ -5,6 +5,7 @@
 
 use super::compare::{Relation, relate};
 use super::prepare::Prepared;
+use super::tolerance;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Sym};
 use rustc_hash::FxHashMap;
@@ -25,7 +26,7 @@ pub fn nice_fraction(c: f64) -> Option<String> {
     }
     for q in 1..=12i64 {
         let pn = (c * q as f64).round();
-        if (pn / q as f64 - c).abs() <= 1e-9 * (1.0 + c.abs()) && pn != 0.0 {
+        if (pn / q as f64 - c).abs() <= tolerance::NUMBER * (1.0 + c.abs()) && pn != 0.0 {
             let p = pn as i64;
             return Some(
                 match (p, q) {
@@ -93,7 +94,7 @@ pub fn factor_in_term(
         let Some(nice) = nice_fraction(c) else {
             continue;
         };
-        if (c - 1.0).abs() < 1e-9 || (c + 1.0).abs() < 1e-9 {
+        if (c - 1.0).abs() < tolerance::NUMBER || (c + 1.0).abs() < tolerance::NUMBER {
             continue;
         }
         let cm1 = p.system.pool.num(rational(c - 1.0));
@@ -116,7 +117,7 @@ pub fn factor_in_term(
 fn rational(x: f64) -> num_rational::BigRational {
     for q in 1..=12i64 {
         let pn = (x * q as f64).round();
-        if (pn / q as f64 - x).abs() <= 1e-9 * (1.0 + x.abs()) {
+        if (pn / q as f64 - x).abs() <= tolerance::NUMBER * (1.0 + x.abs()) {
             return num_rational::BigRational::new((pn as i64).into(), q.into());
         }
     }
@@ -170,10 +171,10 @@ pub fn swapped(
     None
 }
 
-/// Agreement to only a few digits: `a` is within 1e-2 of `b` everywhere but not within the
-/// tolerance.
+/// Agreement to only a few digits: `a` is within [`tolerance::ROUNDED`] of `b` everywhere but
+/// not within the tolerance.
 pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
-    let r = relate(&p.system, a, b, &p.points, 1e-2).ok()?;
+    let r = relate(&p.system, a, b, &p.points, tolerance::ROUNDED).ok()?;
     if r != Relation::Equal {
         return None;
     }

@@ -6,12 +6,13 @@
 use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
-use super::answer::{at_rest, point_text, verdict};
-use super::compare::{Relation, close, relate, values};
+use super::common::{at_rest, point_text, verdict};
+use super::compare::{Relation, relate, values};
 use super::diagnose::{factor_in_term, sign_in_term, swapped};
 use super::error::CheckError;
 use super::points::PointSet;
 use super::prepare::Prepared;
+use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Reading};
 use crate::mechanics::accel::Dynamics;
@@ -23,8 +24,7 @@ pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckEr
         return Ok(a.clone());
     }
     let a = compute_accelerations(p)?;
-    let _ = p.accelerations.set(a.clone());
-    Ok(a)
+    Ok(p.accelerations.get_or_init(|| a).clone())
 }
 
 fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
@@ -144,7 +144,7 @@ fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Op
         if coef.iter().any(|c| *c != 0.0) {
             any_acc = true;
         }
-        if (lhs + b).abs() > 1e-7 * (scale + 1e-300) {
+        if (lhs + b).abs() > tolerance::RESIDUAL * (scale + tolerance::TINY) {
             return Some(Miss::Residual(lhs + b));
         }
         checked += 1;
@@ -290,8 +290,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 .flatten()
                 .map(|(rl, rr)| p.system.pool.sub(rl, rr))
                 .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
-            let _ = p.condition.set(c);
-            c
+            *p.condition.get_or_init(|| c)
         }
     };
     if let Some(reference) = condition {
@@ -309,7 +308,11 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                     v.score = 1.0;
                 }
                 _ if super::compare::proportional(
-                    &p.system, res[0], reference, &p.points, 1e-9,
+                    &p.system,
+                    res[0],
+                    reference,
+                    &p.points,
+                    tolerance::SAME,
                 ) =>
                 {
                     v.status = Status::Correct;
@@ -325,7 +328,13 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 _ => {
                     let r0 = res[0];
                     let eq = |p: &mut Prepared, c: Id| {
-                        super::compare::proportional(&p.system, c, reference, &p.points, 1e-9)
+                        super::compare::proportional(
+                            &p.system,
+                            c,
+                            reference,
+                            &p.points,
+                            tolerance::SAME,
+                        )
                     };
                     let d = sign_in_term(p, r0, &mut |p, c| eq(p, c))
                         .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
@@ -438,11 +447,11 @@ fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
     }
     let n = p.system.n();
     let a = DMatrix::from_fn(m.len(), n, |i, j| m[i][j]);
-    let scale = a.amax().max(1e-300);
+    let scale = a.amax().max(tolerance::TINY);
     a.svd(false, false)
         .singular_values
         .iter()
-        .filter(|s| **s > 1e-9 * scale)
+        .filter(|s| **s > tolerance::RANK * scale)
         .count()
 }
 
@@ -481,7 +490,7 @@ fn diagnose_equation(
             };
             let rv: f64 = ca.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + cb;
             let tv: f64 = ta.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + tb;
-            if tv.abs() > 1e-9 {
+            if tv.abs() > tolerance::ZERO {
                 return Some(1.0 - rv / tv);
             }
         }
@@ -497,8 +506,6 @@ fn diagnose_equation(
             v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
                 format!("{which} is right when nothing moves, so a velocity term is missing or wrong (a q'² or q'₁q'₂ term)"),
             ));
-            return;
         }
     }
-    let _ = close;
 }

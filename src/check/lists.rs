@@ -1,12 +1,13 @@
 //! Unordered lists — equilibria, frequencies, values — matched item by item across every
 //! sample point, with partial credit and the items named: missing, extra, wrong, ω² for ω.
 
+use super::common::{invalid_reading, verdict};
 use super::compare::{close, values};
 use super::error::CheckError;
 use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate};
+use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, ParseError, Reading, read, read_expr};
-use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem};
 
 /// Splits at top-level `,` and `;` (outside parentheses): (text, byte offset) per item.
@@ -155,7 +156,7 @@ fn same_item(
         let Some(x) = x else { return false };
         for (i, (u, w)) in x.iter().zip(y).enumerate() {
             let periodic = part.kind == PartKind::Equilibria && p.system.coordinates[i].periodic;
-            let ok = if periodic && tol <= 1e-8 {
+            let ok = if periodic && tol <= tolerance::STRICT {
                 same_coordinate(true, *u, *w)
             } else {
                 close(*u, *w, 0.0, tol)
@@ -171,34 +172,26 @@ fn same_item(
 
 /// Checks a list answer.
 pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
-    let mut v = Verdict {
-        problem: problem.id.clone(),
-        part: part.id.clone(),
-        status: Status::Incorrect,
-        score: 0.0,
-        reading: ReadAs::default(),
-        diagnoses: Vec::new(),
-        seed: seed_from(&[&problem.id, &part.id]),
-        parse_error: None,
-    };
+    let mut v = verdict(problem, part, Status::Incorrect);
     let items = match read_items(part, p, input) {
         Ok(i) => i,
-        Err(e) => return super::answer::invalid_reading(problem, part, e),
+        Err(e) => return invalid_reading(problem, part, e),
     };
+    // The coordinates as expressions, interned once, to show equilibria as `θ = π`.
     let names: Vec<String> = p
         .system
         .coordinates
         .iter()
         .map(|c| c.name.clone())
         .collect();
+    let coords: Vec<Id> = names.iter().map(|n| p.system.pool.sym(n)).collect();
     let show = |p: &Prepared, it: &[Id], style: crate::expr::Style| -> String {
         if part.kind == PartKind::Equilibria {
             it.iter()
-                .zip(&names)
-                .map(|(x, n)| {
-                    let mut pool = p.system.pool.clone();
-                    let c = pool.sym(n);
-                    format!("{} = {}", pool.display(c, style), pool.display(*x, style))
+                .zip(&coords)
+                .map(|(x, c)| {
+                    let pool = &p.system.pool;
+                    format!("{} = {}", pool.display(*c, style), pool.display(*x, style))
                 })
                 .collect::<Vec<_>>()
                 .join(", ")
@@ -226,7 +219,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     };
     let cached = p.reference.get().cloned();
     let refs = match cached.map_or_else(|| reference_items(part, p), Ok) {
-        Ok(r) => r,
+        Ok(r) => p.reference.get_or_init(|| r).clone(),
         Err(m) => {
             v.status = Status::Invalid;
             v.diagnoses.push(Diagnosis::new(
@@ -236,7 +229,6 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
             return v;
         }
     };
-    let _ = p.reference.set(refs.clone());
     for it in &items {
         for &x in it {
             if let Err(e) = p.system.pool.dimension(x, &problem.dims) {
@@ -285,8 +277,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         };
         if part.kind == PartKind::Frequencies {
             if let Some(k) = free_refs.iter().position(|&j| squared_of(s, &rv[j])) {
-                let j = free_refs.remove(k);
-                let _ = j;
+                free_refs.remove(k);
                 let (code, msg) = if part.squared {
                     (
                         Code::OmegaSquared,
@@ -316,7 +307,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
             // Agreement to a few digits only.
             if let Some(k) = free_refs
                 .iter()
-                .position(|&j| same_item(part, p, s, &rv[j], 1e-2))
+                .position(|&j| same_item(part, p, s, &rv[j], tolerance::ROUNDED))
             {
                 free_refs.remove(k);
                 v.diagnoses.push(Diagnosis::new(Code::RoundedConstant,

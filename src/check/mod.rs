@@ -5,6 +5,7 @@
 //! Verdicts never depend on the simplifier: everything here evaluates.
 
 pub mod answer;
+mod common;
 pub mod compare;
 pub mod diagnose;
 pub mod equations;
@@ -12,6 +13,7 @@ pub mod error;
 pub mod lists;
 pub mod points;
 pub mod prepare;
+pub mod tolerance;
 pub mod verdict;
 
 pub use crate::problem::Assumption;

@@ -4,6 +4,7 @@
 
 use super::error::CheckError;
 use super::points::PointSet;
+use super::tolerance;
 use crate::expr::{Context, Id, Node, Reading, read, read_equation, read_expr};
 use crate::mechanics::equilibria::wrap_angle;
 use crate::mechanics::sample::seed_from;
@@ -166,12 +167,12 @@ pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
 /// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
 pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
     let d = if periodic { wrap_angle(a - b) } else { a - b };
-    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < 1e-9 {
+    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < tolerance::ANGLE {
         std::f64::consts::PI.min(d.abs())
     } else {
         d
     };
-    d.abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
+    d.abs() <= tolerance::COORDINATE * (1.0 + a.abs().max(b.abs()))
 }
 
 /// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
