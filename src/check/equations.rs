@@ -221,10 +221,9 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
         .collect()
 }
 
-/// Checks an answer to an `equation` or `equations` part.
-pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
-    let mut v = verdict(problem, part, Status::Incorrect);
-    // Collect the equations; a bare expression e is read as e = 0.
+/// The equations of a reading (a bare expression e read as e = 0, which sets `bare`), or
+/// `None` when an item is not an equation.
+fn equations_of(p: &mut Prepared, r: Reading) -> Option<(Vec<(Id, Id)>, bool)> {
     let mut eqs: Vec<(Id, Id)> = Vec::new();
     let mut bare = false;
     let mut flat = Vec::new();
@@ -239,37 +238,109 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 eqs.push((e, p.system.pool.zero()));
             }
             Reading::Equation { lhs, rhs, .. } => eqs.push((lhs, rhs)),
-            _ => {
-                let mut w = verdict(problem, part, Status::Invalid);
-                w.diagnoses.push(Diagnosis::new(
-                    Code::WrongKind,
-                    "write equations separated by `;`",
-                ));
-                return w;
-            }
+            _ => return None,
         }
     }
-    let shown: Vec<String> = eqs
-        .iter()
-        .map(|&(l, r)| {
-            p.system
-                .pool
-                .display_equation(l, r, crate::expr::Style::Plain)
-        })
-        .collect();
-    let shown_u: Vec<String> = eqs
-        .iter()
-        .map(|&(l, r)| {
-            p.system
-                .pool
-                .display_equation(l, r, crate::expr::Style::Unicode)
-        })
-        .collect();
-    v.reading = ReadAs {
-        plain: shown.join("; "),
-        unicode: shown_u.join("; "),
-        note: bare.then(|| "an expression without `=` was read as expression = 0".to_string()),
+    Some((eqs, bare))
+}
+
+/// How the equations were read: plain and unicode, joined by `; `.
+fn reading_of(p: &Prepared, eqs: &[(Id, Id)], bare: bool) -> ReadAs {
+    let shown = |style: crate::expr::Style| -> Vec<String> {
+        eqs.iter()
+            .map(|&(l, r)| p.system.pool.display_equation(l, r, style))
+            .collect()
     };
+    ReadAs {
+        plain: shown(crate::expr::Style::Plain).join("; "),
+        unicode: shown(crate::expr::Style::Unicode).join("; "),
+        note: bare.then(|| "an expression without `=` was read as expression = 0".to_string()),
+    }
+}
+
+/// For an `equation` part whose reference has no accelerations: its residual (decided once).
+fn condition_of(part: &Part, p: &mut Prepared) -> Option<Id> {
+    if let Some(c) = p.condition.get() {
+        return *c;
+    }
+    let c = (part.kind == PartKind::Equation)
+        .then(|| crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool).ok())
+        .flatten()
+        .map(|(rl, rr)| p.system.pool.sub(rl, rr))
+        .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
+    *p.condition.get_or_init(|| c)
+}
+
+/// What comparing a condition (no accelerations) with the reference found.
+enum ConditionFinding {
+    /// Not one equation.
+    Count(usize),
+    /// The reference up to a nonzero factor.
+    Equivalent,
+    /// Undefined at sample `point`, where the reference is defined.
+    Undefined { point: usize },
+    /// A sign in one term, or swapped symbols (the search's diagnosis).
+    Found(Diagnosis),
+    /// Nothing more to say.
+    NotEquivalent,
+}
+
+impl ConditionFinding {
+    /// The sentence for a finding (none when the condition is right).
+    fn details(self, p: &Prepared) -> Option<Diagnosis> {
+        Some(match self {
+            ConditionFinding::Equivalent => return None,
+            ConditionFinding::Count(k) => Diagnosis::new(
+                Code::EquationCount,
+                format!("one equation is asked for, but you gave {k}"),
+            ),
+            ConditionFinding::Undefined { point } => Diagnosis::new(
+                Code::Undefined,
+                format!(
+                    "your equation is undefined at {}, where the correct one is defined",
+                    point_text(p, point)
+                ),
+            ),
+            ConditionFinding::Found(d) => d,
+            ConditionFinding::NotEquivalent => Diagnosis::new(
+                Code::NotEqual,
+                "this condition is not equivalent to the right one",
+            ),
+        })
+    }
+}
+
+/// Compares a condition with the reference up to a nonzero factor.
+fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> ConditionFinding {
+    let [r0] = res else {
+        return ConditionFinding::Count(res.len());
+    };
+    let r0 = *r0;
+    let eq = |p: &mut Prepared, c: Id| {
+        super::compare::proportional(&p.system, c, reference, &p.points, tolerance::SAME)
+    };
+    match relate(&p.system, r0, reference, &p.points, part.tolerance) {
+        Ok(Relation::Equal | Relation::Factor(_)) => ConditionFinding::Equivalent,
+        _ if eq(p, r0) => ConditionFinding::Equivalent,
+        Ok(Relation::Undefined { point }) => ConditionFinding::Undefined { point },
+        _ => sign_in_term(p, r0, &mut |p, c| eq(p, c))
+            .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
+            .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found),
+    }
+}
+
+/// Checks an answer to an `equation` or `equations` part.
+pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
+    let mut v = verdict(problem, part, Status::Incorrect);
+    let Some((eqs, bare)) = equations_of(p, r) else {
+        let mut w = verdict(problem, part, Status::Invalid);
+        w.diagnoses.push(Diagnosis::new(
+            Code::WrongKind,
+            "write equations separated by `;`",
+        ));
+        return w;
+    };
+    v.reading = reading_of(p, &eqs, bare);
     for &(l, r) in &eqs {
         if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
             v.diagnoses
@@ -279,89 +350,42 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
     // A condition (a reference equation without accelerations, such as an equilibrium
     // condition) is compared with the reference up to a nonzero factor.
-    let condition = match p.condition.get() {
-        Some(c) => *c,
-        None => {
-            let c = (part.kind == PartKind::Equation)
-                .then(|| {
-                    crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
-                        .ok()
-                })
-                .flatten()
-                .map(|(rl, rr)| p.system.pool.sub(rl, rr))
-                .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
-            *p.condition.get_or_init(|| c)
+    if let Some(reference) = condition_of(part, p) {
+        let finding = judge_condition(part, p, &res, reference);
+        if matches!(finding, ConditionFinding::Equivalent) {
+            v.status = Status::Correct;
+            v.score = 1.0;
         }
-    };
-    if let Some(reference) = condition {
-        {
-            if res.len() != 1 {
-                v.diagnoses.push(Diagnosis::new(
-                    Code::EquationCount,
-                    format!("one equation is asked for, but you gave {}", res.len()),
-                ));
-                return v;
-            }
-            match relate(&p.system, res[0], reference, &p.points, part.tolerance) {
-                Ok(Relation::Equal | Relation::Factor(_)) => {
-                    v.status = Status::Correct;
-                    v.score = 1.0;
-                }
-                _ if super::compare::proportional(
-                    &p.system,
-                    res[0],
-                    reference,
-                    &p.points,
-                    tolerance::SAME,
-                ) =>
-                {
-                    v.status = Status::Correct;
-                    v.score = 1.0;
-                }
-                Ok(Relation::Undefined { point }) => v.diagnoses.push(Diagnosis::new(
-                    Code::Undefined,
-                    format!(
-                        "your equation is undefined at {}, where the correct one is defined",
-                        point_text(p, point)
-                    ),
-                )),
-                _ => {
-                    let r0 = res[0];
-                    let eq = |p: &mut Prepared, c: Id| {
-                        super::compare::proportional(
-                            &p.system,
-                            c,
-                            reference,
-                            &p.points,
-                            tolerance::SAME,
-                        )
-                    };
-                    let d = sign_in_term(p, r0, &mut |p, c| eq(p, c))
-                        .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
-                    v.diagnoses.push(d.unwrap_or_else(|| {
-                        Diagnosis::new(
-                            Code::NotEqual,
-                            "this condition is not equivalent to the right one",
-                        )
-                    }));
-                }
-            }
-            return v;
-        }
+        v.diagnoses.extend(finding.details(p));
+        return v;
     }
-    let n = p.system.n();
+    let shown: Vec<String> = eqs
+        .iter()
+        .map(|&(l, r)| {
+            p.system
+                .pool
+                .display_equation(l, r, crate::expr::Style::Unicode)
+        })
+        .collect();
+    check_motion(part, p, &res, &shown, &mut v);
+    v
+}
+
+/// Equations of motion: each must hold at the true accelerations and together (for a
+/// system) determine them. Adds the diagnoses and score to `v`.
+fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: &mut Verdict) {
     let truth = match true_accelerations(p) {
         Ok(t) => t,
         Err(e) => {
             v.diagnoses
                 .push(Diagnosis::new(Code::NotEqual, e.to_string()));
-            return v;
+            return;
         }
     };
     let pts = p.points.clone();
     let ok: Vec<bool> = res.iter().map(|&r| holds(p, r, &pts, &truth)).collect();
     let want = if part.kind == PartKind::Equations {
-        n
+        p.system.n()
     } else {
         1
     };
@@ -392,10 +416,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
             ));
         }
     }
-    for (i, &r) in res.iter().enumerate() {
-        if ok[i] {
-            continue;
-        }
+    for (i, &r) in res.iter().enumerate().filter(|(i, _)| !ok[*i]) {
         let which = if res.len() > 1 {
             format!("equation {}", i + 1)
         } else {
@@ -404,10 +425,10 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         if res.len() > 1 || part.kind == PartKind::Equations {
             v.diagnoses.push(Diagnosis::new(
                 Code::WrongEquation,
-                format!("{which} ({}) does not hold for the true motion", shown_u[i]),
+                format!("{which} ({}) does not hold for the true motion", shown[i]),
             ));
         }
-        diagnose_equation(p, r, &which, &truth, &mut v);
+        diagnose_equation(p, r, &which, &truth, v);
     }
     if v.status != Status::Correct && v.diagnoses.is_empty() {
         v.diagnoses.push(Diagnosis::new(
@@ -425,7 +446,6 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 1.0
             }
     };
-    v
 }
 
 fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
