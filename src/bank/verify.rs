@@ -397,7 +397,57 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
     Ok(())
 }
 
-fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+/// What comparing the stated equilibria with the engine's, for one parameter sample, found.
+enum EquilibriumFinding {
+    /// Every point is an equilibrium.
+    Continuum,
+    /// The engine finds an equilibrium at `at` that the answer lacks.
+    Missing { at: String },
+    /// Stated item `item` has stability `want` but is `is`.
+    Stability {
+        item: String,
+        want: String,
+        is: &'static str,
+    },
+    /// Stated item `item` is not among the engine's equilibria.
+    Spurious { item: String },
+}
+
+impl EquilibriumFinding {
+    /// The finding as a failed verification, for the parameters `pstr`.
+    fn details(self, pstr: &str) -> Failed {
+        match self {
+            EquilibriumFinding::Continuum => Failed::new(
+                "not-isolated",
+                format!(
+                    "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
+                ),
+            ),
+            EquilibriumFinding::Missing { at } => Failed::new(
+                "missing-equilibrium",
+                format!(
+                    "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
+                ),
+            ),
+            EquilibriumFinding::Stability { item, want, is } => Failed::new(
+                "wrong-stability",
+                format!("`{item}` is stated {want}, but it is {is} (for {pstr})"),
+            ),
+            EquilibriumFinding::Spurious { item } => Failed::new(
+                "spurious-equilibrium",
+                format!("`{item}` is not among the equilibria the engine finds for {pstr}"),
+            ),
+        }
+    }
+}
+
+/// Reads the stated equilibria and checks each one's dimensions, that the forces vanish
+/// there, and that the stabilities are as many as the equilibria.
+fn stated_equilibria(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+) -> Result<Vec<Vec<Id>>, Failed> {
     let stated: Vec<Vec<Id>> = part
         .answers
         .iter()
@@ -431,6 +481,73 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
             ),
         ));
     }
+    Ok(stated)
+}
+
+/// Compares the stated equilibria (values `stated_pts`) with those the engine finds for
+/// `params`.
+fn compare_equilibria(
+    part: &Part,
+    p: &mut Prepared,
+    params: &[f64],
+    stated_pts: &[&[f64]],
+) -> Result<Option<EquilibriumFinding>, Failed> {
+    let found = p
+        .system
+        .equilibria(&p.derivation, params)
+        .map_err(|e| Failed::new("unusable", e.to_string()))?;
+    if found.continuum {
+        return Ok(Some(EquilibriumFinding::Continuum));
+    }
+    let coords = &p.system.coordinates;
+    let same = |s: &[f64], q: &[f64]| {
+        s.iter()
+            .zip(q)
+            .enumerate()
+            .all(|(i, (a, b))| same_coordinate(coords[i].periodic, *a, *b))
+    };
+    for (q, st) in &found.points {
+        match stated_pts.iter().position(|s| same(s, q)) {
+            None => {
+                let at = coords
+                    .iter()
+                    .zip(q)
+                    .map(|(c, x)| format!("{} = {}", c.name, fmt_value(*x)))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Ok(Some(EquilibriumFinding::Missing { at }));
+            }
+            Some(j) => {
+                if let Some(want) = part.stability.get(j)
+                    && want != st.name()
+                {
+                    return Ok(Some(EquilibriumFinding::Stability {
+                        item: part.answers[j].clone(),
+                        want: want.clone(),
+                        is: st.name(),
+                    }));
+                }
+            }
+        }
+    }
+    let in_range = |q: &[f64]| {
+        q.iter().enumerate().all(|(i, x)| {
+            coords[i].periodic
+                || (coords[i].range.0 - tolerance::RANGE_SLACK
+                    ..=coords[i].range.1 + tolerance::RANGE_SLACK)
+                    .contains(x)
+        })
+    };
+    Ok(stated_pts
+        .iter()
+        .position(|s| in_range(s) && !found.points.iter().any(|(q, _)| same(s, q)))
+        .map(|j| EquilibriumFinding::Spurious {
+            item: part.answers[j].clone(),
+        }))
+}
+
+fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let stated = stated_equilibria(problem, part, p)?;
     let samples = PointSet::draw(
         &p.system,
         &p.assumptions,
@@ -442,93 +559,12 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
     let vals =
         values(&p.system, &flat, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
     let n = p.system.n();
-    let periodic: Vec<bool> = p.system.coordinates.iter().map(|c| c.periodic).collect();
-    let names: Vec<String> = p
-        .system
-        .coordinates
-        .iter()
-        .map(|c| c.name.clone())
-        .collect();
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
-        let found = p
-            .system
-            .equilibria(&p.derivation, &params)
-            .map_err(|e| Failed::new("unusable", e.to_string()))?;
-        let pstr = parameter_text(&p.system, &params);
-        if found.continuum {
-            return Err(Failed::new(
-                "not-isolated",
-                format!(
-                    "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
-                ),
-            ));
-        }
         let stated_pts: Vec<&[f64]> = v.chunks(n).collect();
-        let in_range = |q: &[f64]| {
-            q.iter().enumerate().all(|(i, x)| {
-                periodic[i]
-                    || (p.system.coordinates[i].range.0 - tolerance::RANGE_SLACK
-                        ..=p.system.coordinates[i].range.1 + tolerance::RANGE_SLACK)
-                        .contains(x)
-            })
-        };
-        for (q, st) in &found.points {
-            let hit = stated_pts.iter().position(|s| {
-                s.iter()
-                    .zip(q)
-                    .enumerate()
-                    .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
-            });
-            match hit {
-                None => {
-                    let at = names
-                        .iter()
-                        .zip(q)
-                        .map(|(c, x)| format!("{c} = {}", fmt_value(*x)))
-                        .collect::<Vec<_>>()
-                        .join(", ");
-                    return Err(Failed::new(
-                        "missing-equilibrium",
-                        format!(
-                            "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
-                        ),
-                    ));
-                }
-                Some(j) => {
-                    if let Some(want) = part.stability.get(j)
-                        && want != st.name()
-                    {
-                        return Err(Failed::new(
-                            "wrong-stability",
-                            format!(
-                                "`{}` is stated {want}, but it is {} (for {pstr})",
-                                part.answers[j],
-                                st.name()
-                            ),
-                        ));
-                    }
-                }
-            }
-        }
-        for (j, s) in stated_pts.iter().enumerate() {
-            if in_range(s)
-                && !found.points.iter().any(|(q, _)| {
-                    s.iter()
-                        .zip(q)
-                        .enumerate()
-                        .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
-                })
-            {
-                return Err(Failed::new(
-                    "spurious-equilibrium",
-                    format!(
-                        "`{}` is not among the equilibria the engine finds for {pstr}",
-                        part.answers[j]
-                    ),
-                ));
-            }
+        if let Some(f) = compare_equilibria(part, p, &params, &stated_pts)? {
+            return Err(f.details(&parameter_text(&p.system, &params)));
         }
     }
     Ok(())
