@@ -55,7 +55,12 @@ pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, Che
 }
 
 /// Checks against a prepared part.
-pub fn check_prepared(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
+pub(crate) fn check_prepared(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+    input: &str,
+) -> Verdict {
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
             lists::check_list(problem, part, p, input)

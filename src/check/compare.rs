@@ -119,7 +119,7 @@ pub fn relate(
 
 /// Whether `a = c·b` with c nonzero and independent of the state (it may depend on the
 /// parameters, like the m in m·r·(ω² − 2ga) = 0).
-pub fn proportional(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
+pub(crate) fn proportional(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
     let Some(moved) = moved_states(sys, pts) else {
         return false;
     };
@@ -221,7 +221,7 @@ fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
 }
 
 /// Parameter values for a message: `g = 9.8100, l = 1.2000`.
-pub fn parameter_text(sys: &System, params: &[f64]) -> String {
+pub(crate) fn parameter_text(sys: &System, params: &[f64]) -> String {
     sys.parameters
         .iter()
         .zip(params)

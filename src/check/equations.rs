@@ -19,7 +19,7 @@ use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
 
 /// True accelerations at every point.
-pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
+pub(crate) fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     if let Some(a) = p.accelerations.get() {
         return Ok(a.clone());
     }
@@ -56,7 +56,7 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckErr
 /// Whether the equations `res` determine the true accelerations (`equations`), or hold at
 /// them (`equation`). Returns a description of the failure. The same tests as the checker's:
 /// each equation holds at the true accelerations, and together they have full rank.
-pub fn equations_hold(
+pub(crate) fn equations_hold(
     p: &mut Prepared,
     res: &[Id],
     system: bool,

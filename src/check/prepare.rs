@@ -82,7 +82,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
 }
 
 /// Reads one expression item of a reference answer.
-pub fn read_one(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
+pub(crate) fn read_one(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
     read_expr(src, &p.context, &mut p.system.pool).map_err(|e| CheckError::UnreadableItem {
         src: src.to_string(),
         error: Box::new(e),
@@ -90,7 +90,7 @@ pub fn read_one(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
 }
 
 /// The residuals `lhs − rhs` of an answer's equations.
-pub fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, CheckError> {
+pub(crate) fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, CheckError> {
     let mut out = Vec::new();
     for it in items {
         for piece in it.split(';').filter(|s| !s.trim().is_empty()) {
@@ -107,7 +107,7 @@ pub fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, CheckErr
 }
 
 /// Reads an equilibrium item: `pi`, `theta = pi` or `theta1 = 0, theta2 = pi`.
-pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
+pub(crate) fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
     let reading =
         read(src, &p.context, &mut p.system.pool).map_err(|e| CheckError::UnreadablePoint {
             src: src.to_string(),
@@ -165,7 +165,7 @@ pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
 }
 
 /// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
-pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
+pub(crate) fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
     let d = if periodic { wrap_angle(a - b) } else { a - b };
     let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < tolerance::ANGLE {
         std::f64::consts::PI.min(d.abs())
@@ -176,7 +176,7 @@ pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
 }
 
 /// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
-pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
+pub(crate) fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
     let body = match src.split_once('=') {
         Some((label, rhs))
             if label
@@ -192,7 +192,7 @@ pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
 }
 
 /// The equilibrium a frequencies part is about (`at`, default all coordinates 0).
-pub fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, CheckError> {
+pub(crate) fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, CheckError> {
     let n = p.system.n();
     let zero = p.system.pool.zero();
     let mut at = vec![zero; n];
