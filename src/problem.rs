@@ -1,9 +1,48 @@
 //! A problem as data: its system (built by the mechanics engine), dimensions, assumptions and
-//! parts. The bank builds problems from TOML; the checker checks answers against them.
+//! parts. The bank builds problems from TOML; the checker checks answers against them. Data
+//! only: nothing here knows the checker.
 
-use crate::check::points::Assumption;
-use crate::expr::{Context, Dimension, Dimensions, Id};
+use crate::expr::{Context, Dimension, Dimensions, Id, read_expr};
 use crate::mechanics::System;
+
+/// An inequality between two expressions of the parameters.
+#[derive(Clone, Debug)]
+pub struct Assumption {
+    pub text: String,
+    pub lhs: Id,
+    pub rhs: Id,
+    /// `>` (or `>=`) when true; `<` (or `<=`) when false.
+    pub greater: bool,
+}
+
+impl Assumption {
+    /// Reads `lhs > rhs`, `lhs < rhs`, `>=`, `<=` (also `≥`, `≤`).
+    pub fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
+        let ops: [(&str, bool); 6] = [
+            (">=", true),
+            ("<=", false),
+            ("≥", true),
+            ("≤", false),
+            (">", true),
+            ("<", false),
+        ];
+        for (op, greater) in ops {
+            if let Some((a, b)) = text.split_once(op) {
+                let lhs =
+                    read_expr(a, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
+                let rhs =
+                    read_expr(b, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
+                return Ok(Assumption {
+                    text: text.to_string(),
+                    lhs,
+                    rhs,
+                    greater,
+                });
+            }
+        }
+        Err(format!("`{text}` is not an inequality (use > or <)"))
+    }
+}
 
 /// The kinds of part.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

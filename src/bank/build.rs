@@ -2,11 +2,11 @@
 //! Lagrangian or the bodies and potentials, assumptions and parts. Every error is a finding
 //! with its line.
 
-use crate::check::points::Assumption;
 use crate::expr::{Context, Dimension, Dimensions, Id, Pool, read_expr};
 use crate::mechanics::System;
 use crate::mechanics::bodies::{Anchor, Body, Potential};
 use crate::mechanics::system::{Coordinate, Parameter};
+use crate::problem::Assumption;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 use super::finding::{Finding, line_of};

@@ -5,16 +5,16 @@
 //! constraint forces; and every `wrong` example must indeed be wrong.
 
 use super::finding::Finding;
-use crate::check::PointSet;
 use crate::check::compare::{Relation, close, fmt_value, parameter_text, relate, values};
 use crate::check::equations::equations_hold;
 use crate::check::prepare::{
     Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
     same_coordinate,
 };
+use crate::check::tolerance;
+use crate::check::{CheckError, PointSet};
 use crate::expr::{Dimension, Id, read_expr};
 use crate::mechanics::accel::Dynamics;
-use crate::mechanics::equilibria::Stability;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
@@ -70,7 +70,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
             seed_from(&[&problem.id, "lagrangian"]),
             POINTS,
         )
-        .and_then(|pts| relate(&s, stated, s.lagrangian, &pts, 1e-9))
+        .and_then(|pts| relate(&s, stated, s.lagrangian, &pts, tolerance::SAME))
         {
             Ok(Relation::Equal | Relation::UpToConstant(_)) => {}
             Ok(_) => {
@@ -85,7 +85,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
                     ),
                 ));
             }
-            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e)),
+            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e.to_string())),
         }
     }
     for part in &problem.parts {
@@ -105,19 +105,19 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         code,
         message,
     };
-    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e))?;
+    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
     let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
-            verify_expression(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_expression(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Equation | PartKind::Equations => {
-            verify_equations(part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_equations(part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Equilibria => {
-            verify_equilibria(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_equilibria(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Frequencies => {
-            verify_frequencies(problem, part, &mut p).map_err(|(c, m)| fail(c, m))
+            verify_frequencies(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Values => Ok(()),
     };
@@ -147,7 +147,26 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     Ok(())
 }
 
-type Check = Result<(), (&'static str, String)>;
+/// A failed verification: the finding's code and message.
+struct Failed {
+    code: &'static str,
+    message: String,
+}
+
+impl Failed {
+    fn new(code: &'static str, message: String) -> Self {
+        Failed { code, message }
+    }
+}
+
+/// A checker error met while verifying keeps its own code (`unreadable`, `bad-at`, …).
+impl From<CheckError> for Failed {
+    fn from(e: CheckError) -> Self {
+        Failed::new(e.code(), e.to_string())
+    }
+}
+
+type Check = Result<(), Failed>;
 
 /// The dimension an answer of this quantity must have.
 fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
@@ -169,15 +188,20 @@ fn expected_dimension(problem: &Problem, part: &Part) -> Option<Dimension> {
 
 fn check_dimension(problem: &Problem, p: &Prepared, e: Id, want: Option<Dimension>) -> Check {
     match p.system.pool.dimension(e, &problem.dims) {
-        Err(err) => Err(("dimension", format!("{}: {err}", p.system.pool.unicode(e)))),
-        Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => Err((
+        Err(err) => Err(Failed::new(
             "dimension",
-            format!(
-                "{} has dimension {d}, but this part asks for {}",
-                p.system.pool.unicode(e),
-                want.unwrap_or(Dimension::NONE)
-            ),
+            format!("{}: {err}", p.system.pool.unicode(e)),
         )),
+        Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => {
+            Err(Failed::new(
+                "dimension",
+                format!(
+                    "{} has dimension {d}, but this part asks for {}",
+                    p.system.pool.unicode(e),
+                    want.unwrap_or(Dimension::NONE)
+                ),
+            ))
+        }
         _ => Ok(()),
     }
 }
@@ -188,19 +212,15 @@ enum Truth {
     Numbers(Vec<Option<f64>>),
 }
 
-fn truth(
-    problem: &Problem,
-    part: &Part,
-    p: &mut Prepared,
-) -> Result<Option<Truth>, (&'static str, String)> {
+fn truth(part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
     let sys = &mut p.system;
     let d = &p.derivation;
     Ok(Some(match part.quantity {
-        Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or((
+        Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or(Failed::new(
             "no-truth",
             "a kinetic part needs bodies (or T and V) to check against".to_string(),
         ))?),
-        Quantity::Potential => Truth::Expr(sys.potential.ok_or((
+        Quantity::Potential => Truth::Expr(sys.potential.ok_or(Failed::new(
             "no-truth",
             "a potential part needs bodies (or T and V) to check against".to_string(),
         ))?),
@@ -209,7 +229,8 @@ fn truth(
         Quantity::EnergyFunction => Truth::Expr(sys.energy(d).function),
         Quantity::Multiplier(j) | Quantity::Acceleration(j) => {
             let rows = sys.constraint_rows();
-            let dynamics = Dynamics::new(sys, d).map_err(|e| ("unusable", e.to_string()))?;
+            let dynamics =
+                Dynamics::new(sys, d).map_err(|e| Failed::new("unusable", e.to_string()))?;
             let mut scratch = dynamics.scratch();
             let nums = p
                 .points
@@ -231,24 +252,16 @@ fn truth(
                 .collect();
             Truth::Numbers(nums)
         }
-        Quantity::None => {
-            let _ = problem;
-            return Ok(None);
-        }
+        Quantity::None => return Ok(None),
     }))
 }
 
 /// Whether `answer` matches the truth (exactly, or up to a constant where allowed).
-fn matches_truth(
-    part: &Part,
-    p: &mut Prepared,
-    answer: Id,
-    truth: &Truth,
-) -> Result<bool, (&'static str, String)> {
+fn matches_truth(part: &Part, p: &mut Prepared, answer: Id, truth: &Truth) -> Result<bool, Failed> {
     match truth {
         Truth::Expr(t) => {
             let r = relate(&p.system, answer, *t, &p.points, part.tolerance)
-                .map_err(|e| ("sampling", e))?;
+                .map_err(|e| Failed::new("sampling", e.to_string()))?;
             Ok(match r {
                 Relation::Equal => true,
                 Relation::UpToConstant(_) => {
@@ -258,7 +271,8 @@ fn matches_truth(
             })
         }
         Truth::Numbers(nums) => {
-            let vals = values(&p.system, &[answer], &p.points).map_err(|e| ("sampling", e))?;
+            let vals = values(&p.system, &[answer], &p.points)
+                .map_err(|e| Failed::new("sampling", e.to_string()))?;
             let scale = nums.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
             Ok(nums.iter().zip(&vals).all(|(t, v)| match (t, v) {
                 (Some(t), Some(v)) => close(v[0], *t, scale, part.tolerance),
@@ -285,11 +299,11 @@ fn show_truth(p: &mut Prepared, t: &Truth) -> String {
 fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
     let answer = read_one(p, &part.answers[0])?;
     check_dimension(problem, p, answer, expected_dimension(problem, part))?;
-    let Some(t) = truth(problem, part, p)? else {
+    let Some(t) = truth(part, p)? else {
         return Ok(());
     };
     if !matches_truth(part, p, answer, &t)? {
-        return Err((
+        return Err(Failed::new(
             "wrong-answer",
             format!(
                 "the stated answer {} is not what the physics gives: {}",
@@ -303,7 +317,7 @@ fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
             continue;
         };
         if matches_truth(part, p, id, &t)? {
-            return Err((
+            return Err(Failed::new(
                 "wrong-accepted",
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
@@ -327,11 +341,17 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             .collect();
         for &f in &p.derivation.forcing.clone() {
             let f0 = p.system.pool.substitute(f, &rest);
-            if crate::check::compare::proportional(&p.system, res[0], f0, &p.points, 1e-9) {
+            if crate::check::compare::proportional(
+                &p.system,
+                res[0],
+                f0,
+                &p.points,
+                tolerance::SAME,
+            ) {
                 return Ok(());
             }
         }
-        return Err((
+        return Err(Failed::new(
             "wrong-condition",
             format!(
                 "the stated condition {} = 0 is not a generalized force at rest set to zero",
@@ -354,7 +374,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
                 format!("{} = 0", p.system.pool.unicode(f))
             })
             .collect();
-        return Err((
+        return Err(Failed::new(
             "wrong-eom",
             format!(
                 "the stated equations {} are not the equations of motion ({why}); the physics gives {}",
@@ -368,7 +388,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             continue;
         };
         if equations_hold(p, &r, system)?.is_none() {
-            return Err((
+            return Err(Failed::new(
                 "wrong-accepted",
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
@@ -377,7 +397,57 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
     Ok(())
 }
 
-fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+/// What comparing the stated equilibria with the engine's, for one parameter sample, found.
+enum EquilibriumFinding {
+    /// Every point is an equilibrium.
+    Continuum,
+    /// The engine finds an equilibrium at `at` that the answer lacks.
+    Missing { at: String },
+    /// Stated item `item` has stability `want` but is `is`.
+    Stability {
+        item: String,
+        want: String,
+        is: &'static str,
+    },
+    /// Stated item `item` is not among the engine's equilibria.
+    Spurious { item: String },
+}
+
+impl EquilibriumFinding {
+    /// The finding as a failed verification, for the parameters `pstr`.
+    fn details(self, pstr: &str) -> Failed {
+        match self {
+            EquilibriumFinding::Continuum => Failed::new(
+                "not-isolated",
+                format!(
+                    "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
+                ),
+            ),
+            EquilibriumFinding::Missing { at } => Failed::new(
+                "missing-equilibrium",
+                format!(
+                    "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
+                ),
+            ),
+            EquilibriumFinding::Stability { item, want, is } => Failed::new(
+                "wrong-stability",
+                format!("`{item}` is stated {want}, but it is {is} (for {pstr})"),
+            ),
+            EquilibriumFinding::Spurious { item } => Failed::new(
+                "spurious-equilibrium",
+                format!("`{item}` is not among the equilibria the engine finds for {pstr}"),
+            ),
+        }
+    }
+}
+
+/// Reads the stated equilibria and checks each one's dimensions, that the forces vanish
+/// there, and that the stabilities are as many as the equilibria.
+fn stated_equilibria(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+) -> Result<Vec<Vec<Id>>, Failed> {
     let stated: Vec<Vec<Id>> = part
         .answers
         .iter()
@@ -391,9 +461,9 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         if !p
             .system
             .verify_equilibrium(&p.derivation, point)
-            .map_err(|e| ("unusable", e.to_string()))?
+            .map_err(|e| Failed::new("unusable", e.to_string()))?
         {
-            return Err((
+            return Err(Failed::new(
                 "spurious-equilibrium",
                 format!(
                     "`{item}` is not an equilibrium: the generalized forces do not vanish there"
@@ -402,7 +472,7 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         }
     }
     if !part.stability.is_empty() && part.stability.len() != stated.len() {
-        return Err((
+        return Err(Failed::new(
             "bad-stability",
             format!(
                 "{} stabilities for {} equilibria",
@@ -411,105 +481,91 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
             ),
         ));
     }
+    Ok(stated)
+}
+
+/// Compares the stated equilibria (values `stated_pts`) with those the engine finds for
+/// `params`.
+fn compare_equilibria(
+    part: &Part,
+    p: &mut Prepared,
+    params: &[f64],
+    stated_pts: &[&[f64]],
+) -> Result<Option<EquilibriumFinding>, Failed> {
+    let found = p
+        .system
+        .equilibria(&p.derivation, params)
+        .map_err(|e| Failed::new("unusable", e.to_string()))?;
+    if found.continuum {
+        return Ok(Some(EquilibriumFinding::Continuum));
+    }
+    let coords = &p.system.coordinates;
+    let same = |s: &[f64], q: &[f64]| {
+        s.iter()
+            .zip(q)
+            .enumerate()
+            .all(|(i, (a, b))| same_coordinate(coords[i].periodic, *a, *b))
+    };
+    for (q, st) in &found.points {
+        match stated_pts.iter().position(|s| same(s, q)) {
+            None => {
+                let at = coords
+                    .iter()
+                    .zip(q)
+                    .map(|(c, x)| format!("{} = {}", c.name, fmt_value(*x)))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Ok(Some(EquilibriumFinding::Missing { at }));
+            }
+            Some(j) => {
+                if let Some(want) = part.stability.get(j)
+                    && want != st.name()
+                {
+                    return Ok(Some(EquilibriumFinding::Stability {
+                        item: part.answers[j].clone(),
+                        want: want.clone(),
+                        is: st.name(),
+                    }));
+                }
+            }
+        }
+    }
+    let in_range = |q: &[f64]| {
+        q.iter().enumerate().all(|(i, x)| {
+            coords[i].periodic
+                || (coords[i].range.0 - tolerance::RANGE_SLACK
+                    ..=coords[i].range.1 + tolerance::RANGE_SLACK)
+                    .contains(x)
+        })
+    };
+    Ok(stated_pts
+        .iter()
+        .position(|s| in_range(s) && !found.points.iter().any(|(q, _)| same(s, q)))
+        .map(|j| EquilibriumFinding::Spurious {
+            item: part.answers[j].clone(),
+        }))
+}
+
+fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let stated = stated_equilibria(problem, part, p)?;
     let samples = PointSet::draw(
         &p.system,
         &p.assumptions,
         seed_from(&[&problem.id, &part.id, "equilibria"]),
         EQUILIBRIUM_SAMPLES,
     )
-    .map_err(|e| ("sampling", e))?;
+    .map_err(|e| Failed::new("sampling", e.to_string()))?;
     let flat: Vec<Id> = stated.iter().flatten().copied().collect();
-    let vals = values(&p.system, &flat, &samples).map_err(|e| ("sampling", e))?;
+    let vals =
+        values(&p.system, &flat, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
     let n = p.system.n();
-    let periodic: Vec<bool> = p.system.coordinates.iter().map(|c| c.periodic).collect();
-    let names: Vec<String> = p
-        .system
-        .coordinates
-        .iter()
-        .map(|c| c.name.clone())
-        .collect();
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
-        let found = p
-            .system
-            .equilibria(&p.derivation, &params)
-            .map_err(|e| ("unusable", e.to_string()))?;
-        let pstr = parameter_text(&p.system, &params);
-        if found.continuum {
-            return Err((
-                "not-isolated",
-                format!(
-                    "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
-                ),
-            ));
-        }
         let stated_pts: Vec<&[f64]> = v.chunks(n).collect();
-        let in_range = |q: &[f64]| {
-            q.iter().enumerate().all(|(i, x)| {
-                periodic[i]
-                    || (p.system.coordinates[i].range.0 - 1e-9
-                        ..=p.system.coordinates[i].range.1 + 1e-9)
-                        .contains(x)
-            })
-        };
-        for (q, st) in &found.points {
-            let hit = stated_pts.iter().position(|s| {
-                s.iter()
-                    .zip(q)
-                    .enumerate()
-                    .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
-            });
-            match hit {
-                None => {
-                    let at = names
-                        .iter()
-                        .zip(q)
-                        .map(|(c, x)| format!("{c} = {}", fmt_value(*x)))
-                        .collect::<Vec<_>>()
-                        .join(", ");
-                    return Err((
-                        "missing-equilibrium",
-                        format!(
-                            "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
-                        ),
-                    ));
-                }
-                Some(j) => {
-                    if let Some(want) = part.stability.get(j)
-                        && want != st.name()
-                    {
-                        return Err((
-                            "wrong-stability",
-                            format!(
-                                "`{}` is stated {want}, but it is {} (for {pstr})",
-                                part.answers[j],
-                                st.name()
-                            ),
-                        ));
-                    }
-                }
-            }
+        if let Some(f) = compare_equilibria(part, p, &params, &stated_pts)? {
+            return Err(f.details(&parameter_text(&p.system, &params)));
         }
-        for (j, s) in stated_pts.iter().enumerate() {
-            if in_range(s)
-                && !found.points.iter().any(|(q, _)| {
-                    s.iter()
-                        .zip(q)
-                        .enumerate()
-                        .all(|(i, (a, b))| same_coordinate(periodic[i], *a, *b))
-                })
-            {
-                return Err((
-                    "spurious-equilibrium",
-                    format!(
-                        "`{}` is not among the equilibria the engine finds for {pstr}",
-                        part.answers[j]
-                    ),
-                ));
-            }
-        }
-        let _ = Stability::Stable;
     }
     Ok(())
 }
@@ -535,10 +591,11 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         seed_from(&[&problem.id, &part.id, "frequencies"]),
         FREQUENCY_SAMPLES,
     )
-    .map_err(|e| ("sampling", e))?;
+    .map_err(|e| Failed::new("sampling", e.to_string()))?;
     let mut roots = stated.clone();
     roots.extend(at.iter().copied());
-    let vals = values(&p.system, &roots, &samples).map_err(|e| ("sampling", e))?;
+    let vals =
+        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
@@ -546,7 +603,7 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
         let modes = p
             .system
             .modes_at(&p.derivation, &params, q0)
-            .map_err(|e| ("unusable", e.to_string()))?;
+            .map_err(|e| Failed::new("unusable", e.to_string()))?;
         let mut want: Vec<f64> = if part.squared {
             modes.frequencies.iter().map(|w| w * w).collect()
         } else {
@@ -560,10 +617,10 @@ fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check
             || !want
                 .iter()
                 .zip(&got)
-                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(1e-8)))
+                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(tolerance::EIGEN)))
         {
             let pstr = parameter_text(&p.system, &params);
-            return Err((
+            return Err(Failed::new(
                 "wrong-frequency",
                 format!(
                     "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}"

@@ -4,13 +4,15 @@
 
 use rustc_hash::FxHashMap;
 
+use super::common::{at_rest, invalid_reading, point_text, verdict};
 use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
-use super::points::PointSet;
+use super::error::CheckError;
 use super::prepare::{Prepared, prepare};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, ParseErrorKind, Reading, read, read_expr};
-use crate::mechanics::sample::seed_from;
+use super::tolerance;
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
+use super::{equations, lists};
+use crate::expr::{Id, Reading, read, read_expr};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 /// Checks answers to one problem, preparing each part once.
@@ -30,54 +32,44 @@ impl<'a> Checker<'a> {
 
     /// Checks `input` against part `part_id`. Errors are usage errors (no such part, a part
     /// that cannot be prepared), never a judgement of the input.
-    pub fn check(&mut self, part_id: &str, input: &str) -> Result<Verdict, String> {
+    pub fn check(&mut self, part_id: &str, input: &str) -> Result<Verdict, CheckError> {
         let part = self
             .problem
             .part(part_id)
-            .ok_or_else(|| format!("problem `{}` has no part `{part_id}`", self.problem.id))?;
-        if !self.prepared.contains_key(part_id) {
-            let p = prepare(self.problem, part)?;
-            self.prepared.insert(part_id.to_string(), p);
-        }
-        let p = self
-            .prepared
-            .get_mut(part_id)
-            .ok_or_else(|| "internal: preparation vanished".to_string())?;
+            .ok_or_else(|| CheckError::UnknownPart {
+                problem: self.problem.id.clone(),
+                part: part_id.to_string(),
+            })?;
+        let p = match self.prepared.entry(part_id.to_string()) {
+            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
+            std::collections::hash_map::Entry::Vacant(v) => v.insert(prepare(self.problem, part)?),
+        };
         Ok(check_prepared(self.problem, part, p, input))
     }
 }
 
 /// Checks one answer (preparing the part afresh; use [`Checker`] for many answers).
-pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, String> {
+pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, CheckError> {
     let mut p = prepare(problem, part)?;
     Ok(check_prepared(problem, part, &mut p, input))
 }
 
-/// A verdict skeleton.
-pub(super) fn verdict(problem: &Problem, part: &Part, status: Status) -> Verdict {
-    Verdict {
-        problem: problem.id.clone(),
-        part: part.id.clone(),
-        status,
-        score: if status == Status::Correct { 1.0 } else { 0.0 },
-        reading: ReadAs::default(),
-        diagnoses: Vec::new(),
-        seed: seed_from(&[&problem.id, &part.id]),
-        parse_error: None,
-    }
-}
-
 /// Checks against a prepared part.
-pub fn check_prepared(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
+pub(crate) fn check_prepared(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+    input: &str,
+) -> Verdict {
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
-            super::lists::check_list(problem, part, p, input)
+            lists::check_list(problem, part, p, input)
         }
         _ => match read(input, &p.context, &mut p.system.pool) {
             Err(e) => invalid_reading(problem, part, e),
             Ok(r) => match part.kind {
                 PartKind::Equation | PartKind::Equations => {
-                    super::equations::check_equations(problem, part, p, r)
+                    equations::check_equations(problem, part, p, r)
                 }
                 _ => check_expression(problem, part, p, r),
             },
@@ -87,60 +79,158 @@ pub fn check_prepared(problem: &Problem, part: &Part, p: &mut Prepared, input: &
     v
 }
 
-/// The verdict on an input that could not be read.
-pub fn invalid_reading(problem: &Problem, part: &Part, e: crate::expr::ParseError) -> Verdict {
-    let mut v = verdict(problem, part, Status::Invalid);
-    let d = match &e.kind {
-        ParseErrorKind::UnknownName { name, .. } => {
-            match part
-                .substitute
-                .iter()
-                .find(|(k, _)| crate::expr::names::normalize(k) == *name)
-            {
-                Some((k, val)) => Diagnosis::new(
-                    "substituted-symbol",
-                    format!("this part sets {k} = {val}: write your answer with {val}, not {k}"),
-                ),
-                None => Diagnosis::new("unknown-symbol", format!("{}; {}", e.kind, e.help())),
-            }
-        }
-        _ => Diagnosis::new("syntax", format!("{}; {}", e.kind, e.help())),
-    };
-    v.diagnoses.push(d);
-    v.parse_error = Some(e);
-    v
+/// What the comparison of an expression answer with its reference found, before it is put
+/// into words.
+enum Judgement {
+    /// Equal at every point.
+    Equal,
+    /// Off by a constant, which this part allows.
+    AllowedConstant,
+    /// A Lagrangian `f` times the reference.
+    ScaledLagrangian(f64),
+    /// A Lagrangian differing by a total time derivative.
+    EquivalentLagrangian,
+    /// Constants rounded (the diagnosis is the search's).
+    Rounded(Diagnosis),
+    /// The negative of the reference.
+    Negated,
+    /// `f` times the reference.
+    Factor(f64),
+    /// Undefined at sample `point`, where the reference is defined.
+    Undefined { point: usize },
+    /// Nothing that simple: search for the mistake.
+    Unexplained,
 }
 
-pub(super) fn point_text(p: &Prepared, k: usize) -> String {
-    let x = &p.points.points[k];
-    let mut parts = Vec::new();
-    for (i, c) in p.system.coordinates.iter().enumerate() {
-        parts.push(format!("{} = {}", c.name, fmt_value(x[1 + 3 * i])));
+impl Judgement {
+    /// Whether the answer is accepted.
+    fn accepts(&self) -> bool {
+        matches!(
+            self,
+            Judgement::Equal
+                | Judgement::AllowedConstant
+                | Judgement::ScaledLagrangian(_)
+                | Judgement::EquivalentLagrangian
+        )
     }
-    let off = 1 + 3 * p.system.n();
-    for (j, q) in p.system.parameters.iter().enumerate() {
-        parts.push(format!("{} = {}", q.name, fmt_value(x[off + j])));
+
+    /// The sentence for a judgement (none for a plain equality or an unexplained difference).
+    fn details(self, p: &Prepared) -> Option<Diagnosis> {
+        Some(match self {
+            Judgement::Equal | Judgement::Unexplained => return None,
+            Judgement::AllowedConstant => Diagnosis::new(
+                Code::UpToConstant,
+                "your answer differs from the reference by a constant; that is allowed here (the zero of potential energy is a free choice)",
+            ),
+            Judgement::ScaledLagrangian(f) => Diagnosis::new(
+                Code::EquivalentLagrangian,
+                format!(
+                    "your L is {} times the reference; a constant factor gives the same equations of motion",
+                    nice_fraction(f).unwrap_or_else(|| fmt_value(f))
+                ),
+            ),
+            Judgement::EquivalentLagrangian => Diagnosis::new(
+                Code::EquivalentLagrangian,
+                "your L differs from the reference by a total time derivative (or a constant); it gives the same equations of motion",
+            ),
+            Judgement::Rounded(d) => d,
+            Judgement::Negated => Diagnosis::new(
+                Code::SignError,
+                "sign error: your answer is the negative of the right one",
+            ),
+            Judgement::Factor(f) => Diagnosis::new(
+                Code::ConstantFactor,
+                match nice_fraction(f) {
+                    Some(n) => format!(
+                        "your answer is {n} times the right one: check the numerical factors (a ½, a 2)"
+                    ),
+                    None => format!(
+                        "your answer is off by a constant factor of about {}",
+                        fmt_value(f)
+                    ),
+                },
+            ),
+            Judgement::Undefined { point } => Diagnosis::new(
+                Code::Undefined,
+                format!(
+                    "your answer is undefined at {}, where the correct one is defined",
+                    point_text(p, point)
+                ),
+            ),
+        })
     }
-    parts.join(", ")
+}
+
+/// The expression of a reading, or why a reading is of the wrong kind.
+fn expression_of(r: Reading) -> Result<Id, &'static str> {
+    match r {
+        Reading::Expr(e, _) => Ok(e),
+        Reading::Equation { .. } => Err("this part asks for an expression, not an equation"),
+        Reading::List(..) | Reading::System(..) => {
+            Err("this part asks for one expression, not a list")
+        }
+    }
+}
+
+/// The part's reference expression, read once.
+fn reference_of(part: &Part, p: &mut Prepared) -> Option<Id> {
+    if let Some(r) = p.reference.get() {
+        return r.first().and_then(|x| x.first()).copied();
+    }
+    let id = read_expr(&part.answers[0], &p.context, &mut p.system.pool).ok()?;
+    p.reference.get_or_init(|| vec![vec![id]]);
+    Some(id)
+}
+
+/// A sum of unlike terms, or a different dimension from the reference.
+fn dimension_check(problem: &Problem, p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
+    match p.system.pool.dimension(s, &problem.dims) {
+        Err(e) => Some(Diagnosis::new(Code::Dimension, e.to_string())),
+        Ok(Some(ds)) => match p.system.pool.dimension(reference, &problem.dims) {
+            Ok(Some(dr)) if ds != dr && !p.system.pool.is_zero(s) => Some(Diagnosis::new(
+                Code::Dimension,
+                format!("your answer has dimension {ds}, but the answer must be {dr}"),
+            )),
+            _ => None,
+        },
+        Ok(None) => None,
+    }
+}
+
+/// Classifies how the answer `s` relates to the reference.
+fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) -> Judgement {
+    let lagrangian = part.kind == PartKind::Lagrangian;
+    match *rel {
+        Relation::Equal => Judgement::Equal,
+        Relation::UpToConstant(_) if part.up_to_constant || lagrangian => {
+            Judgement::AllowedConstant
+        }
+        Relation::Factor(f) if lagrangian => Judgement::ScaledLagrangian(f),
+        Relation::Factor(f) if (f - 1.0).abs() < tolerance::ROUNDED => {
+            match rounded(p, s, reference) {
+                Some(d) => Judgement::Rounded(d),
+                None => Judgement::Factor(f),
+            }
+        }
+        Relation::Factor(f) if (f + 1.0).abs() < tolerance::NUMBER => Judgement::Negated,
+        Relation::Factor(f) => Judgement::Factor(f),
+        Relation::Undefined { point } => Judgement::Undefined { point },
+        Relation::UpToConstant(_) | Relation::Different { .. } => {
+            if lagrangian && equivalent_lagrangian(p, s, reference) {
+                Judgement::EquivalentLagrangian
+            } else {
+                Judgement::Unexplained
+            }
+        }
+    }
 }
 
 fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
-    let s = match r {
-        Reading::Expr(e, _) => e,
-        Reading::Equation { .. } => {
+    let s = match expression_of(r) {
+        Ok(s) => s,
+        Err(why) => {
             let mut v = verdict(problem, part, Status::Invalid);
-            v.diagnoses.push(Diagnosis::new(
-                "wrong-kind",
-                "this part asks for an expression, not an equation",
-            ));
-            return v;
-        }
-        Reading::List(..) | Reading::System(..) => {
-            let mut v = verdict(problem, part, Status::Invalid);
-            v.diagnoses.push(Diagnosis::new(
-                "wrong-kind",
-                "this part asks for one expression, not a list",
-            ));
+            v.diagnoses.push(Diagnosis::new(Code::WrongKind, why));
             return v;
         }
     };
@@ -150,110 +240,36 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         unicode: p.system.pool.unicode(s),
         note: None,
     };
-    let reference = match p.reference.get() {
-        Some(r) => r.first().and_then(|x| x.first()).copied().ok_or(()),
-        None => {
-            let r = read_expr(&part.answers[0], &p.context, &mut p.system.pool).map_err(|_| ());
-            if let Ok(id) = r {
-                let _ = p.reference.set(vec![vec![id]]);
-            }
-            r
-        }
-    };
-    let Ok(reference) = reference else {
+    let Some(reference) = reference_of(part, p) else {
         v.status = Status::Invalid;
         v.diagnoses.push(Diagnosis::new(
-            "syntax",
+            Code::Syntax,
             "the reference answer of this part cannot be read",
         ));
         return v;
     };
-    // Dimensions: a sum of unlike terms, or a different dimension from the reference.
-    match p.system.pool.dimension(s, &problem.dims) {
-        Err(e) => v.diagnoses.push(Diagnosis::new("dimension", e.to_string())),
-        Ok(Some(ds)) => {
-            if let Ok(Some(dr)) = p.system.pool.dimension(reference, &problem.dims)
-                && ds != dr
-                && !p.system.pool.is_zero(s)
-            {
-                v.diagnoses.push(Diagnosis::new(
-                    "dimension",
-                    format!("your answer has dimension {ds}, but the answer must be {dr}"),
-                ));
-            }
-        }
-        Ok(None) => {}
-    }
+    v.diagnoses
+        .extend(dimension_check(problem, p, s, reference));
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
         Ok(r) => r,
         Err(e) => {
-            v.diagnoses.push(Diagnosis::new("not-equal", e));
+            v.diagnoses
+                .push(Diagnosis::new(Code::NotEqual, e.to_string()));
             return v;
         }
     };
-    let lagrangian = part.kind == PartKind::Lagrangian;
-    match rel {
-        Relation::Equal => v.status = Status::Correct,
-        Relation::UpToConstant(_) if part.up_to_constant || lagrangian => {
-            v.status = Status::Correct;
-            v.diagnoses.push(Diagnosis::new(
-                "up-to-constant",
-                "your answer differs from the reference by a constant; that is allowed here (the zero of potential energy is a free choice)",
-            ));
-        }
-        Relation::Factor(f) if lagrangian => {
-            v.status = Status::Correct;
-            v.diagnoses.push(Diagnosis::new(
-                "equivalent-lagrangian",
-                format!("your L is {} times the reference; a constant factor gives the same equations of motion", nice_fraction(f).unwrap_or_else(|| fmt_value(f))),
-            ));
-        }
-        Relation::Factor(f) if (f - 1.0).abs() < 1e-2 && rounded(p, s, reference).is_some() => {
-            if let Some(d) = rounded(p, s, reference) {
-                v.diagnoses.push(d);
-            }
-        }
-        Relation::Factor(f) if (f + 1.0).abs() < 1e-9 => {
-            v.diagnoses.push(Diagnosis::new(
-                "sign-error",
-                "sign error: your answer is the negative of the right one",
-            ));
-        }
-        Relation::Factor(f) => v.diagnoses.push(Diagnosis::new(
-            "constant-factor",
-            match nice_fraction(f) {
-                Some(n) => format!(
-                    "your answer is {n} times the right one: check the numerical factors (a ½, a 2)"
-                ),
-                None => format!(
-                    "your answer is off by a constant factor of about {}",
-                    fmt_value(f)
-                ),
-            },
-        )),
-        Relation::Undefined { point } => v.diagnoses.push(Diagnosis::new(
-            "undefined",
-            format!(
-                "your answer is undefined at {}, where the correct one is defined",
-                point_text(p, point)
-            ),
-        )),
-        Relation::UpToConstant(_) | Relation::Different { .. } => {
-            if lagrangian && equivalent_lagrangian(p, s, reference) {
-                v.status = Status::Correct;
-                v.diagnoses.push(Diagnosis::new(
-                    "equivalent-lagrangian",
-                    "your L differs from the reference by a total time derivative (or a constant); it gives the same equations of motion",
-                ));
-            } else {
-                diagnose_expression(problem, part, p, s, reference, rel, &mut v);
-            }
-        }
+    let judgement = judge(part, p, s, reference, &rel);
+    if judgement.accepts() {
+        v.status = Status::Correct;
+    }
+    match judgement {
+        Judgement::Unexplained => diagnose_expression(part, p, s, reference, rel, &mut v),
+        j => v.diagnoses.extend(j.details(p)),
     }
     if v.status == Status::Correct {
         v.score = 1.0;
         v.diagnoses
-            .retain(|d| matches!(d.code, "up-to-constant" | "equivalent-lagrangian"));
+            .retain(|d| matches!(d.code, Code::UpToConstant | Code::EquivalentLagrangian));
     }
     v
 }
@@ -273,10 +289,10 @@ fn equivalent_lagrangian(p: &mut Prepared, a: Id, b: Id) -> bool {
     }
     let mut factor: Option<f64> = None;
     for (x, y) in ea.into_iter().zip(eb) {
-        match relate(&p.system, x, y, &p.points, 1e-9) {
+        match relate(&p.system, x, y, &p.points, tolerance::SAME) {
             Ok(Relation::Equal) => factor = factor.or(Some(1.0)),
             Ok(Relation::Factor(f)) => {
-                if factor.is_some_and(|g| (g - f).abs() > 1e-9 * f.abs()) {
+                if factor.is_some_and(|g| (g - f).abs() > tolerance::NUMBER * f.abs()) {
                     return false;
                 }
                 factor = Some(f);
@@ -287,8 +303,147 @@ fn equivalent_lagrangian(p: &mut Prepared, a: Id, b: Id) -> bool {
     true
 }
 
+/// A mistake the search behind a wrong expression found.
+enum Mistake {
+    /// T + V where the Lagrangian T − V is asked.
+    PlusForLagrangian,
+    /// T + V where the energy function h (not T + V here) is asked.
+    PlusForEnergy,
+    /// The Lagrangian where `what` is asked.
+    GaveLagrangian { what: &'static str },
+    /// Found by one of the shared searches (rounding, swapped symbols, a term).
+    Found(Diagnosis),
+    /// Right at rest: a velocity-dependent term is wrong.
+    VelocityTerm,
+    /// Off by the constant `c`.
+    Constant(f64),
+    /// Yours is `yours` at sample `point` where it should be `want`.
+    DiffersAt { point: usize, yours: f64, want: f64 },
+    /// No more to say.
+    NotEqual,
+}
+
+impl Mistake {
+    /// The sentence for a mistake.
+    fn details(self, p: &Prepared) -> Diagnosis {
+        match self {
+            Mistake::PlusForLagrangian => {
+                Diagnosis::new(Code::TPlusV, "you wrote T + V; the Lagrangian is L = T − V")
+            }
+            Mistake::PlusForEnergy => Diagnosis::new(
+                Code::TPlusV,
+                "you wrote T + V, but here h = Σ q̇ ∂L/∂q̇ − L is not T + V: T is not a quadratic form in the velocities (the frame moves), so compute h from its definition",
+            ),
+            Mistake::GaveLagrangian { what } => Diagnosis::new(
+                Code::GaveLagrangian,
+                format!("that is the Lagrangian L; this part asks for {what}"),
+            ),
+            Mistake::Found(d) => d,
+            Mistake::VelocityTerm => Diagnosis::new(
+                Code::VelocityTerm,
+                "your answer is right when nothing moves, so the mistake is in a velocity-dependent term (a missing or wrong q'² or q'₁q'₂ term)",
+            ),
+            Mistake::Constant(c) => Diagnosis::new(
+                Code::NotEqual,
+                format!(
+                    "your answer differs from the right one by the constant {}",
+                    fmt_value(c)
+                ),
+            ),
+            Mistake::DiffersAt { point, yours, want } => Diagnosis::new(
+                Code::NotEqual,
+                format!(
+                    "not equal to the expected answer: at {}, yours is {} but it should be {}",
+                    point_text(p, point),
+                    fmt_value(yours),
+                    fmt_value(want)
+                ),
+            ),
+            Mistake::NotEqual => Diagnosis::new(Code::NotEqual, "not equal to the expected answer"),
+        }
+    }
+}
+
+/// T + V, or the Lagrangian, given for another quantity.
+fn wrong_quantity(part: &Part, p: &mut Prepared, s: Id) -> Vec<Mistake> {
+    let eq_const = |p: &mut Prepared, cand: Id| {
+        matches!(
+            relate(&p.system, s, cand, &p.points, tolerance::SAME),
+            Ok(Relation::Equal | Relation::UpToConstant(_))
+        )
+    };
+    let mut out = Vec::new();
+    if let (Some(t), Some(v)) = (p.system.kinetic, p.system.potential) {
+        let tv = p.system.pool.add(t, v);
+        if part.kind == PartKind::Lagrangian && eq_const(p, tv) {
+            out.push(Mistake::PlusForLagrangian);
+        }
+        if part.quantity == Quantity::EnergyFunction && eq_const(p, tv) {
+            out.push(Mistake::PlusForEnergy);
+        }
+    }
+    let what = match part.quantity {
+        Quantity::Kinetic => "the kinetic energy T",
+        Quantity::Potential => "the potential energy V",
+        Quantity::EnergyFunction => "the energy function h",
+        Quantity::Momentum(_) => "the momentum",
+        _ => return out,
+    };
+    if eq_const(p, p.system.lagrangian) {
+        out.push(Mistake::GaveLagrangian { what });
+    }
+    out
+}
+
+/// Rounded constants, swapped symbols, a sign or a factor in one term.
+fn term_mistakes(p: &mut Prepared, s: Id, reference: Id) -> Vec<Mistake> {
+    let eq = |p: &mut Prepared, cand: Id| {
+        relate(&p.system, cand, reference, &p.points, tolerance::SAME).ok() == Some(Relation::Equal)
+    };
+    let mut found = Vec::new();
+    found.extend(rounded(p, s, reference));
+    found.extend(swapped(p, s, &mut |p, c| eq(p, c)));
+    found.extend(sign_in_term(p, s, &mut |p, c| eq(p, c)));
+    let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
+        let vals = values(&p.system, &[s, reference, t], &p.points).ok()?;
+        let x = vals
+            .into_iter()
+            .flatten()
+            .find(|x| x[2].abs() > tolerance::ZERO)?;
+        Some(1.0 + (x[1] - x[0]) / x[2])
+    };
+    found.extend(factor_in_term(p, s, &mut factor_at, &mut |p, c| eq(p, c)));
+    found.into_iter().map(Mistake::Found).collect()
+}
+
+/// Velocity-dependent terms: equal when every velocity is zero.
+fn velocity_term(p: &mut Prepared, s: Id, reference: Id) -> bool {
+    at_rest(p).is_some_and(|still| {
+        relate(&p.system, s, reference, &still, tolerance::SAME).ok() == Some(Relation::Equal)
+    }) && !p.system.pool.variables(reference).iter().all(|x| x.1 == 0)
+}
+
+/// What is left to say when no mistake was found.
+fn unexplained(p: &Prepared, s: Id, reference: Id, rel: Relation) -> Mistake {
+    match rel {
+        Relation::UpToConstant(c) => Mistake::Constant(c),
+        Relation::Different { point } => {
+            let vals = values(&p.system, &[s, reference], &p.points).ok();
+            match vals.and_then(|x| x.get(point).cloned().flatten()) {
+                Some(x) => Mistake::DiffersAt {
+                    point,
+                    yours: x[0],
+                    want: x[1],
+                },
+                None => Mistake::NotEqual,
+            }
+        }
+        _ => Mistake::NotEqual,
+    }
+}
+
+/// Searches for the mistake behind a wrong expression and adds its sentences to `v`.
 fn diagnose_expression(
-    problem: &Problem,
     part: &Part,
     p: &mut Prepared,
     s: Id,
@@ -296,127 +451,14 @@ fn diagnose_expression(
     rel: Relation,
     v: &mut Verdict,
 ) {
-    let eq = |p: &mut Prepared, cand: Id| {
-        relate(&p.system, cand, reference, &p.points, 1e-9).ok() == Some(Relation::Equal)
-    };
-    let eq_const = |p: &mut Prepared, cand: Id, r: Id| {
-        matches!(
-            relate(&p.system, cand, r, &p.points, 1e-9),
-            Ok(Relation::Equal | Relation::UpToConstant(_))
-        )
-    };
-    let before = v.diagnoses.len();
-    let sys = &p.system;
-    let (t, vv) = (sys.kinetic, sys.potential);
-    if part.kind == PartKind::Lagrangian
-        && let (Some(t), Some(vv)) = (t, vv)
-    {
-        let tv = p.system.pool.add(t, vv);
-        if eq_const(p, s, tv) {
-            v.diagnoses.push(Diagnosis::new(
-                "t-plus-v",
-                "you wrote T + V; the Lagrangian is L = T − V",
-            ));
-        }
+    let mut mistakes = wrong_quantity(part, p, s);
+    mistakes.extend(term_mistakes(p, s, reference));
+    if mistakes.is_empty() && velocity_term(p, s, reference) {
+        mistakes.push(Mistake::VelocityTerm);
     }
-    if part.quantity == Quantity::EnergyFunction
-        && let (Some(t), Some(vv)) = (t, vv)
-    {
-        let tv = p.system.pool.add(t, vv);
-        if eq_const(p, s, tv) {
-            v.diagnoses.push(Diagnosis::new(
-                "t-plus-v",
-                "you wrote T + V, but here h = Σ q̇ ∂L/∂q̇ − L is not T + V: T is not a quadratic form in the velocities (the frame moves), so compute h from its definition",
-            ));
-        }
+    if mistakes.is_empty() {
+        mistakes.push(unexplained(p, s, reference, rel));
     }
-    if matches!(
-        part.quantity,
-        Quantity::Kinetic | Quantity::Potential | Quantity::EnergyFunction | Quantity::Momentum(_)
-    ) {
-        let l = p.system.lagrangian;
-        if eq_const(p, s, l) {
-            let what = match part.quantity {
-                Quantity::Kinetic => "the kinetic energy T",
-                Quantity::Potential => "the potential energy V",
-                Quantity::EnergyFunction => "the energy function h",
-                _ => "the momentum",
-            };
-            v.diagnoses.push(Diagnosis::new(
-                "gave-lagrangian",
-                format!("that is the Lagrangian L; this part asks for {what}"),
-            ));
-        }
-    }
-    if let Some(d) = rounded(p, s, reference) {
-        v.diagnoses.push(d);
-    }
-    if let Some(d) = swapped(p, s, &mut |p, c| eq(p, c)) {
-        v.diagnoses.push(d);
-    }
-    if let Some(d) = sign_in_term(p, s, &mut |p, c| eq(p, c)) {
-        v.diagnoses.push(d);
-    }
-    let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
-        let vals = values(&p.system, &[s, reference, t], &p.points).ok()?;
-        let x = vals.into_iter().flatten().find(|x| x[2].abs() > 1e-9)?;
-        Some(1.0 + (x[1] - x[0]) / x[2])
-    };
-    if let Some(d) = factor_in_term(p, s, &mut factor_at, &mut |p, c| eq(p, c)) {
-        v.diagnoses.push(d);
-    }
-    // Velocity-dependent terms: equal when every velocity is zero.
-    if v.diagnoses.len() == before
-        && let Some(still) = at_rest(p)
-        && relate(&p.system, s, reference, &still, 1e-9).ok() == Some(Relation::Equal)
-        && !p.system.pool.variables(reference).iter().all(|x| x.1 == 0)
-    {
-        v.diagnoses.push(Diagnosis::new(
-            "velocity-term",
-            "your answer is right when nothing moves, so the mistake is in a velocity-dependent term (a missing or wrong q'² or q'₁q'₂ term)",
-        ));
-    }
-    if v.diagnoses.len() == before {
-        let msg = match rel {
-            Relation::UpToConstant(c) => format!(
-                "your answer differs from the right one by the constant {}",
-                fmt_value(c)
-            ),
-            Relation::Different { point } => {
-                let vals = values(&p.system, &[s, reference], &p.points).ok();
-                let at = vals.and_then(|x| x.get(point).cloned().flatten());
-                match at {
-                    Some(x) => format!(
-                        "not equal to the expected answer: at {}, yours is {} but it should be {}",
-                        point_text(p, point),
-                        fmt_value(x[0]),
-                        fmt_value(x[1])
-                    ),
-                    None => "not equal to the expected answer".into(),
-                }
-            }
-            _ => "not equal to the expected answer".into(),
-        };
-        v.diagnoses.push(Diagnosis::new("not-equal", msg));
-    }
-    let _ = problem;
-}
-
-/// The sample points with every velocity (and acceleration) set to zero.
-pub(super) fn at_rest(p: &Prepared) -> Option<PointSet> {
-    let n = p.system.n();
-    let points = p
-        .points
-        .points
-        .iter()
-        .map(|x| {
-            let mut y = x.clone();
-            for i in 0..n {
-                y[1 + 3 * i + 1] = 0.0;
-                y[1 + 3 * i + 2] = 0.0;
-            }
-            y
-        })
-        .collect();
-    Some(PointSet { points })
+    v.diagnoses
+        .extend(mistakes.into_iter().map(|m| m.details(p)));
 }

@@ -1,6 +1,8 @@
 //! Numeric relations between two expressions over a point set.
 
+use super::error::CheckError;
 use super::points::PointSet;
+use super::tolerance;
 use crate::expr::{Id, Program};
 use crate::mechanics::System;
 
@@ -19,19 +21,21 @@ pub enum Relation {
     Undefined { point: usize },
 }
 
-/// Relative tolerance of numeric comparison, with an absolute floor relative to the scale
-/// of the values compared.
-pub const TOLERANCE: f64 = 1e-9;
+pub use super::tolerance::TOLERANCE;
 
 /// Whether `x` and `y` agree to `tol` relative to `scale`.
 pub fn close(x: f64, y: f64, scale: f64, tol: f64) -> bool {
-    (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + 1e-300)
+    (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + tolerance::TINY)
 }
 
 /// Evaluates `ids` at each point; `None` where undefined.
-pub fn values(sys: &System, ids: &[Id], pts: &PointSet) -> Result<Vec<Option<Vec<f64>>>, String> {
+pub fn values(
+    sys: &System,
+    ids: &[Id],
+    pts: &PointSet,
+) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     let prog = Program::compile(&sys.pool, ids, &sys.layout())
-        .map_err(|u| format!("`{}` is not a symbol of this problem", u.name))?;
+        .map_err(|u| CheckError::UnknownSymbol { name: u.name })?;
     let mut scratch = prog.scratch();
     Ok(pts
         .points
@@ -45,7 +49,13 @@ pub fn values(sys: &System, ids: &[Id], pts: &PointSet) -> Result<Vec<Option<Vec
 
 /// How `a` relates to `b` (the reference) over `pts`. Points where `b` is undefined are
 /// skipped.
-pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Relation, String> {
+pub fn relate(
+    sys: &System,
+    a: Id,
+    b: Id,
+    pts: &PointSet,
+    tol: f64,
+) -> Result<Relation, CheckError> {
     let vals = values(sys, &[b], pts)?;
     let avals = values(sys, &[a], pts)?;
     let mut pairs = Vec::new();
@@ -57,7 +67,7 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
         pairs.push((k, va[0], vb[0]));
     }
     if pairs.is_empty() {
-        return Err("the reference is undefined at every sample point".into());
+        return Err(CheckError::ReferenceUndefined);
     }
     let scale = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
     if pairs.iter().all(|&(_, x, y)| close(x, y, scale, tol)) {
@@ -86,7 +96,10 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
             return Ok(Relation::UpToConstant(c));
         }
     }
-    if let Some(&(_, x0, y0)) = pairs.iter().find(|p| p.2.abs() > 1e-12 * (scale + 1e-300)) {
+    if let Some(&(_, x0, y0)) = pairs
+        .iter()
+        .find(|p| p.2.abs() > tolerance::FACTOR_FLOOR * (scale + tolerance::TINY))
+    {
         let f = x0 / y0;
         if f.is_finite()
             && f != 0.0
@@ -106,7 +119,7 @@ pub fn relate(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> Result<Re
 
 /// Whether `a = c·b` with c nonzero and independent of the state (it may depend on the
 /// parameters, like the m in m·r·(ω² − 2ga) = 0).
-pub fn proportional(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
+pub(crate) fn proportional(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
     let Some(moved) = moved_states(sys, pts) else {
         return false;
     };
@@ -178,8 +191,8 @@ fn monomial_ratio(sys: &System, a: Id, b: Id, pts: &PointSet) -> bool {
                 return false;
             }
             let e = q.log2();
-            if (e * 2.0 - (e * 2.0).round()).abs() > 1e-6
-                || exponent.is_some_and(|f| (f - e).abs() > 1e-6)
+            if (e * 2.0 - (e * 2.0).round()).abs() > tolerance::EXPONENT
+                || exponent.is_some_and(|f| (f - e).abs() > tolerance::EXPONENT)
             {
                 return false;
             }
@@ -208,7 +221,7 @@ fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
 }
 
 /// Parameter values for a message: `g = 9.8100, l = 1.2000`.
-pub fn parameter_text(sys: &System, params: &[f64]) -> String {
+pub(crate) fn parameter_text(sys: &System, params: &[f64]) -> String {
     sys.parameters
         .iter()
         .zip(params)
@@ -221,7 +234,7 @@ pub fn parameter_text(sys: &System, params: &[f64]) -> String {
 pub fn fmt_value(x: f64) -> String {
     let pi = std::f64::consts::PI;
     for (k, name) in [(1.0, "π"), (-1.0, "−π"), (0.5, "π/2"), (-0.5, "−π/2")] {
-        if (x - k * pi).abs() < 1e-9 {
+        if (x - k * pi).abs() < tolerance::ANGLE {
             return name.to_string();
         }
     }

@@ -5,7 +5,8 @@
 
 use super::compare::{Relation, relate};
 use super::prepare::Prepared;
-use super::verdict::Diagnosis;
+use super::tolerance;
+use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Sym};
 use rustc_hash::FxHashMap;
 
@@ -25,7 +26,7 @@ pub fn nice_fraction(c: f64) -> Option<String> {
     }
     for q in 1..=12i64 {
         let pn = (c * q as f64).round();
-        if (pn / q as f64 - c).abs() <= 1e-9 * (1.0 + c.abs()) && pn != 0.0 {
+        if (pn / q as f64 - c).abs() <= tolerance::NUMBER * (1.0 + c.abs()) && pn != 0.0 {
             let p = pn as i64;
             return Some(
                 match (p, q) {
@@ -65,7 +66,7 @@ pub fn sign_in_term(
         let cand = p.system.pool.sub(e, t2);
         if holds(p, cand) {
             return Some(Diagnosis::new(
-                "sign-error",
+                Code::SignError,
                 format!(
                     "sign error: the term {} should have the opposite sign",
                     p.system.pool.unicode(t)
@@ -93,7 +94,7 @@ pub fn factor_in_term(
         let Some(nice) = nice_fraction(c) else {
             continue;
         };
-        if (c - 1.0).abs() < 1e-9 || (c + 1.0).abs() < 1e-9 {
+        if (c - 1.0).abs() < tolerance::NUMBER || (c + 1.0).abs() < tolerance::NUMBER {
             continue;
         }
         let cm1 = p.system.pool.num(rational(c - 1.0));
@@ -101,7 +102,7 @@ pub fn factor_in_term(
         let cand = p.system.pool.add(e, add);
         if holds(p, cand) {
             return Some(Diagnosis::new(
-                "constant-factor",
+                Code::ConstantFactor,
                 format!(
                     "the term {} is off by a factor: it should be {nice} times what you wrote",
                     p.system.pool.unicode(t)
@@ -116,7 +117,7 @@ pub fn factor_in_term(
 fn rational(x: f64) -> num_rational::BigRational {
     for q in 1..=12i64 {
         let pn = (x * q as f64).round();
-        if (pn / q as f64 - x).abs() <= 1e-9 * (1.0 + x.abs()) {
+        if (pn / q as f64 - x).abs() <= tolerance::NUMBER * (1.0 + x.abs()) {
             return num_rational::BigRational::new((pn as i64).into(), q.into());
         }
     }
@@ -157,7 +158,7 @@ pub fn swapped(
                 );
                 let (va, vb) = (p.system.pool.sym(&na), p.system.pool.sym(&nb));
                 return Some(Diagnosis::new(
-                    "swapped-symbols",
+                    Code::SwappedSymbols,
                     format!(
                         "{} and {} are swapped: exchanging them gives the right answer",
                         p.system.pool.unicode(va),
@@ -170,10 +171,10 @@ pub fn swapped(
     None
 }
 
-/// Agreement to only a few digits: `a` is within 1e-2 of `b` everywhere but not within the
-/// tolerance.
+/// Agreement to only a few digits: `a` is within [`tolerance::ROUNDED`] of `b` everywhere but
+/// not within the tolerance.
 pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
-    let r = relate(&p.system, a, b, &p.points, 1e-2).ok()?;
+    let r = relate(&p.system, a, b, &p.points, tolerance::ROUNDED).ok()?;
     if r != Relation::Equal {
         return None;
     }
@@ -182,7 +183,7 @@ pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
         .find(|k| relate(&p.system, a, b, &p.points, 10f64.powi(-k)).ok() == Some(Relation::Equal))
         .unwrap_or(1);
     Some(Diagnosis::new(
-        "rounded-constant",
+        Code::RoundedConstant,
         format!(
             "your answer agrees only to about {digits} significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"
         ),

@@ -6,27 +6,28 @@
 use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
-use super::answer::{at_rest, point_text, verdict};
-use super::compare::{Relation, close, relate, values};
+use super::common::{at_rest, point_text, verdict};
+use super::compare::{Relation, relate, values};
 use super::diagnose::{factor_in_term, sign_in_term, swapped};
+use super::error::CheckError;
 use super::points::PointSet;
-use super::prepare::{Failure, Prepared};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
+use super::prepare::Prepared;
+use super::tolerance;
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Reading};
 use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
 
 /// True accelerations at every point.
-pub fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
+pub(crate) fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     if let Some(a) = p.accelerations.get() {
         return Ok(a.clone());
     }
     let a = compute_accelerations(p)?;
-    let _ = p.accelerations.set(a.clone());
-    Ok(a)
+    Ok(p.accelerations.get_or_init(|| a).clone())
 }
 
-fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure> {
+fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
     let sys = &p.system;
     if !sys.constraints.is_empty() {
         let mut s = sys.clone();
@@ -42,7 +43,8 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure>
             })
             .collect());
     }
-    let dynamics = Dynamics::new(sys, &p.derivation).map_err(|e| ("unusable", e.to_string()))?;
+    let dynamics =
+        Dynamics::new(sys, &p.derivation).map_err(|error| CheckError::Dynamics { error })?;
     let mut scratch = dynamics.scratch();
     Ok(p.points
         .points
@@ -54,11 +56,11 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, Failure>
 /// Whether the equations `res` determine the true accelerations (`equations`), or hold at
 /// them (`equation`). Returns a description of the failure. The same tests as the checker's:
 /// each equation holds at the true accelerations, and together they have full rank.
-pub fn equations_hold(
+pub(crate) fn equations_hold(
     p: &mut Prepared,
     res: &[Id],
     system: bool,
-) -> Result<Option<String>, Failure> {
+) -> Result<Option<String>, CheckError> {
     let n = p.system.n();
     if system && res.len() != n {
         return Ok(Some(format!("{} equations for {n} coordinates", res.len())));
@@ -95,7 +97,7 @@ pub fn equations_hold(
 type AffineRow = (Vec<f64>, f64);
 
 /// One equation's affine form at each point: the row A (coefficients of q'') and b (the rest).
-fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, String> {
+fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, CheckError> {
     let coords = p.system.coordinate_syms();
     let mut roots: Vec<Id> = coords
         .iter()
@@ -142,7 +144,7 @@ fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Op
         if coef.iter().any(|c| *c != 0.0) {
             any_acc = true;
         }
-        if (lhs + b).abs() > 1e-7 * (scale + 1e-300) {
+        if (lhs + b).abs() > tolerance::RESIDUAL * (scale + tolerance::TINY) {
             return Some(Miss::Residual(lhs + b));
         }
         checked += 1;
@@ -219,10 +221,9 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
         .collect()
 }
 
-/// Checks an answer to an `equation` or `equations` part.
-pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
-    let mut v = verdict(problem, part, Status::Incorrect);
-    // Collect the equations; a bare expression e is read as e = 0.
+/// The equations of a reading (a bare expression e read as e = 0, which sets `bare`), or
+/// `None` when an item is not an equation.
+fn equations_of(p: &mut Prepared, r: Reading) -> Option<(Vec<(Id, Id)>, bool)> {
     let mut eqs: Vec<(Id, Id)> = Vec::new();
     let mut bare = false;
     let mut flat = Vec::new();
@@ -237,25 +238,128 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 eqs.push((e, p.system.pool.zero()));
             }
             Reading::Equation { lhs, rhs, .. } => eqs.push((lhs, rhs)),
-            _ => {
-                let mut w = verdict(problem, part, Status::Invalid);
-                w.diagnoses.push(Diagnosis::new(
-                    "wrong-kind",
-                    "write equations separated by `;`",
-                ));
-                return w;
-            }
+            _ => return None,
         }
     }
-    let shown: Vec<String> = eqs
-        .iter()
-        .map(|&(l, r)| {
-            p.system
-                .pool
-                .display_equation(l, r, crate::expr::Style::Plain)
+    Some((eqs, bare))
+}
+
+/// How the equations were read: plain and unicode, joined by `; `.
+fn reading_of(p: &Prepared, eqs: &[(Id, Id)], bare: bool) -> ReadAs {
+    let shown = |style: crate::expr::Style| -> Vec<String> {
+        eqs.iter()
+            .map(|&(l, r)| p.system.pool.display_equation(l, r, style))
+            .collect()
+    };
+    ReadAs {
+        plain: shown(crate::expr::Style::Plain).join("; "),
+        unicode: shown(crate::expr::Style::Unicode).join("; "),
+        note: bare.then(|| "an expression without `=` was read as expression = 0".to_string()),
+    }
+}
+
+/// For an `equation` part whose reference has no accelerations: its residual (decided once).
+fn condition_of(part: &Part, p: &mut Prepared) -> Option<Id> {
+    if let Some(c) = p.condition.get() {
+        return *c;
+    }
+    let c = (part.kind == PartKind::Equation)
+        .then(|| crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool).ok())
+        .flatten()
+        .map(|(rl, rr)| p.system.pool.sub(rl, rr))
+        .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
+    *p.condition.get_or_init(|| c)
+}
+
+/// What comparing a condition (no accelerations) with the reference found.
+enum ConditionFinding {
+    /// Not one equation.
+    Count(usize),
+    /// The reference up to a nonzero factor.
+    Equivalent,
+    /// Undefined at sample `point`, where the reference is defined.
+    Undefined { point: usize },
+    /// A sign in one term, or swapped symbols (the search's diagnosis).
+    Found(Diagnosis),
+    /// Nothing more to say.
+    NotEquivalent,
+}
+
+impl ConditionFinding {
+    /// The sentence for a finding (none when the condition is right).
+    fn details(self, p: &Prepared) -> Option<Diagnosis> {
+        Some(match self {
+            ConditionFinding::Equivalent => return None,
+            ConditionFinding::Count(k) => Diagnosis::new(
+                Code::EquationCount,
+                format!("one equation is asked for, but you gave {k}"),
+            ),
+            ConditionFinding::Undefined { point } => Diagnosis::new(
+                Code::Undefined,
+                format!(
+                    "your equation is undefined at {}, where the correct one is defined",
+                    point_text(p, point)
+                ),
+            ),
+            ConditionFinding::Found(d) => d,
+            ConditionFinding::NotEquivalent => Diagnosis::new(
+                Code::NotEqual,
+                "this condition is not equivalent to the right one",
+            ),
         })
-        .collect();
-    let shown_u: Vec<String> = eqs
+    }
+}
+
+/// Compares a condition with the reference up to a nonzero factor.
+fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> ConditionFinding {
+    let [r0] = res else {
+        return ConditionFinding::Count(res.len());
+    };
+    let r0 = *r0;
+    let eq = |p: &mut Prepared, c: Id| {
+        super::compare::proportional(&p.system, c, reference, &p.points, tolerance::SAME)
+    };
+    match relate(&p.system, r0, reference, &p.points, part.tolerance) {
+        Ok(Relation::Equal | Relation::Factor(_)) => ConditionFinding::Equivalent,
+        _ if eq(p, r0) => ConditionFinding::Equivalent,
+        Ok(Relation::Undefined { point }) => ConditionFinding::Undefined { point },
+        _ => sign_in_term(p, r0, &mut |p, c| eq(p, c))
+            .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
+            .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found),
+    }
+}
+
+/// Checks an answer to an `equation` or `equations` part.
+pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
+    let mut v = verdict(problem, part, Status::Incorrect);
+    let Some((eqs, bare)) = equations_of(p, r) else {
+        let mut w = verdict(problem, part, Status::Invalid);
+        w.diagnoses.push(Diagnosis::new(
+            Code::WrongKind,
+            "write equations separated by `;`",
+        ));
+        return w;
+    };
+    v.reading = reading_of(p, &eqs, bare);
+    for &(l, r) in &eqs {
+        if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
+            v.diagnoses
+                .push(Diagnosis::new(Code::Dimension, e.to_string()));
+        }
+    }
+    let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
+    // A condition (a reference equation without accelerations, such as an equilibrium
+    // condition) is compared with the reference up to a nonzero factor.
+    if let Some(reference) = condition_of(part, p) {
+        let finding = judge_condition(part, p, &res, reference);
+        if matches!(finding, ConditionFinding::Equivalent) {
+            v.status = Status::Correct;
+            v.score = 1.0;
+        }
+        v.diagnoses.extend(finding.details(p));
+        return v;
+    }
+    let shown: Vec<String> = eqs
         .iter()
         .map(|&(l, r)| {
             p.system
@@ -263,92 +367,25 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 .display_equation(l, r, crate::expr::Style::Unicode)
         })
         .collect();
-    v.reading = ReadAs {
-        plain: shown.join("; "),
-        unicode: shown_u.join("; "),
-        note: bare.then(|| "an expression without `=` was read as expression = 0".to_string()),
-    };
-    for &(l, r) in &eqs {
-        if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
-            v.diagnoses.push(Diagnosis::new("dimension", e.to_string()));
-        }
-    }
-    let res: Vec<Id> = eqs.iter().map(|&(l, r)| p.system.pool.sub(l, r)).collect();
-    // A condition (a reference equation without accelerations, such as an equilibrium
-    // condition) is compared with the reference up to a nonzero factor.
-    let condition = match p.condition.get() {
-        Some(c) => *c,
-        None => {
-            let c = (part.kind == PartKind::Equation)
-                .then(|| {
-                    crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool)
-                        .ok()
-                })
-                .flatten()
-                .map(|(rl, rr)| p.system.pool.sub(rl, rr))
-                .filter(|&r| !p.system.pool.variables(r).iter().any(|v| v.1 == 2));
-            let _ = p.condition.set(c);
-            c
-        }
-    };
-    if let Some(reference) = condition {
-        {
-            if res.len() != 1 {
-                v.diagnoses.push(Diagnosis::new(
-                    "equation-count",
-                    format!("one equation is asked for, but you gave {}", res.len()),
-                ));
-                return v;
-            }
-            match relate(&p.system, res[0], reference, &p.points, part.tolerance) {
-                Ok(Relation::Equal | Relation::Factor(_)) => {
-                    v.status = Status::Correct;
-                    v.score = 1.0;
-                }
-                _ if super::compare::proportional(
-                    &p.system, res[0], reference, &p.points, 1e-9,
-                ) =>
-                {
-                    v.status = Status::Correct;
-                    v.score = 1.0;
-                }
-                Ok(Relation::Undefined { point }) => v.diagnoses.push(Diagnosis::new(
-                    "undefined",
-                    format!(
-                        "your equation is undefined at {}, where the correct one is defined",
-                        point_text(p, point)
-                    ),
-                )),
-                _ => {
-                    let r0 = res[0];
-                    let eq = |p: &mut Prepared, c: Id| {
-                        super::compare::proportional(&p.system, c, reference, &p.points, 1e-9)
-                    };
-                    let d = sign_in_term(p, r0, &mut |p, c| eq(p, c))
-                        .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)));
-                    v.diagnoses.push(d.unwrap_or_else(|| {
-                        Diagnosis::new(
-                            "not-equal",
-                            "this condition is not equivalent to the right one",
-                        )
-                    }));
-                }
-            }
-            return v;
-        }
-    }
-    let n = p.system.n();
+    check_motion(part, p, &res, &shown, &mut v);
+    v
+}
+
+/// Equations of motion: each must hold at the true accelerations and together (for a
+/// system) determine them. Adds the diagnoses and score to `v`.
+fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: &mut Verdict) {
     let truth = match true_accelerations(p) {
         Ok(t) => t,
-        Err((_, m)) => {
-            v.diagnoses.push(Diagnosis::new("not-equal", m));
-            return v;
+        Err(e) => {
+            v.diagnoses
+                .push(Diagnosis::new(Code::NotEqual, e.to_string()));
+            return;
         }
     };
     let pts = p.points.clone();
     let ok: Vec<bool> = res.iter().map(|&r| holds(p, r, &pts, &truth)).collect();
     let want = if part.kind == PartKind::Equations {
-        n
+        p.system.n()
     } else {
         1
     };
@@ -362,7 +399,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     let rank = rank_of(p, &holding);
     if res.len() != want {
         v.diagnoses.push(Diagnosis::new(
-            "equation-count",
+            Code::EquationCount,
             format!(
                 "{want} equation{} {} asked for, but you gave {}",
                 if want == 1 { "" } else { "s" },
@@ -374,16 +411,12 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         if rank == want {
             v.status = Status::Correct;
         } else {
-            v.diagnoses.push(Diagnosis::new(
-                "dependent-equations",
+            v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
                 "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
             ));
         }
     }
-    for (i, &r) in res.iter().enumerate() {
-        if ok[i] {
-            continue;
-        }
+    for (i, &r) in res.iter().enumerate().filter(|(i, _)| !ok[*i]) {
         let which = if res.len() > 1 {
             format!("equation {}", i + 1)
         } else {
@@ -391,15 +424,15 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         };
         if res.len() > 1 || part.kind == PartKind::Equations {
             v.diagnoses.push(Diagnosis::new(
-                "wrong-equation",
-                format!("{which} ({}) does not hold for the true motion", shown_u[i]),
+                Code::WrongEquation,
+                format!("{which} ({}) does not hold for the true motion", shown[i]),
             ));
         }
-        diagnose_equation(p, r, &which, &truth, &mut v);
+        diagnose_equation(p, r, &which, &truth, v);
     }
     if v.status != Status::Correct && v.diagnoses.is_empty() {
         v.diagnoses.push(Diagnosis::new(
-            "not-equal",
+            Code::NotEqual,
             "your equation does not hold for the true motion",
         ));
     }
@@ -413,7 +446,6 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
                 1.0
             }
     };
-    v
 }
 
 fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
@@ -435,11 +467,11 @@ fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
     }
     let n = p.system.n();
     let a = DMatrix::from_fn(m.len(), n, |i, j| m[i][j]);
-    let scale = a.amax().max(1e-300);
+    let scale = a.amax().max(tolerance::TINY);
     a.svd(false, false)
         .singular_values
         .iter()
-        .filter(|s| **s > 1e-9 * scale)
+        .filter(|s| **s > tolerance::RANK * scale)
         .count()
 }
 
@@ -453,8 +485,7 @@ fn diagnose_equation(
     let pts = p.points.clone();
     let lin = linearized_accelerations(p);
     if holds(p, r, &pts, &lin) {
-        v.diagnoses.push(Diagnosis::new(
-            "small-angle",
+        v.diagnoses.push(Diagnosis::new(Code::SmallAngle,
             format!("{which} is the small-angle (linearized) equation, but the full equation is asked: keep sin θ and cos θ, and the velocity terms"),
         ));
         return;
@@ -479,7 +510,7 @@ fn diagnose_equation(
             };
             let rv: f64 = ca.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + cb;
             let tv: f64 = ta.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + tb;
-            if tv.abs() > 1e-9 {
+            if tv.abs() > tolerance::ZERO {
                 return Some(1.0 - rv / tv);
             }
         }
@@ -492,12 +523,9 @@ fn diagnose_equation(
     if let Some(still) = at_rest(p) {
         let acc = accelerations_at(p, &still);
         if holds(p, r, &still, &acc) {
-            v.diagnoses.push(Diagnosis::new(
-                "velocity-term",
+            v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
                 format!("{which} is right when nothing moves, so a velocity term is missing or wrong (a q'² or q'₁q'₂ term)"),
             ));
-            return;
         }
     }
-    let _ = close;
 }

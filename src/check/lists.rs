@@ -1,11 +1,13 @@
 //! Unordered lists — equilibria, frequencies, values — matched item by item across every
 //! sample point, with partial credit and the items named: missing, extra, wrong, ω² for ω.
 
+use super::common::{invalid_reading, verdict};
 use super::compare::{close, values};
+use super::error::CheckError;
 use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate};
-use super::verdict::{Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, ParseError, Reading, read, read_expr};
-use crate::mechanics::sample::seed_from;
+use super::tolerance;
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
+use crate::expr::{Dimension, Id, ParseError, Reading, Style, read, read_expr};
 use crate::problem::{Part, PartKind, Problem};
 
 /// Splits at top-level `,` and `;` (outside parentheses): (text, byte offset) per item.
@@ -120,7 +122,7 @@ fn read_items(part: &Part, p: &mut Prepared, input: &str) -> Result<Vec<Vec<Id>>
     Ok(items)
 }
 
-fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, String> {
+fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, CheckError> {
     part.answers
         .iter()
         .map(|a| match part.kind {
@@ -128,8 +130,7 @@ fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, String
             PartKind::Frequencies => read_frequency(p, a).map(|x| vec![x]),
             _ => read_one(p, a).map(|x| vec![x]),
         })
-        .collect::<Result<_, _>>()
-        .map_err(|(_, m)| m)
+        .collect()
 }
 
 /// Values of each item's components at every point (None where undefined).
@@ -155,7 +156,7 @@ fn same_item(
         let Some(x) = x else { return false };
         for (i, (u, w)) in x.iter().zip(y).enumerate() {
             let periodic = part.kind == PartKind::Equilibria && p.system.coordinates[i].periodic;
-            let ok = if periodic && tol <= 1e-8 {
+            let ok = if periodic && tol <= tolerance::STRICT {
                 same_coordinate(true, *u, *w)
             } else {
                 close(*u, *w, 0.0, tol)
@@ -169,215 +170,305 @@ fn same_item(
     checked > 0
 }
 
+/// An item (or the lack of one) that matched no reference item, with its label
+/// (`item 2 (…)`).
+enum ItemFinding {
+    /// ω² for ω (`squared`: the square of an ω² for ω²).
+    Squared { label: String, squared: bool },
+    /// ω for ω² (`squared`), or √ω for ω.
+    Root { label: String, squared: bool },
+    /// Agreement to a few digits only.
+    Rounded { label: String },
+    /// A frequency of the wrong dimension.
+    Dimension {
+        label: String,
+        have: Dimension,
+        want: Dimension,
+    },
+    /// Matches nothing while a reference item is unmatched.
+    Wrong { label: String },
+    /// One item too many (`equilibrium`: the part asks for equilibria).
+    Extra {
+        label: String,
+        equilibrium: bool,
+        what: &'static str,
+    },
+    /// `count` reference items were not given.
+    Missing { count: usize, what: &'static str },
+}
+
+impl ItemFinding {
+    /// The sentence for a finding.
+    fn details(self) -> Diagnosis {
+        match self {
+            ItemFinding::Squared { label, squared } => Diagnosis::new(
+                Code::OmegaSquared,
+                if squared {
+                    format!("{label} is the square of an ω²: this part asks for ω², square it back")
+                } else {
+                    format!("{label} is ω², but this part asks for ω: take the square root")
+                },
+            ),
+            ItemFinding::Root { label, squared } => Diagnosis::new(
+                Code::OmegaRoot,
+                if squared {
+                    format!("{label} is ω, but this part asks for ω²: square it")
+                } else {
+                    format!("{label} is √ω: square it")
+                },
+            ),
+            ItemFinding::Rounded { label } => Diagnosis::new(
+                Code::RoundedConstant,
+                format!(
+                    "{label} agrees only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3"
+                ),
+            ),
+            ItemFinding::Dimension { label, have, want } => Diagnosis::new(
+                Code::Dimension,
+                format!("{label} has dimension {have}, but a frequency is {want}"),
+            ),
+            ItemFinding::Wrong { label } => {
+                Diagnosis::new(Code::WrongItem, format!("{label} is wrong"))
+            }
+            ItemFinding::Extra {
+                label,
+                equilibrium: true,
+                ..
+            } => Diagnosis::new(
+                Code::ExtraItem,
+                format!("one extra item: {label} is not an equilibrium"),
+            ),
+            ItemFinding::Extra { label, what, .. } => Diagnosis::new(
+                Code::ExtraItem,
+                format!("one extra item: {label} is not one of the {what} values asked for"),
+            ),
+            ItemFinding::Missing { count: 1, what } => {
+                Diagnosis::new(Code::MissingItem, format!("one {what} is missing"))
+            }
+            ItemFinding::Missing { count, what } => Diagnosis::new(
+                Code::MissingItem,
+                format!("{count} {what} values are missing"),
+            ),
+        }
+    }
+}
+
+/// The values of a list: the student's and the reference's items at every point.
+struct Lists<'v> {
+    student: &'v [Vec<Option<Vec<f64>>>],
+    reference: &'v [Vec<Option<Vec<f64>>>],
+}
+
+/// For a frequency that matches nothing: ω² for ω, ω for ω², or rounded constants. Takes the
+/// reference item it explains out of `free`.
+fn frequency_slip(
+    part: &Part,
+    p: &Prepared,
+    s: &[Option<Vec<f64>>],
+    rv: &[Vec<Option<Vec<f64>>>],
+    free: &mut Vec<usize>,
+    label: &str,
+) -> Option<ItemFinding> {
+    let tol = part.tolerance;
+    // ω² for ω, or ω for ω².
+    let squared_of = |a: &[Option<Vec<f64>>], b: &[Option<Vec<f64>>]| {
+        let sq: Vec<Option<Vec<f64>>> = b
+            .iter()
+            .map(|x| x.as_ref().map(|v| v.iter().map(|y| y * y).collect()))
+            .collect();
+        same_item(part, p, a, &sq, tol)
+    };
+    let label = label.to_string();
+    let squared = part.squared;
+    let (k, finding) = if let Some(k) = free.iter().position(|&j| squared_of(s, &rv[j])) {
+        (k, ItemFinding::Squared { label, squared })
+    } else if let Some(k) = free.iter().position(|&j| squared_of(&rv[j], s)) {
+        (k, ItemFinding::Root { label, squared })
+    } else if let Some(k) = free
+        .iter()
+        .position(|&j| same_item(part, p, s, &rv[j], tolerance::ROUNDED))
+    {
+        (k, ItemFinding::Rounded { label })
+    } else {
+        return None;
+    };
+    free.remove(k);
+    Some(finding)
+}
+
+/// Classifies student item `i`, which matched no reference item; `free` holds the reference
+/// items not yet matched or explained.
+fn classify_unmatched(
+    problem: &Problem,
+    part: &Part,
+    p: &Prepared,
+    lists: &Lists,
+    item: (usize, Id, String),
+    free: &mut Vec<usize>,
+) -> ItemFinding {
+    let (i, first, label) = item;
+    if part.kind == PartKind::Frequencies
+        && let Some(f) = frequency_slip(part, p, &lists.student[i], lists.reference, free, &label)
+    {
+        return f;
+    }
+    // An item of the wrong dimension says so.
+    let want = match part.kind {
+        PartKind::Frequencies if part.squared => Some(Dimension::new(0, 0, -2)),
+        PartKind::Frequencies => Some(Dimension::new(0, 0, -1)),
+        _ => None,
+    };
+    let have = p.system.pool.dimension(first, &problem.dims).ok().flatten();
+    if let (Some(want), Some(have)) = (want, have)
+        && want != have
+    {
+        if !free.is_empty() {
+            free.remove(0);
+        }
+        return ItemFinding::Dimension { label, have, want };
+    }
+    if !free.is_empty() {
+        free.remove(0);
+        return ItemFinding::Wrong { label };
+    }
+    ItemFinding::Extra {
+        label,
+        equilibrium: part.kind == PartKind::Equilibria,
+        what: what_of(part),
+    }
+}
+
+/// What the items of a part are called.
+fn what_of(part: &Part) -> &'static str {
+    match part.kind {
+        PartKind::Equilibria => "equilibrium",
+        PartKind::Frequencies => "frequency",
+        _ => "item",
+    }
+}
+
+/// An item as text: `θ = π` for an equilibrium, the value otherwise.
+fn show_item(part: &Part, p: &Prepared, coords: &[Id], it: &[Id], style: Style) -> String {
+    if part.kind == PartKind::Equilibria {
+        let pool = &p.system.pool;
+        it.iter()
+            .zip(coords)
+            .map(|(x, c)| format!("{} = {}", pool.display(*c, style), pool.display(*x, style)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    } else {
+        p.system.pool.display(it[0], style)
+    }
+}
+
+/// Matches student items to reference items one to one: (matched reference, matched student).
+fn match_items(part: &Part, p: &Prepared, lists: &Lists) -> (Vec<bool>, Vec<bool>) {
+    let mut matched_ref = vec![false; lists.reference.len()];
+    let mut matched_stu = vec![false; lists.student.len()];
+    for (i, s) in lists.student.iter().enumerate() {
+        if let Some(j) = (0..lists.reference.len()).find(|&j| {
+            !matched_ref[j] && same_item(part, p, s, &lists.reference[j], part.tolerance)
+        }) {
+            matched_ref[j] = true;
+            matched_stu[i] = true;
+        }
+    }
+    (matched_ref, matched_stu)
+}
+
+/// How the items were read, joined as a student would type them.
+fn list_reading(part: &Part, p: &Prepared, coords: &[Id], items: &[Vec<Id>]) -> ReadAs {
+    let sep = if part.kind == PartKind::Equilibria && p.system.n() > 1 {
+        "; "
+    } else {
+        ", "
+    };
+    let shown = |style: Style| -> String {
+        items
+            .iter()
+            .map(|i| show_item(part, p, coords, i, style))
+            .collect::<Vec<_>>()
+            .join(sep)
+    };
+    ReadAs {
+        plain: shown(Style::Plain),
+        unicode: shown(Style::Unicode),
+        note: None,
+    }
+}
+
+/// The reference items, read once.
+fn cached_reference(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, CheckError> {
+    if let Some(r) = p.reference.get() {
+        return Ok(r.clone());
+    }
+    let r = reference_items(part, p)?;
+    Ok(p.reference.get_or_init(|| r).clone())
+}
+
 /// Checks a list answer.
 pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
-    let mut v = Verdict {
-        problem: problem.id.clone(),
-        part: part.id.clone(),
-        status: Status::Incorrect,
-        score: 0.0,
-        reading: ReadAs::default(),
-        diagnoses: Vec::new(),
-        seed: seed_from(&[&problem.id, &part.id]),
-        parse_error: None,
-    };
+    let mut v = verdict(problem, part, Status::Incorrect);
     let items = match read_items(part, p, input) {
         Ok(i) => i,
-        Err(e) => return super::answer::invalid_reading(problem, part, e),
+        Err(e) => return invalid_reading(problem, part, e),
     };
+    // The coordinates as expressions, interned once, to show equilibria as `θ = π`.
     let names: Vec<String> = p
         .system
         .coordinates
         .iter()
         .map(|c| c.name.clone())
         .collect();
-    let show = |p: &Prepared, it: &[Id], style: crate::expr::Style| -> String {
-        if part.kind == PartKind::Equilibria {
-            it.iter()
-                .zip(&names)
-                .map(|(x, n)| {
-                    let mut pool = p.system.pool.clone();
-                    let c = pool.sym(n);
-                    format!("{} = {}", pool.display(c, style), pool.display(*x, style))
-                })
-                .collect::<Vec<_>>()
-                .join(", ")
-        } else {
-            p.system.pool.display(it[0], style)
-        }
-    };
-    let sep = if part.kind == PartKind::Equilibria && p.system.n() > 1 {
-        "; "
-    } else {
-        ", "
-    };
-    v.reading = ReadAs {
-        plain: items
-            .iter()
-            .map(|i| show(p, i, crate::expr::Style::Plain))
-            .collect::<Vec<_>>()
-            .join(sep),
-        unicode: items
-            .iter()
-            .map(|i| show(p, i, crate::expr::Style::Unicode))
-            .collect::<Vec<_>>()
-            .join(sep),
-        note: None,
-    };
-    let cached = p.reference.get().cloned();
-    let refs = match cached.map_or_else(|| reference_items(part, p), Ok) {
+    let coords: Vec<Id> = names.iter().map(|n| p.system.pool.sym(n)).collect();
+    v.reading = list_reading(part, p, &coords, &items);
+    let refs = match cached_reference(part, p) {
         Ok(r) => r,
         Err(m) => {
             v.status = Status::Invalid;
             v.diagnoses.push(Diagnosis::new(
-                "syntax",
+                Code::Syntax,
                 format!("the reference answer cannot be read: {m}"),
             ));
             return v;
         }
     };
-    let _ = p.reference.set(refs.clone());
-    for it in &items {
-        for &x in it {
-            if let Err(e) = p.system.pool.dimension(x, &problem.dims) {
-                v.diagnoses.push(Diagnosis::new("dimension", e.to_string()));
-            }
+    for &x in items.iter().flatten() {
+        if let Err(e) = p.system.pool.dimension(x, &problem.dims) {
+            v.diagnoses
+                .push(Diagnosis::new(Code::Dimension, e.to_string()));
         }
     }
-    let sv = item_values(p, &items);
-    let rv = item_values(p, &refs);
-    let tol = part.tolerance;
-    let mut matched_ref = vec![false; refs.len()];
-    let mut matched_stu = vec![false; items.len()];
-    for (i, s) in sv.iter().enumerate() {
-        if let Some(j) =
-            (0..refs.len()).find(|&j| !matched_ref[j] && same_item(part, p, s, &rv[j], tol))
-        {
-            matched_ref[j] = true;
-            matched_stu[i] = true;
-        }
-    }
-    let matched = matched_stu.iter().filter(|m| **m).count();
-    let missing: Vec<usize> = (0..refs.len()).filter(|&j| !matched_ref[j]).collect();
-    let what = match part.kind {
-        PartKind::Equilibria => "equilibrium",
-        PartKind::Frequencies => "frequency",
-        _ => "item",
+    let (sv, rv) = (item_values(p, &items), item_values(p, &refs));
+    let lists = Lists {
+        student: &sv,
+        reference: &rv,
     };
-    let mut free_refs = missing.clone();
-    for (i, s) in sv.iter().enumerate() {
-        if matched_stu[i] {
-            continue;
-        }
+    let (matched_ref, matched_stu) = match_items(part, p, &lists);
+    let matched = matched_stu.iter().filter(|m| **m).count();
+    let mut free: Vec<usize> = (0..refs.len()).filter(|&j| !matched_ref[j]).collect();
+    for i in (0..items.len()).filter(|&i| !matched_stu[i]) {
         let label = format!(
             "item {} ({})",
             i + 1,
-            show(p, &items[i], crate::expr::Style::Unicode)
+            show_item(part, p, &coords, &items[i], Style::Unicode)
         );
-        // ω² for ω, or ω for ω².
-        let squared_of = |a: &[Option<Vec<f64>>], b: &[Option<Vec<f64>>]| {
-            let sq: Vec<Option<Vec<f64>>> = b
-                .iter()
-                .map(|x| x.as_ref().map(|v| v.iter().map(|y| y * y).collect()))
-                .collect();
-            same_item(part, p, a, &sq, tol)
-        };
-        if part.kind == PartKind::Frequencies {
-            if let Some(k) = free_refs.iter().position(|&j| squared_of(s, &rv[j])) {
-                let j = free_refs.remove(k);
-                let _ = j;
-                let (code, msg) = if part.squared {
-                    (
-                        "omega-squared",
-                        format!(
-                            "{label} is the square of an ω²: this part asks for ω², square it back"
-                        ),
-                    )
-                } else {
-                    (
-                        "omega-squared",
-                        format!("{label} is ω², but this part asks for ω: take the square root"),
-                    )
-                };
-                v.diagnoses.push(Diagnosis::new(code, msg));
-                continue;
-            }
-            if let Some(k) = free_refs.iter().position(|&j| squared_of(&rv[j], s)) {
-                free_refs.remove(k);
-                let msg = if part.squared {
-                    format!("{label} is ω, but this part asks for ω²: square it")
-                } else {
-                    format!("{label} is √ω: square it")
-                };
-                v.diagnoses.push(Diagnosis::new("omega-root", msg));
-                continue;
-            }
-            // Agreement to a few digits only.
-            if let Some(k) = free_refs
-                .iter()
-                .position(|&j| same_item(part, p, s, &rv[j], 1e-2))
-            {
-                free_refs.remove(k);
-                v.diagnoses.push(Diagnosis::new(
-                    "rounded-constant",
-                    format!("{label} agrees only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3"),
-                ));
-                continue;
-            }
-        }
-        // An item of the wrong dimension says so.
-        let want = match part.kind {
-            PartKind::Frequencies if part.squared => Some(crate::expr::Dimension::new(0, 0, -2)),
-            PartKind::Frequencies => Some(crate::expr::Dimension::new(0, 0, -1)),
-            _ => None,
-        };
-        let have = p
-            .system
-            .pool
-            .dimension(items[i][0], &problem.dims)
-            .ok()
-            .flatten();
-        if let (Some(w), Some(h)) = (want, have)
-            && w != h
-        {
-            if !free_refs.is_empty() {
-                free_refs.remove(0);
-            }
-            v.diagnoses.push(Diagnosis::new(
-                "dimension",
-                format!("{label} has dimension {h}, but a frequency is {w}"),
-            ));
-            continue;
-        }
-        if !free_refs.is_empty() {
-            free_refs.remove(0);
-            v.diagnoses
-                .push(Diagnosis::new("wrong-item", format!("{label} is wrong")));
-        } else {
-            let msg = if part.kind == PartKind::Equilibria {
-                format!("one extra item: {label} is not an equilibrium")
-            } else {
-                format!("one extra item: {label} is not one of the {what} values asked for")
-            };
-            v.diagnoses.push(Diagnosis::new("extra-item", msg));
-        }
+        let item = (i, items[i][0], label);
+        let finding = classify_unmatched(problem, part, p, &lists, item, &mut free);
+        v.diagnoses.push(finding.details());
     }
-    if !free_refs.is_empty() {
-        let k = free_refs.len();
-        v.diagnoses.push(Diagnosis::new(
-            "missing-item",
-            if k == 1 {
-                format!("one {what} is missing")
-            } else {
-                format!("{k} {what} values are missing")
-            },
-        ));
+    if !free.is_empty() {
+        let missing = ItemFinding::Missing {
+            count: free.len(),
+            what: what_of(part),
+        };
+        v.diagnoses.push(missing.details());
     }
     let total = refs.len().max(items.len()).max(1);
     v.score = matched as f64 / total as f64;
     if matched == refs.len()
         && items.len() == refs.len()
-        && v.diagnoses.iter().all(|d| d.code != "dimension")
+        && v.diagnoses.iter().all(|d| d.code != Code::Dimension)
     {
         v.status = Status::Correct;
         v.score = 1.0;

@@ -5,15 +5,20 @@
 //! Verdicts never depend on the simplifier: everything here evaluates.
 
 pub mod answer;
+mod common;
 pub mod compare;
 pub mod diagnose;
 pub mod equations;
+pub mod error;
 pub mod lists;
 pub mod points;
 pub mod prepare;
+pub mod tolerance;
 pub mod verdict;
 
+pub use crate::problem::Assumption;
 pub use answer::{Checker, check};
 pub use compare::{Relation, relate};
-pub use points::{Assumption, PointSet};
-pub use verdict::{Diagnosis, Status, Verdict};
+pub use error::CheckError;
+pub use points::PointSet;
+pub use verdict::{Code, Diagnosis, Status, Verdict};

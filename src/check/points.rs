@@ -1,48 +1,11 @@
 //! Sample points for a system: random states (t, q, q', q'') and parameter values drawn in
 //! their ranges, redrawn until every assumption holds (`2*g*a > omega^2`).
 
-use super::super::mechanics::System;
-use super::super::mechanics::sample::Sampler;
-use crate::expr::{Context, Id, Program, read_expr};
-
-/// An inequality between two expressions of the parameters.
-#[derive(Clone, Debug)]
-pub struct Assumption {
-    pub text: String,
-    pub lhs: Id,
-    pub rhs: Id,
-    /// `>` (or `>=`) when true; `<` (or `<=`) when false.
-    pub greater: bool,
-}
-
-impl Assumption {
-    /// Reads `lhs > rhs`, `lhs < rhs`, `>=`, `<=` (also `≥`, `≤`).
-    pub fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
-        let ops: [(&str, bool); 6] = [
-            (">=", true),
-            ("<=", false),
-            ("≥", true),
-            ("≤", false),
-            (">", true),
-            ("<", false),
-        ];
-        for (op, greater) in ops {
-            if let Some((a, b)) = text.split_once(op) {
-                let lhs =
-                    read_expr(a, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
-                let rhs =
-                    read_expr(b, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
-                return Ok(Assumption {
-                    text: text.to_string(),
-                    lhs,
-                    rhs,
-                    greater,
-                });
-            }
-        }
-        Err(format!("`{text}` is not an inequality (use > or <)"))
-    }
-}
+use super::error::CheckError;
+use crate::expr::{Id, Program};
+use crate::mechanics::System;
+use crate::mechanics::sample::Sampler;
+use crate::problem::Assumption;
 
 /// Points in a system's standard layout, every one satisfying the assumptions.
 #[derive(Clone, Debug)]
@@ -60,7 +23,7 @@ impl PointSet {
         assumptions: &[Assumption],
         seed: u64,
         count: usize,
-    ) -> Result<PointSet, String> {
+    ) -> Result<PointSet, CheckError> {
         Self::draw_defined(sys, assumptions, &[], seed, count)
     }
 
@@ -72,17 +35,23 @@ impl PointSet {
         defined: &[Id],
         seed: u64,
         count: usize,
-    ) -> Result<PointSet, String> {
+    ) -> Result<PointSet, CheckError> {
         let must: Option<Program> = if defined.is_empty() {
             None
         } else {
-            Some(sys.compile(defined).map_err(|e| e.to_string())?)
+            Some(
+                sys.compile(defined)
+                    .map_err(|error| CheckError::Compile { error })?,
+            )
         };
         let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
         let prog: Option<Program> = if roots.is_empty() {
             None
         } else {
-            Some(sys.compile(&roots).map_err(|e| e.to_string())?)
+            Some(
+                sys.compile(&roots)
+                    .map_err(|error| CheckError::Compile { error })?,
+            )
         };
         let mut sampler = Sampler::new(seed);
         let mut points = Vec::with_capacity(count);
@@ -90,14 +59,13 @@ impl PointSet {
         while points.len() < count {
             draws += 1;
             if draws > MAX_DRAWS {
-                return Err(format!(
-                    "the assumptions ({}) hold almost nowhere in the parameter ranges",
-                    assumptions
+                return Err(CheckError::Unsatisfiable {
+                    assumptions: assumptions
                         .iter()
                         .map(|a| a.text.as_str())
                         .collect::<Vec<_>>()
-                        .join(", ")
-                ));
+                        .join(", "),
+                });
             }
             let x = sys.sample_point(&mut sampler);
             if let Some(p) = &prog {

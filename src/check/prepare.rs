@@ -2,18 +2,17 @@
 //! seeded sample points that respect the assumptions, and readers for answer items (equations,
 //! equilibrium points, frequencies).
 
-use crate::check::points::{Assumption, PointSet};
+use super::error::CheckError;
+use super::points::PointSet;
+use super::tolerance;
 use crate::expr::{Context, Id, Node, Reading, read, read_equation, read_expr};
 use crate::mechanics::equilibria::wrap_angle;
 use crate::mechanics::sample::seed_from;
 use crate::mechanics::{Derivation, System};
-use crate::problem::{Part, PartKind, Problem};
+use crate::problem::{Assumption, Part, PartKind, Problem};
 
 /// Sample points for expressions and equations.
 pub const POINTS: usize = 24;
-
-/// An error while checking: a stable code and a message.
-pub type Failure = (&'static str, String);
 
 /// A part's system (with its substitutions), its derivation and sample points.
 pub struct Prepared {
@@ -31,11 +30,11 @@ pub struct Prepared {
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
-pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
+pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
     let mut system = problem.system.clone();
     let map = system
         .substitute_parameters(&part.substitute)
-        .map_err(|e| e.to_string())?;
+        .map_err(|error| CheckError::Substitution { error })?;
     let assumptions: Vec<Assumption> = problem
         .assumptions
         .iter()
@@ -45,7 +44,9 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
             ..a.clone()
         })
         .collect();
-    let derivation = system.derive().map_err(|e| e.to_string())?;
+    let derivation = system
+        .derive()
+        .map_err(|error| CheckError::Derivation { error })?;
     let context = system.context();
     // Points where the reference answer is undefined are redrawn.
     let mut reference: Vec<Id> = Vec::new();
@@ -80,24 +81,25 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, String> {
     })
 }
 
-pub fn read_one(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
-    read_expr(src, &p.context, &mut p.system.pool).map_err(|e| {
-        let code = if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
-            "undeclared-symbol"
-        } else {
-            "unreadable"
-        };
-        (code, format!("`{src}`: {e} ({})", e.help()))
+/// Reads one expression item of a reference answer.
+pub(crate) fn read_one(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
+    read_expr(src, &p.context, &mut p.system.pool).map_err(|e| CheckError::UnreadableItem {
+        src: src.to_string(),
+        error: Box::new(e),
     })
 }
 
 /// The residuals `lhs − rhs` of an answer's equations.
-pub fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, (&'static str, String)> {
+pub(crate) fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, CheckError> {
     let mut out = Vec::new();
     for it in items {
         for piece in it.split(';').filter(|s| !s.trim().is_empty()) {
-            let (l, r) = read_equation(piece, &p.context, &mut p.system.pool)
-                .map_err(|e| ("unreadable", format!("`{piece}`: {e}")))?;
+            let (l, r) = read_equation(piece, &p.context, &mut p.system.pool).map_err(|e| {
+                CheckError::UnreadableEquation {
+                    src: piece.to_string(),
+                    error: Box::new(e),
+                }
+            })?;
             out.push(p.system.pool.sub(l, r));
         }
     }
@@ -105,27 +107,30 @@ pub fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, (&'stati
 }
 
 /// Reads an equilibrium item: `pi`, `theta = pi` or `theta1 = 0, theta2 = pi`.
-pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, (&'static str, String)> {
-    let reading = read(src, &p.context, &mut p.system.pool)
-        .map_err(|e| ("unreadable", format!("`{src}`: {e}")))?;
+pub(crate) fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
+    let reading =
+        read(src, &p.context, &mut p.system.pool).map_err(|e| CheckError::UnreadablePoint {
+            src: src.to_string(),
+            error: Box::new(e),
+        })?;
     let n = p.system.n();
     let mut point: Vec<Option<Id>> = vec![None; n];
-    let assign =
-        |lhs: Id, rhs: Id, point: &mut Vec<Option<Id>>| -> Result<(), (&'static str, String)> {
-            match p.system.pool.node(lhs) {
-                Node::Var(s, 0) => match p.system.coordinates.iter().position(|c| c.sym == *s) {
-                    Some(i) => {
-                        point[i] = Some(rhs);
-                        Ok(())
-                    }
-                    None => Err((
-                        "unreadable",
-                        format!("`{src}`: the left side must be a coordinate"),
-                    )),
-                },
-                _ => Err(("unreadable", format!("`{src}`: write coordinate = value"))),
-            }
-        };
+    let assign = |lhs: Id, rhs: Id, point: &mut Vec<Option<Id>>| -> Result<(), CheckError> {
+        match p.system.pool.node(lhs) {
+            Node::Var(s, 0) => match p.system.coordinates.iter().position(|c| c.sym == *s) {
+                Some(i) => {
+                    point[i] = Some(rhs);
+                    Ok(())
+                }
+                None => Err(CheckError::NotACoordinate {
+                    src: src.to_string(),
+                }),
+            },
+            _ => Err(CheckError::NotAnAssignment {
+                src: src.to_string(),
+            }),
+        }
+    };
     match reading {
         Reading::Expr(e, _) if n == 1 => point[0] = Some(e),
         Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
@@ -134,49 +139,44 @@ pub fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, (&'static str,
                 match it {
                     Reading::Equation { lhs, rhs, .. } => assign(lhs, rhs, &mut point)?,
                     _ => {
-                        return Err((
-                            "unreadable",
-                            format!("`{src}`: write coordinate = value for each coordinate"),
-                        ));
+                        return Err(CheckError::NotAssignments {
+                            src: src.to_string(),
+                        });
                     }
                 }
             }
         }
         _ => {
-            return Err((
-                "unreadable",
-                format!("`{src}`: an equilibrium is coordinate = value"),
-            ));
+            return Err(CheckError::NotAnEquilibrium {
+                src: src.to_string(),
+            });
         }
     }
     point
         .into_iter()
         .enumerate()
         .map(|(i, v)| {
-            v.ok_or((
-                "unreadable",
-                format!(
-                    "`{src}` gives no value for {}",
-                    p.system.coordinates[i].name
-                ),
-            ))
+            v.ok_or_else(|| CheckError::MissingCoordinate {
+                src: src.to_string(),
+                coordinate: p.system.coordinates[i].name.clone(),
+            })
         })
         .collect()
 }
 
 /// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
-pub fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
+pub(crate) fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
     let d = if periodic { wrap_angle(a - b) } else { a - b };
-    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < 1e-9 {
+    let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < tolerance::ANGLE {
         std::f64::consts::PI.min(d.abs())
     } else {
         d
     };
-    d.abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
+    d.abs() <= tolerance::COORDINATE * (1.0 + a.abs().max(b.abs()))
 }
 
 /// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
-pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, String)> {
+pub(crate) fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, CheckError> {
     let body = match src.split_once('=') {
         Some((label, rhs))
             if label
@@ -192,7 +192,7 @@ pub fn read_frequency(p: &mut Prepared, src: &str) -> Result<Id, (&'static str, 
 }
 
 /// The equilibrium a frequencies part is about (`at`, default all coordinates 0).
-pub fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, (&'static str, String)> {
+pub(crate) fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, CheckError> {
     let n = p.system.n();
     let zero = p.system.pool.zero();
     let mut at = vec![zero; n];
@@ -202,10 +202,7 @@ pub fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, (&'stati
             .coordinates
             .iter()
             .position(|c| c.name == crate::expr::names::normalize(name))
-            .ok_or((
-                "bad-at",
-                format!("`at` names `{name}`, which is not a coordinate"),
-            ))?;
+            .ok_or_else(|| CheckError::BadAt { name: name.clone() })?;
         at[i] = read_one(p, v)?;
     }
     Ok(at)

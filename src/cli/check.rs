@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use clap::Args;
 use colored::Colorize;
 
-use lagrange::check::{Checker, Status};
-use lagrange::diagnostic::render_parse_error;
+use lagrange::check::{CheckError, Checker, Status};
+use lagrange::diagnostic::{Diagnostic, render_parse_error, render_plain};
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
@@ -49,8 +49,14 @@ pub fn run(
     let v = match checker.check(&args.part, &args.answer) {
         Ok(v) => v,
         Err(e) => {
-            let parts: Vec<&str> = problem.parts.iter().map(|p| p.id.as_str()).collect();
-            eprintln!("error: {e}\n  help: the parts are {}", parts.join(", "));
+            let mut d = Diagnostic::from(&e);
+            // Only an unknown part id is helped by the list of parts; a part that fails to
+            // prepare keeps its own help.
+            if matches!(e, CheckError::UnknownPart { .. }) {
+                let parts: Vec<&str> = problem.parts.iter().map(|p| p.id.as_str()).collect();
+                d = d.with_help(format!("the parts are {}", parts.join(", ")));
+            }
+            eprint!("{}", render_plain(&d));
             return Ok(ExitCode::from(2));
         }
     };

@@ -110,12 +110,16 @@ impl From<MechError> for CliError {
 /// parse error) and returns exit code 2.
 pub fn report(e: &CliError, color: bool) -> ExitCode {
     let text = match e {
-        CliError::Usage(message) => {
-            render_plain(&Diagnostic::new("usage", message.as_str(), "check the input"))
-        }
-        CliError::Mech(m @ MechError::Parse {
-            what, source_text, ..
-        }) => render(what, source_text, &Diagnostic::from(m), color),
+        CliError::Usage(message) => render_plain(&Diagnostic::new(
+            "usage",
+            message.as_str(),
+            "check the input",
+        )),
+        CliError::Mech(
+            m @ MechError::Parse {
+                what, source_text, ..
+            },
+        ) => render(what, source_text, &Diagnostic::from(m), color),
         CliError::Mech(m) => render_plain(&Diagnostic::from(m).with_help(help(m))),
     };
     eprint!("{text}");

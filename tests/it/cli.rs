@@ -540,3 +540,40 @@ fn argument_errors_are_the_faces_own() {
     );
     assert!(err.contains("--diff takes one variable"), "{err}");
 }
+
+#[test]
+fn check_a_part_that_cannot_be_prepared_gets_its_own_help() {
+    // Assumptions that no parameter values satisfy: the part cannot be prepared.
+    let dir = std::env::temp_dir().join(format!("lagrange-unprepared-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("nowhere.toml"),
+        r#"id = "nowhere"
+title = "A pendulum with impossible assumptions"
+coordinates = [{ name = "theta", periodic = true }]
+lagrangian = "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)"
+assume = ["m > 100"]
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+l = { dimension = "L", range = [0.5, 2.0] }
+g = { dimension = "L T^-2", range = [5.0, 15.0] }
+
+[[parts]]
+id = "eom"
+kind = "equation"
+prompt = "p"
+answer = "m*l^2*theta'' + m*g*l*sin(theta) = 0"
+"#,
+    )
+    .unwrap();
+    let problems = dir.to_string_lossy().into_owned();
+    let (c, _, err) = lagrange(&["--problems", &problems, "check", "nowhere", "eom", "x"]);
+    let (c2, _, err2) = lagrange(&["--problems", &problems, "check", "nowhere", "no-part", "x"]);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(c, 2, "{err}");
+    assert!(err.contains("hold almost nowhere"), "{err}");
+    assert!(!err.contains("the parts are"), "{err}");
+    assert_eq!(c2, 2, "{err2}");
+    assert!(err2.contains("the parts are eom"), "{err2}");
+}

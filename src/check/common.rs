@@ -1,0 +1,86 @@
+//! What the expression, equation and list checks share, kept in a leaf so that they do not
+//! import each other: the verdict skeleton, the verdict on unreadable input, a sample point as
+//! text, and the sample points at rest.
+
+use super::compare::fmt_value;
+use super::points::PointSet;
+use super::prepare::Prepared;
+use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
+use crate::expr::ParseErrorKind;
+use crate::mechanics::sample::seed_from;
+use crate::problem::{Part, Problem};
+
+/// A verdict skeleton.
+pub(super) fn verdict(problem: &Problem, part: &Part, status: Status) -> Verdict {
+    Verdict {
+        problem: problem.id.clone(),
+        part: part.id.clone(),
+        status,
+        score: if status == Status::Correct { 1.0 } else { 0.0 },
+        reading: ReadAs::default(),
+        diagnoses: Vec::new(),
+        seed: seed_from(&[&problem.id, &part.id]),
+        parse_error: None,
+    }
+}
+
+/// The verdict on an input that could not be read.
+pub(super) fn invalid_reading(
+    problem: &Problem,
+    part: &Part,
+    e: crate::expr::ParseError,
+) -> Verdict {
+    let mut v = verdict(problem, part, Status::Invalid);
+    let d = match &e.kind {
+        ParseErrorKind::UnknownName { name, .. } => {
+            match part
+                .substitute
+                .iter()
+                .find(|(k, _)| crate::expr::names::normalize(k) == *name)
+            {
+                Some((k, val)) => Diagnosis::new(
+                    Code::SubstitutedSymbol,
+                    format!("this part sets {k} = {val}: write your answer with {val}, not {k}"),
+                ),
+                None => Diagnosis::new(Code::UnknownSymbol, format!("{}; {}", e.kind, e.help())),
+            }
+        }
+        _ => Diagnosis::new(Code::Syntax, format!("{}; {}", e.kind, e.help())),
+    };
+    v.diagnoses.push(d);
+    v.parse_error = Some(e);
+    v
+}
+
+/// Sample point `k` as text: `theta = 0.3, m = 1.2`.
+pub(super) fn point_text(p: &Prepared, k: usize) -> String {
+    let x = &p.points.points[k];
+    let mut parts = Vec::new();
+    for (i, c) in p.system.coordinates.iter().enumerate() {
+        parts.push(format!("{} = {}", c.name, fmt_value(x[1 + 3 * i])));
+    }
+    let off = 1 + 3 * p.system.n();
+    for (j, q) in p.system.parameters.iter().enumerate() {
+        parts.push(format!("{} = {}", q.name, fmt_value(x[off + j])));
+    }
+    parts.join(", ")
+}
+
+/// The sample points with every velocity (and acceleration) set to zero.
+pub(super) fn at_rest(p: &Prepared) -> Option<PointSet> {
+    let n = p.system.n();
+    let points = p
+        .points
+        .points
+        .iter()
+        .map(|x| {
+            let mut y = x.clone();
+            for i in 0..n {
+                y[1 + 3 * i + 1] = 0.0;
+                y[1 + 3 * i + 2] = 0.0;
+            }
+            y
+        })
+        .collect();
+    Some(PointSet { points })
+}
