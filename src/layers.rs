@@ -65,7 +65,7 @@ fn expand_use(tree: &str) -> Vec<String> {
     items
         .into_iter()
         .filter(|s| !s.is_empty())
-        .flat_map(|s| expand_use(s))
+        .flat_map(expand_use)
         .map(|s| format!("{prefix}{s}"))
         .collect()
 }
@@ -110,9 +110,9 @@ fn target(
     reexports: &BTreeMap<(String, String), String>,
 ) -> Option<Unit> {
     let segs: Vec<&str> = path.split("::").filter(|s| !s.is_empty()).collect();
-    let (module, rest) = match segs.first()? {
-        &"crate" => (segs.get(1)?.to_string(), &segs[2.min(segs.len())..]),
-        &"super" if from.file.is_some() => (from.module.clone(), &segs[1..]),
+    let (module, rest) = match *segs.first()? {
+        "crate" => (segs.get(1)?.to_string(), &segs[2.min(segs.len())..]),
+        "super" if from.file.is_some() => (from.module.clone(), &segs[1..]),
         _ => return None,
     };
     let file = rest.first().and_then(|first| {
@@ -237,10 +237,13 @@ fn violations(units: &[(Unit, String)], layers: &[&str]) -> Vec<String> {
                     "{from} imports `{path}`: `{}` is a higher layer than `{}`",
                     to.module, from.module
                 )),
-                Some(_) if to.module == from.module && from.file.is_some() => {
-                    if to.file.is_some() && to.file != from.file {
-                        edges.entry(from.clone()).or_default().insert(to);
-                    }
+                Some(_)
+                    if to.module == from.module
+                        && from.file.is_some()
+                        && to.file.is_some()
+                        && to.file != from.file =>
+                {
+                    edges.entry(from.clone()).or_default().insert(to);
                 }
                 _ => {}
             }
