@@ -14,6 +14,23 @@
 //!
 //! `src/main.rs` is a thin command-line face over this library.
 
+/// The layers, lowest first: a module may import only modules of its own layer or lower ones,
+/// and the files of one module never import each other in a loop (checked by a test that reads
+/// the sources). The faces (`src/main.rs`, `src/cli/`) sit above all of them.
+#[cfg_attr(not(test), allow(dead_code))]
+const LAYERS: &[&str] = &[
+    "expr",
+    "diagnostic",
+    "mechanics",
+    "problem",
+    "check",
+    "bank",
+    "report",
+];
+
+#[cfg(test)]
+mod layers;
+
 pub mod bank;
 pub mod check;
 pub mod diagnostic;

@@ -1,0 +1,377 @@
+//! The layering test: reads the `crate::…` and `super::…` paths of every library file and fails
+//! when a lower layer imports a higher one ([`crate::LAYERS`]) or when the files of one module
+//! import each other in a loop. Test-only: the library itself reads no files.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// A library file as the layering rules see it: its top-level module and, for a file inside a
+/// module folder, its own name (`check/answer.rs` → `("check", Some("answer"))`).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Unit {
+    module: String,
+    file: Option<String>,
+}
+
+impl std::fmt::Display for Unit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.file {
+            Some(file) => write!(f, "{}/{}.rs", self.module, file),
+            None => write!(f, "{}.rs", self.module),
+        }
+    }
+}
+
+/// The code of a file without comments and without its `#[cfg(test)]` tail (a test module's
+/// `use super::*` names its own file, not a sibling).
+fn code_of(text: &str) -> String {
+    let text = match text.find("#[cfg(test)]") {
+        Some(i) => &text[..i],
+        None => text,
+    };
+    text.lines()
+        .map(|l| match l.find("//") {
+            Some(i) => &l[..i],
+            None => l,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Expands one `use` tree (`a::{b, c::{d, e}}`) into its paths.
+fn expand_use(tree: &str) -> Vec<String> {
+    let tree: String = tree.chars().filter(|c| !c.is_whitespace()).collect();
+    let Some(open) = tree.find('{') else {
+        return vec![tree];
+    };
+    let prefix = &tree[..open];
+    let inner = tree[open + 1..]
+        .strip_suffix('}')
+        .unwrap_or(&tree[open + 1..]);
+    let mut items = Vec::new();
+    let (mut depth, mut start) = (0usize, 0usize);
+    for (i, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth = depth.saturating_sub(1),
+            ',' if depth == 0 => {
+                items.push(&inner[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(&inner[start..]);
+    items
+        .into_iter()
+        .filter(|s| !s.is_empty())
+        .flat_map(expand_use)
+        .map(|s| format!("{prefix}{s}"))
+        .collect()
+}
+
+/// Every `crate::…` or `super::…` path in `code`: from `use` statements (expanded) and from
+/// paths written in place.
+fn paths_in(code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(i) = rest.find("use ") {
+        let before_ok = i == 0 || !rest.as_bytes()[i - 1].is_ascii_alphanumeric();
+        let after = &rest[i + 4..];
+        let end = after.find(';').unwrap_or(after.len());
+        if before_ok {
+            out.extend(expand_use(&after[..end]));
+        }
+        rest = &after[end.min(after.len())..];
+    }
+    for root in ["crate::", "super::"] {
+        for (i, _) in code.match_indices(root) {
+            let ok = i == 0 || !code.as_bytes()[i - 1].is_ascii_alphanumeric();
+            let tail: String = code[i..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
+            if ok && !tail.ends_with("::") {
+                out.push(tail);
+            }
+        }
+    }
+    out.retain(|p| p.starts_with("crate::") || p.starts_with("super::"));
+    out
+}
+
+/// What `path` (seen from `from`) names: a top-level module and maybe one of its files.
+/// `files` lists the files of each module folder; `reexports` maps `module::Item` to the file
+/// whose `pub use` makes it visible at the module root.
+fn target(
+    from: &Unit,
+    path: &str,
+    files: &BTreeMap<String, BTreeSet<String>>,
+    reexports: &BTreeMap<(String, String), String>,
+) -> Option<Unit> {
+    let segs: Vec<&str> = path.split("::").filter(|s| !s.is_empty()).collect();
+    let (module, rest) = match *segs.first()? {
+        "crate" => (segs.get(1)?.to_string(), &segs[2.min(segs.len())..]),
+        "super" if from.file.is_some() => (from.module.clone(), &segs[1..]),
+        _ => return None,
+    };
+    let file = rest.first().and_then(|first| {
+        let in_folder = files.get(&module).is_some_and(|f| f.contains(*first));
+        if in_folder {
+            Some(first.to_string())
+        } else {
+            reexports.get(&(module.clone(), first.to_string())).cloned()
+        }
+    });
+    Some(Unit { module, file })
+}
+
+/// The library's files: (unit, code). Faces (`main.rs`, `cli/`) are the binary's, not the
+/// library's, and are left out.
+fn library_files(src: &Path) -> Vec<(Unit, String)> {
+    let mut out = Vec::new();
+    let Ok(entries) = std::fs::read_dir(src) else {
+        return out;
+    };
+    let mut entries: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for path in entries {
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("")
+            .to_string();
+        if path.is_dir() {
+            if name == "cli" {
+                continue;
+            }
+            for (file, text) in rs_files(&path) {
+                let file = (file != "mod").then_some(file);
+                out.push((
+                    Unit {
+                        module: name.clone(),
+                        file,
+                    },
+                    code_of(&text),
+                ));
+            }
+        } else if path.extension().is_some_and(|e| e == "rs")
+            && !["lib", "main", "layers"].contains(&name.as_str())
+        {
+            let text = std::fs::read_to_string(&path).unwrap_or_default();
+            out.push((
+                Unit {
+                    module: name,
+                    file: None,
+                },
+                code_of(&text),
+            ));
+        }
+    }
+    out
+}
+
+/// The `.rs` files directly in `dir`, by stem.
+fn rs_files(dir: &Path) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "rs"))
+        .map(|p| {
+            let stem = p
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("")
+                .to_string();
+            (stem, std::fs::read_to_string(&p).unwrap_or_default())
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// Every violation of the rules in `units`, as sentences.
+fn violations(units: &[(Unit, String)], layers: &[&str]) -> Vec<String> {
+    let mut files: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (u, _) in units {
+        if let Some(f) = &u.file {
+            files.entry(u.module.clone()).or_default().insert(f.clone());
+        }
+    }
+    // `pub use file::{A, B}` in a module root makes `module::A` an alias of that file.
+    let mut reexports = BTreeMap::new();
+    for (u, code) in units.iter().filter(|(u, _)| u.file.is_none()) {
+        for line in code
+            .split(';')
+            .filter(|s| s.trim_start().starts_with("pub use "))
+        {
+            for p in expand_use(line.trim_start().trim_start_matches("pub use ")) {
+                let segs: Vec<&str> = p.split("::").collect();
+                let in_folder = files.get(&u.module).is_some_and(|f| f.contains(segs[0]));
+                if segs.len() >= 2 && in_folder {
+                    let item = segs[segs.len() - 1].split(" as ").last().unwrap_or("");
+                    reexports.insert((u.module.clone(), item.to_string()), segs[0].to_string());
+                }
+            }
+        }
+    }
+    let rank = |m: &str| layers.iter().position(|l| *l == m);
+    let mut out = Vec::new();
+    let mut edges: BTreeMap<Unit, BTreeSet<Unit>> = BTreeMap::new();
+    for (from, code) in units {
+        let Some(from_rank) = rank(&from.module) else {
+            out.push(format!(
+                "`{}` is in no layer: add it to LAYERS in src/lib.rs",
+                from.module
+            ));
+            continue;
+        };
+        for path in paths_in(code) {
+            let Some(to) = target(from, &path, &files, &reexports) else {
+                continue;
+            };
+            match rank(&to.module) {
+                Some(r) if r > from_rank => out.push(format!(
+                    "{from} imports `{path}`: `{}` is a higher layer than `{}`",
+                    to.module, from.module
+                )),
+                Some(_)
+                    if to.module == from.module
+                        && from.file.is_some()
+                        && to.file.is_some()
+                        && to.file != from.file =>
+                {
+                    edges.entry(from.clone()).or_default().insert(to);
+                }
+                _ => {}
+            }
+        }
+    }
+    out.extend(cycles(&edges));
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// One sentence per group of files that import each other in a loop (a strongly connected
+/// component of the import graph with more than one file).
+fn cycles(edges: &BTreeMap<Unit, BTreeSet<Unit>>) -> Vec<String> {
+    let reach = |from: &Unit| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![from.clone()];
+        while let Some(u) = stack.pop() {
+            for next in edges.get(&u).into_iter().flatten() {
+                if seen.insert(next.clone()) {
+                    stack.push(next.clone());
+                }
+            }
+        }
+        seen
+    };
+    let reachable: BTreeMap<&Unit, BTreeSet<Unit>> = edges.keys().map(|u| (u, reach(u))).collect();
+    let mut groups = BTreeSet::new();
+    for (u, from_u) in &reachable {
+        let group: BTreeSet<&Unit> = from_u
+            .iter()
+            .filter(|v| reachable.get(v).is_some_and(|r| r.contains(*u)))
+            .collect();
+        if group.len() > 1 {
+            groups.insert(group.iter().map(|g| g.to_string()).collect::<Vec<_>>());
+        }
+    }
+    groups
+        .into_iter()
+        .map(|g| format!("import loop among {}", g.join(", ")))
+        .collect()
+}
+
+#[test]
+fn the_library_respects_its_layers() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let units = library_files(&src);
+    assert!(
+        units.len() > 20,
+        "read only {} files under {}",
+        units.len(),
+        src.display()
+    );
+    let v = violations(&units, crate::LAYERS);
+    assert!(v.is_empty(), "layering violations:\n{}", v.join("\n"));
+}
+
+fn unit(module: &str, file: Option<&str>, code: &str) -> (Unit, String) {
+    let u = Unit {
+        module: module.into(),
+        file: file.map(String::from),
+    };
+    (u, code_of(code))
+}
+
+#[test]
+fn an_upward_import_is_caught() {
+    let layers = ["expr", "mechanics", "check"];
+    let table: &[(&str, Option<&str>, &str, usize)] = &[
+        ("mechanics", Some("system"), "use crate::expr::Pool;", 0),
+        ("mechanics", Some("system"), "use crate::check::Verdict;", 1),
+        (
+            "mechanics",
+            Some("system"),
+            "use crate::{expr::Id, check::points::X};",
+            1,
+        ),
+        (
+            "expr",
+            Some("pool"),
+            "fn f() { crate::mechanics::System::new() }",
+            1,
+        ),
+        ("expr", Some("pool"), "// use crate::check::Verdict;\n", 0),
+        (
+            "expr",
+            Some("pool"),
+            "#[cfg(test)]\nmod t { use crate::check::X; }",
+            0,
+        ),
+        ("simulate", None, "use crate::expr::Pool;", 1),
+    ];
+    for (module, file, code, expected) in table {
+        let v = violations(&[unit(module, *file, code)], &layers);
+        assert_eq!(v.len(), *expected, "{module}/{file:?}: {code:?} gave {v:?}");
+    }
+}
+
+#[test]
+fn an_import_loop_between_files_is_caught() {
+    let layers = ["check"];
+    let looped = [
+        unit("check", Some("answer"), "use super::lists::x;"),
+        unit(
+            "check",
+            Some("lists"),
+            "use super::{common::y, equations::z};",
+        ),
+        unit("check", Some("equations"), "use crate::check::answer::w;"),
+        unit("check", Some("common"), ""),
+    ];
+    let v = violations(&looped, &layers);
+    assert_eq!(v.len(), 1, "{v:?}");
+    assert!(
+        v[0].contains("check/answer.rs, check/equations.rs, check/lists.rs"),
+        "{v:?}"
+    );
+    // A loop through a re-export at the module root is a loop too.
+    let via_root = [
+        unit("check", None, "pub use answer::{Checker, check};"),
+        unit("check", Some("answer"), "use super::lists::x;"),
+        unit("check", Some("lists"), "fn f(c: &crate::check::Checker) {}"),
+    ];
+    assert_eq!(violations(&via_root, &layers).len(), 1);
+    let tree = [
+        unit("check", Some("answer"), "use super::{lists::x, common::y};"),
+        unit("check", Some("lists"), "use super::common::y;"),
+        unit("check", Some("common"), ""),
+    ];
+    assert!(violations(&tree, &layers).is_empty());
+}
