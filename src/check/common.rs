@@ -55,29 +55,29 @@ pub(super) fn invalid_reading(
 /// Sample point `k` as text: `theta = 0.3, m = 1.2`.
 pub(super) fn point_text(p: &Prepared, k: usize) -> String {
     let x = &p.points.points[k];
+    let at = p.system.state_layout();
     let mut parts = Vec::new();
     for (i, c) in p.system.coordinates.iter().enumerate() {
-        parts.push(format!("{} = {}", c.name, fmt_value(x[1 + 3 * i])));
+        parts.push(format!("{} = {}", c.name, fmt_value(x[at.q(i)])));
     }
-    let off = 1 + 3 * p.system.n();
     for (j, q) in p.system.parameters.iter().enumerate() {
-        parts.push(format!("{} = {}", q.name, fmt_value(x[off + j])));
+        parts.push(format!("{} = {}", q.name, fmt_value(x[at.param(j)])));
     }
     parts.join(", ")
 }
 
 /// The sample points with every velocity (and acceleration) set to zero.
 pub(super) fn at_rest(p: &Prepared) -> Option<PointSet> {
-    let n = p.system.n();
+    let at = p.system.state_layout();
     let points = p
         .points
         .points
         .iter()
         .map(|x| {
             let mut y = x.clone();
-            for i in 0..n {
-                y[1 + 3 * i + 1] = 0.0;
-                y[1 + 3 * i + 2] = 0.0;
+            for i in 0..at.coordinates() {
+                y[at.qdot(i)] = 0.0;
+                y[at.qddot(i)] = 0.0;
             }
             y
         })

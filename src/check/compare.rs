@@ -167,7 +167,7 @@ fn monomial_ratio(sys: &System, a: Id, b: Id, pts: &PointSet) -> bool {
         )
     };
     let Some(base) = ratio(pts) else { return false };
-    let start = 1 + 3 * sys.n();
+    let start = sys.state_layout().params_start();
     for j in 0..sys.parameters.len() {
         let doubled = PointSet {
             points: pts
@@ -209,7 +209,7 @@ fn moved_states(sys: &System, pts: &PointSet) -> Option<PointSet> {
     if k < 2 {
         return None;
     }
-    let state = 1 + 3 * sys.n();
+    let state = sys.state_layout().params_start();
     let points = (0..k)
         .map(|i| {
             let mut x = pts.points[i].clone();

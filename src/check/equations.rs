@@ -106,13 +106,14 @@ fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRo
     roots.push(r);
     let vals = values(&p.system, &roots, pts)?;
     let n = coords.len();
+    let at = p.system.state_layout();
     Ok(vals
         .into_iter()
         .zip(&pts.points)
         .map(|(v, x)| {
             let v = v?;
             let a: Vec<f64> = v[..n].to_vec();
-            let b = v[n] - (0..n).map(|j| a[j] * x[1 + 3 * j + 2]).sum::<f64>();
+            let b = v[n] - (0..n).map(|j| a[j] * x[at.qddot(j)]).sum::<f64>();
             Some((a, b))
         })
         .collect())
@@ -201,6 +202,7 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
     let Ok(vals) = values(&p.system, &roots, &p.points) else {
         return vec![None; p.points.points.len()];
     };
+    let at = p.system.state_layout();
     vals.into_iter()
         .zip(&p.points.points)
         .map(|(v, x)| {
@@ -212,7 +214,7 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
                 let mut s = v[base];
                 for (j, _) in coords.iter().enumerate() {
                     s +=
-                        v[base + 1 + 2 * j] * x[1 + 3 * j] + v[base + 2 + 2 * j] * x[1 + 3 * j + 1];
+                        v[base + 1 + 2 * j] * x[at.q(j)] + v[base + 2 + 2 * j] * x[at.qdot(j)];
                 }
                 rhs[i] = s;
             }

@@ -93,7 +93,7 @@ impl PointSet {
 
     /// The parameter values of point `k` (the tail of the layout).
     pub fn params<'a>(&'a self, sys: &System, k: usize) -> &'a [f64] {
-        let start = 1 + 3 * sys.n();
+        let start = sys.state_layout().params_start();
         &self.points[k][start..]
     }
 }
