@@ -38,3 +38,11 @@ pub mod expr;
 pub mod mechanics;
 pub mod problem;
 pub mod report;
+
+// What a library user needs, in one place (the modules hold the rest).
+pub use bank::{Bank, Finding, embedded, load_dir, load_str};
+pub use check::{CheckError, Checker, Code, Diagnosis, Status, Verdict, check};
+pub use diagnostic::{Diagnostic, render, render_plain};
+pub use expr::{Context, Dimension, Id, ParseError, Pool, Reading, Style, read, read_expr};
+pub use mechanics::{Body, Layout, MechError, Potential, System};
+pub use problem::{Part, PartKind, Problem};

@@ -463,7 +463,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         at: sp.at.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
         up_to_constant,
         wrong: sp.wrong.clone(),
-        tolerance: sp.tolerance.unwrap_or(crate::check::compare::TOLERANCE),
+        tolerance: sp.tolerance.unwrap_or(crate::check::tolerance::TOLERANCE),
         stability: sp.stability.clone(),
         quantity,
         dimension,

@@ -2,7 +2,7 @@
 //! engine can analyse, verifying every stated answer against the physics, and the default
 //! bank embedded in the binary.
 
-pub mod build;
+pub(crate) mod build;
 pub mod embedded;
 pub mod finding;
 pub mod load;

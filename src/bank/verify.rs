@@ -5,14 +5,15 @@
 //! constraint forces; and every `wrong` example must indeed be wrong.
 
 use super::finding::Finding;
+use crate::check::CheckError;
 use crate::check::compare::{Relation, close, fmt_value, parameter_text, relate, values};
 use crate::check::equations::equations_hold;
+use crate::check::points::PointSet;
 use crate::check::prepare::{
     Prepared, equilibrium_of, prepare, read_frequency, read_one, read_point, residuals,
     same_coordinate,
 };
 use crate::check::tolerance;
-use crate::check::{CheckError, PointSet};
 use crate::expr::{Dimension, Id, read_expr};
 use crate::mechanics::accel::Dynamics;
 use crate::mechanics::sample::seed_from;

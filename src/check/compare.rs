@@ -21,8 +21,6 @@ pub enum Relation {
     Undefined { point: usize },
 }
 
-pub use super::tolerance::TOLERANCE;
-
 /// Whether `x` and `y` agree to `tol` relative to `scale`.
 pub fn close(x: f64, y: f64, scale: f64, tol: f64) -> bool {
     (x - y).abs() <= tol * (scale + x.abs().max(y.abs()) + tolerance::TINY)

@@ -213,8 +213,7 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
                 let base = n * n + i * (1 + 2 * n);
                 let mut s = v[base];
                 for (j, _) in coords.iter().enumerate() {
-                    s +=
-                        v[base + 1 + 2 * j] * x[at.q(j)] + v[base + 2 + 2 * j] * x[at.qdot(j)];
+                    s += v[base + 1 + 2 * j] * x[at.q(j)] + v[base + 2 + 2 * j] * x[at.qdot(j)];
                 }
                 rhs[i] = s;
             }

@@ -4,21 +4,21 @@
 //!
 //! Verdicts never depend on the simplifier: everything here evaluates.
 
-pub mod answer;
+// The public face of the checker is the re-exports below; the modules are its internals
+// (the bank's verifier and the reports use some of them inside the crate).
+pub(crate) mod answer;
 mod common;
-pub mod compare;
-pub mod diagnose;
-pub mod equations;
+pub(crate) mod compare;
+mod diagnose;
+pub(crate) mod equations;
 pub mod error;
-pub mod lists;
-pub mod points;
-pub mod prepare;
+mod lists;
+pub(crate) mod points;
+pub(crate) mod prepare;
 pub mod tolerance;
 pub mod verdict;
 
 pub use crate::problem::Assumption;
 pub use answer::{Checker, check};
-pub use compare::{Relation, relate};
 pub use error::CheckError;
-pub use points::PointSet;
-pub use verdict::{Code, Diagnosis, Status, Verdict};
+pub use verdict::{Code, Diagnosis, ReadAs, Status, Verdict};

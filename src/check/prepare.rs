@@ -207,3 +207,39 @@ pub(crate) fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, C
     }
     Ok(at)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn points_where_the_reference_is_undefined_are_redrawn() {
+        let text = r#"
+    id = "half-line"
+    title = "A reference defined for x >= 0 only"
+    coordinates = [{ name = "x", range = [-2.0, 2.0] }]
+    lagrangian = "1/2*m*x'^2"
+
+    [parameters]
+    m = { dimension = "M", range = [0.5, 2.0] }
+
+    [[parts]]
+    id = "root"
+    kind = "expression"
+    prompt = "p"
+    answer = "m*sqrt(x)"
+    hints = ["a", "b"]
+    "#;
+        let problem = crate::bank::load_str("half-line.toml", text).unwrap();
+        let part = problem.part("root").unwrap();
+        let p = prepare(&problem, part).unwrap();
+        assert_eq!(p.points.points.len(), POINTS);
+        assert!(
+            p.points.points.iter().all(|x| x[1] >= 0.0),
+            "a point with x < 0 was kept"
+        );
+        let mut checker = crate::check::Checker::new(&problem);
+        let v = checker.check("root", "m*abs(x)^(1/2)").unwrap();
+        assert_eq!(v.status, crate::check::Status::Correct);
+    }
+}

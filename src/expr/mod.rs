@@ -4,22 +4,22 @@
 //! This layer knows no physics beyond "a coordinate q has time derivatives q', q''".
 
 pub mod ast;
-pub mod build;
-pub mod context;
-pub mod diff;
+pub(crate) mod build;
+pub(crate) mod context;
+pub(crate) mod diff;
 pub mod dimension;
 pub mod error;
 pub mod eval;
-pub mod exact;
-pub mod lexer;
-pub mod lower;
-pub mod names;
+pub(crate) mod exact;
+pub(crate) mod lexer;
+pub(crate) mod lower;
+pub(crate) mod names;
 pub mod node;
-pub mod order;
+pub(crate) mod order;
 pub mod parser;
 pub mod pool;
 pub mod print;
-pub mod simplify;
+pub(crate) mod simplify;
 
 pub use context::Context;
 pub use dimension::{DimError, Dimension, Dimensions};

@@ -5,16 +5,16 @@
 
 pub mod accel;
 pub mod bodies;
-pub mod constraints;
-pub mod coordinate;
+pub(crate) mod constraints;
+pub(crate) mod coordinate;
 pub mod derive;
-pub mod energy;
+pub(crate) mod energy;
 pub mod equilibria;
 pub mod error;
 pub mod fixtures;
-pub mod linalg;
+pub(crate) mod linalg;
 pub mod modes;
-pub mod sample;
+pub(crate) mod sample;
 pub mod state;
 pub mod system;
 

@@ -273,34 +273,3 @@ fn one_embedded_problem_loads_by_id() {
     }
     assert!(embedded::problem("no-such-problem").is_none());
 }
-
-#[test]
-fn points_where_the_reference_is_undefined_are_redrawn() {
-    let text = r#"
-id = "half-line"
-title = "A reference defined for x >= 0 only"
-coordinates = [{ name = "x", range = [-2.0, 2.0] }]
-lagrangian = "1/2*m*x'^2"
-
-[parameters]
-m = { dimension = "M", range = [0.5, 2.0] }
-
-[[parts]]
-id = "root"
-kind = "expression"
-prompt = "p"
-answer = "m*sqrt(x)"
-hints = ["a", "b"]
-"#;
-    let problem = lagrange::bank::load_str("half-line.toml", text).unwrap();
-    let part = problem.part("root").unwrap();
-    let p = lagrange::check::prepare::prepare(&problem, part).unwrap();
-    assert_eq!(p.points.points.len(), lagrange::check::prepare::POINTS);
-    assert!(
-        p.points.points.iter().all(|x| x[1] >= 0.0),
-        "a point with x < 0 was kept"
-    );
-    let mut checker = lagrange::check::Checker::new(&problem);
-    let v = checker.check("root", "m*abs(x)^(1/2)").unwrap();
-    assert_eq!(v.status, lagrange::check::Status::Correct);
-}
