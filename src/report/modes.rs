@@ -13,7 +13,7 @@ use serde::{Serialize, Serializer};
 
 use super::{Formula, Paint, text};
 use crate::check::compare::fmt_value;
-use crate::expr::{Id, Program, Style};
+use crate::expr::{Id, ParseError, Program, Style, read_expr};
 use crate::mechanics::equilibria::Stability;
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
@@ -50,6 +50,17 @@ pub enum ModesError {
     /// The equilibrium given is not numeric, but every parameter has a number.
     #[error("the equilibrium's values must be numbers here")]
     PointNotNumeric,
+    /// A value of the equilibrium given did not read. The face labels the value as its user
+    /// gave it (a command line, by the flag that gave it).
+    #[error("cannot read the equilibrium's value of `{coordinate}`: {error}")]
+    PointValue {
+        /// The coordinate, as named in the equilibrium given.
+        coordinate: String,
+        /// The value as given.
+        source_text: String,
+        /// Why it did not read.
+        error: Box<ParseError>,
+    },
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
@@ -215,7 +226,12 @@ fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesE
             .iter()
             .position(|n| *n == crate::expr::names::normalize(name))
             .ok_or(MechError::UnknownCoordinate { name: name.clone() })?;
-        point[k] = Some(sys.read(v, &format!("--at {name}"), &ctx)?);
+        let value = read_expr(v, &ctx, &mut sys.pool).map_err(|error| ModesError::PointValue {
+            coordinate: name.clone(),
+            source_text: v.clone(),
+            error: Box::new(error),
+        })?;
+        point[k] = Some(value);
     }
     point
         .into_iter()

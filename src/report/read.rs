@@ -205,11 +205,14 @@ impl Reading {
 
     /// The report as text, derivatives in Unicode, marked up by `paint`. When the partial
     /// derivative's variable is not one variable the text stops before it: the face says why.
-    pub fn render(&self, paint: &dyn Paint) -> String {
-        text(|o| self.write_text(paint, o))
+    ///
+    /// `give_dimensions` follows an unknown dimension, in parentheses: how the face's user
+    /// gives symbols their dimensions (the command line names its flag); empty, nothing does.
+    pub fn render(&self, paint: &dyn Paint, give_dimensions: &str) -> String {
+        text(|o| self.write_text(paint, give_dimensions, o))
     }
 
-    fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+    fn write_text(&self, paint: &dyn Paint, give_dimensions: &str, o: &mut String) -> fmt::Result {
         let h = |t: &str| paint.heading(t);
         writeln!(o, "{} {}", h("read as:"), self.forms.plain)?;
         writeln!(o, "{} {}", h("unicode:"), self.forms.unicode)?;
@@ -232,12 +235,11 @@ impl Reading {
             Some(DimensionFinding::Known(d)) => {
                 writeln!(o, "{} {d}", h("dimension:  "))?;
             }
+            Some(DimensionFinding::Unknown) if give_dimensions.is_empty() => {
+                writeln!(o, "{} unknown", h("dimension:  "))?;
+            }
             Some(DimensionFinding::Unknown) => {
-                writeln!(
-                    o,
-                    "{} unknown (give every symbol a dimension with --dims)",
-                    h("dimension:  ")
-                )?;
+                writeln!(o, "{} unknown ({give_dimensions})", h("dimension:  "))?;
             }
             Some(DimensionFinding::Inconsistent(e)) => {
                 writeln!(o, "{} {}", h("dimension:  "), paint.bad(e))?;
