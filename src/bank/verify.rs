@@ -370,8 +370,12 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             .steps
             .iter()
             .map(|s| {
-                let f = p.system.pool.factor_common(s.equation);
-                format!("{} = 0", p.system.pool.unicode(f))
+                let f = p.system.pool.factored(s.equation);
+                let shown = p
+                    .system
+                    .pool
+                    .display_factored(&f, crate::expr::Style::Unicode);
+                format!("{shown} = 0")
             })
             .collect();
         return Err(Failed::new(

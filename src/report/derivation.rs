@@ -11,7 +11,7 @@ use std::fmt::{self, Write as _};
 use serde::{Serialize, Serializer};
 
 use super::{Formula, Paint, text};
-use crate::expr::{Id, Style};
+use crate::expr::{Factored, Id, Style};
 use crate::mechanics::{ConstraintKind, MechError, System};
 
 /// Everything `derive` shows about a system.
@@ -103,10 +103,10 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
     let rows = (!sys.constraints.is_empty()).then(|| sys.constraint_rows());
     let augmented = rows.as_ref().map(|r| sys.augmented_equations(&d, r));
     let multipliers = rows.as_ref().and_then(|r| sys.multipliers_symbolic(&d, r));
-    let factored: Vec<Id> = d
+    let factored: Vec<Factored> = d
         .steps
         .iter()
-        .map(|s| sys.pool.factor_common(s.equation))
+        .map(|s| sys.pool.factored(s.equation))
         .collect();
     let (coordinate_labels, parameter_labels) = labels(&mut sys);
     let pool = &sys.pool;
@@ -155,7 +155,10 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
             .iter()
             .map(|s| (!pool.is_zero(s.generalized_force)).then(|| f(s.generalized_force)))
             .collect(),
-        factored_equations: all(&factored),
+        factored_equations: factored
+            .iter()
+            .map(|x| Formula::factored(pool, x))
+            .collect(),
         total_energy: f(energy.total),
         coordinates: names,
     })

@@ -183,13 +183,13 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
     Ok(ModesReport {
         characteristic_polynomial: symbolic
             .as_ref()
-            .map(|s| Formula::new(pool, s.characteristic)),
+            .map(|s| Formula::factored(pool, &s.characteristic_shown)),
         continuum,
         equilibria,
         omega_squared: symbolic.as_ref().map(|s| {
-            s.omega_squared
+            s.omega_squared_shown
                 .iter()
-                .map(|&w| Formula::new(pool, w))
+                .map(|w| Formula::factored(pool, w))
                 .collect()
         }),
         coordinate_labels,
