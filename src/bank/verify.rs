@@ -13,7 +13,7 @@ use crate::check::prepare::{
 };
 use crate::check::tolerance;
 use crate::check::{CheckError, PointSet};
-use crate::expr::{Dimension, Id, read_expr};
+use crate::expr::{Dimension, Id, Style, read_expr};
 use crate::mechanics::accel::Dynamics;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
@@ -371,11 +371,7 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             .iter()
             .map(|s| {
                 let f = p.system.pool.factored(s.equation);
-                let shown = p
-                    .system
-                    .pool
-                    .display_factored(&f, crate::expr::Style::Unicode);
-                format!("{shown} = 0")
+                format!("{} = 0", p.system.pool.display_factored(&f, Style::Unicode))
             })
             .collect();
         return Err(Failed::new(
