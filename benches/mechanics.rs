@@ -24,8 +24,8 @@ fn printed_ops(n: usize) -> (usize, f64) {
         .steps
         .iter()
         .map(|s| {
-            let f = sys.pool.factor_common(s.equation);
-            sys.pool.count_ops(f)
+            let f = sys.pool.factored(s.equation);
+            f.count_ops(&sys.pool)
         })
         .sum();
     (ops, secs)

@@ -14,7 +14,7 @@ use crate::check::prepare::{
     same_coordinate,
 };
 use crate::check::tolerance;
-use crate::expr::{Dimension, Id, read_expr};
+use crate::expr::{Dimension, Id, Style, read_expr};
 use crate::mechanics::accel::Dynamics;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
@@ -371,8 +371,8 @@ fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             .steps
             .iter()
             .map(|s| {
-                let f = p.system.pool.factor_common(s.equation);
-                format!("{} = 0", p.system.pool.unicode(f))
+                let f = p.system.pool.factored(s.equation);
+                format!("{} = 0", p.system.pool.display_factored(&f, Style::Unicode))
             })
             .collect();
         return Err(Failed::new(

@@ -7,6 +7,7 @@ use clap::Args;
 
 use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::expr::Style;
+use lagrange::mechanics::MechError;
 use lagrange::report::modes::assignments;
 use lagrange::report::{ModesError, ModesOptions, ModesReport};
 
@@ -62,6 +63,15 @@ fn modes_report(
         ModesError::MissingPointValue { name } => {
             CliError::Usage(format!("--at gives no value for `{name}`"))
         }
+        ModesError::PointValue {
+            coordinate,
+            source_text,
+            error,
+        } => CliError::Mech(MechError::Parse {
+            what: format!("--at {coordinate}"),
+            source_text,
+            error,
+        }),
         ModesError::PointNotNumeric => CliError::usage("--at values must be numbers here"),
         ModesError::SymbolicNeedsPoint => {
             CliError::usage("--symbolic needs the equilibrium, given with --at")

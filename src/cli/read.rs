@@ -33,6 +33,9 @@ pub struct ReadArgs {
     dt: bool,
 }
 
+/// How a user of `read` gives symbols dimensions, shown after an unknown dimension.
+const GIVE_DIMENSIONS: &str = "give every symbol a dimension with --dims";
+
 fn split_list(s: &str) -> Vec<String> {
     s.split(',')
         .map(|x| x.trim().to_string())
@@ -63,7 +66,7 @@ pub fn run(args: &ReadArgs, color: bool, out: &mut String) -> anyhow::Result<Exi
             return Ok(ExitCode::from(1));
         }
     };
-    out.push_str(&r.render(&Terminal));
+    out.push_str(&r.render(&Terminal, GIVE_DIMENSIONS));
     if matches!(r.partial, Some(Partial::NotAVariable)) {
         bail!("--diff takes one variable, e.g. theta or theta'");
     }

@@ -561,17 +561,6 @@ impl Pool {
         common.unwrap_or_default()
     }
 
-    /// [`factored`](Self::factored) as one node. Deprecated: the node is not canonical, so it
-    /// breaks the pool's contract; kept only for callers that store the display form as an
-    /// [`Id`] (the symbolic modes, the CLI's `derive`, the bank's messages, benchmarks) until
-    /// they print a [`Factored`] instead.
-    pub fn factor_common(&mut self, e: Id) -> Id {
-        match self.factored(e) {
-            Factored::Plain(id) => id,
-            Factored::Product(parts) => self.intern(Node::Mul(parts.into_boxed_slice())),
-        }
-    }
-
     /// `Some(a)` when `f` is `g(a)²`.
     fn trig_square(&self, f: Id, g: Func) -> Option<Id> {
         if let Node::Pow(b, e) = self.node(f)
@@ -618,6 +607,18 @@ impl Factored {
         }
     }
 
+    /// The size of the printed form, counted as [`Pool::count_ops`] counts the product node
+    /// it prints as.
+    pub fn count_ops(&self, pool: &Pool) -> usize {
+        match self {
+            Factored::Plain(id) => pool.count_ops(*id),
+            Factored::Product(parts) => {
+                parts.len().saturating_sub(1)
+                    + parts.iter().map(|&p| pool.count_ops(p)).sum::<usize>()
+            }
+        }
+    }
+
     /// The canonical expression this equals.
     pub fn value(&self, pool: &mut Pool) -> Id {
         match self {
@@ -629,7 +630,8 @@ impl Factored {
 
 #[cfg(test)]
 mod tests {
-    use crate::expr::{Context, Pool, Style, read_expr};
+    use crate::expr::node::Node;
+    use crate::expr::{Context, Factored, Pool, Style, read_expr};
 
     #[test]
     fn factored_forms_print_as_their_product_node_did() {
@@ -646,10 +648,16 @@ mod tests {
             let e = read_expr(text, &ctx, &mut pool).unwrap();
             let f = pool.factored(e);
             let value = f.value(&mut pool);
-            let node = pool.factor_common(e);
+            // The product node the factored form once was (interned here only, for the
+            // comparison: it is not canonical).
+            let node = match f.clone() {
+                Factored::Plain(id) => id,
+                Factored::Product(parts) => pool.intern(Node::Mul(parts.into_boxed_slice())),
+            };
             for style in [Style::Plain, Style::Unicode, Style::Latex] {
                 assert_eq!(pool.display_factored(&f, style), pool.display(node, style));
             }
+            assert_eq!(f.count_ops(&pool), pool.count_ops(node), "{text}");
             let back = pool.sub(value, e);
             assert!(pool.expand(back) == pool.zero(), "{text}");
         }

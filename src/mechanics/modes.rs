@@ -12,7 +12,7 @@ use super::equilibria::{EIGENVALUE_ZERO, Stability, Statics};
 use super::error::MechError;
 use super::linalg::det;
 use super::system::System;
-use crate::expr::{Id, Sym};
+use crate::expr::{Factored, Id, Sym};
 
 /// Closed forms (a cofactor expansion has n! terms) are given for at most this many
 /// coordinates.
@@ -248,17 +248,20 @@ impl System {
         let w2 = self.pool.powi(ov, 2);
         let display_map: FxHashMap<_, _> = [((x, 0), w2)].into_iter().collect();
         let shown = self.pool.substitute(p, &display_map);
-        let characteristic = self.pool.factor_common(shown);
+        let characteristic_shown = self.pool.factored(shown);
         let roots = match n {
-            1 | 2 => Some(self.quadratic_roots(p, x)),
-            _ => None,
+            1 | 2 => self.quadratic_roots(p, x),
+            _ => Vec::new(),
         };
+        let (omega_squared, omega_squared_shown) = roots.into_iter().unzip();
         Ok(SymbolicModes {
             mass,
             stiffness,
-            characteristic,
+            characteristic: shown,
+            characteristic_shown,
             omega,
-            omega_squared: roots.unwrap_or_default(),
+            omega_squared,
+            omega_squared_shown,
         })
     }
 
@@ -272,8 +275,8 @@ impl System {
         self.pool.symbol(name)
     }
 
-    /// Roots in x of the polynomial p (degree 1 or 2), simplified and factored for display.
-    fn quadratic_roots(&mut self, p: Id, x: Sym) -> Vec<Id> {
+    /// Roots in x of the polynomial p (degree 1 or 2), simplified, each with its display form.
+    fn quadratic_roots(&mut self, p: Id, x: Sym) -> Vec<(Id, Factored)> {
         let zero = self.pool.zero();
         let at0: FxHashMap<_, _> = [((x, 0), zero)].into_iter().collect();
         let c = self.pool.substitute(p, &at0);
@@ -314,10 +317,12 @@ impl System {
         out
     }
 
-    /// Simplified, then with common factors pulled out: (2 + √2)·g/l.
-    fn tidy(&mut self, e: Id) -> Id {
+    /// Simplified, and with common factors pulled out for display: (2 + √2)·g/l. Each root
+    /// is factored right after it is simplified, so that the pool grows in the order the
+    /// printed forms have always been built in.
+    fn tidy(&mut self, e: Id) -> (Id, Factored) {
         let s = self.simplify(e);
-        self.pool.factor_common(s)
+        (s, self.pool.factored(s))
     }
 }
 
@@ -328,10 +333,15 @@ pub struct SymbolicModes {
     pub stiffness: Vec<Vec<Id>>,
     /// det(K − ω² M₀), in the symbol `omega`.
     pub characteristic: Id,
+    /// The characteristic polynomial as shown, common factors pulled out
+    /// (print it with [`Pool::display_factored`](crate::expr::Pool::display_factored)).
+    pub characteristic_shown: Factored,
     /// The symbol used for ω.
     pub omega: Sym,
     /// ω² in closed form (for one or two coordinates), ascending where comparable.
     pub omega_squared: Vec<Id>,
+    /// Each ω² as shown, common factors pulled out: (2 + √2)·g/l.
+    pub omega_squared_shown: Vec<Factored>,
 }
 
 fn normalize_shape(v: &[f64]) -> Vec<f64> {

@@ -6,12 +6,12 @@
 //! The serialized fields are in alphabetical order: that is the order of the JSON the command
 //! has always printed, which scripts may compare textually.
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use serde::{Serialize, Serializer};
 
-use super::{Formula, Paint};
-use crate::expr::{Id, Style};
+use super::{Formula, Paint, text};
+use crate::expr::{Factored, Id, Style};
 use crate::mechanics::{ConstraintKind, MechError, System};
 
 /// Everything `derive` shows about a system.
@@ -103,10 +103,10 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
     let rows = (!sys.constraints.is_empty()).then(|| sys.constraint_rows());
     let augmented = rows.as_ref().map(|r| sys.augmented_equations(&d, r));
     let multipliers = rows.as_ref().and_then(|r| sys.multipliers_symbolic(&d, r));
-    let factored: Vec<Id> = d
+    let factored: Vec<Factored> = d
         .steps
         .iter()
-        .map(|s| sys.pool.factor_common(s.equation))
+        .map(|s| sys.pool.factored(s.equation))
         .collect();
     let (coordinate_labels, parameter_labels) = labels(&mut sys);
     let pool = &sys.pool;
@@ -155,7 +155,10 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
             .iter()
             .map(|s| (!pool.is_zero(s.generalized_force)).then(|| f(s.generalized_force)))
             .collect(),
-        factored_equations: all(&factored),
+        factored_equations: factored
+            .iter()
+            .map(|x| Formula::factored(pool, x))
+            .collect(),
         total_energy: f(energy.total),
         coordinates: names,
     })
@@ -189,58 +192,56 @@ impl DerivationReport {
     /// The report as text: with `Style::Latex` an `align*` block of the steps and h; otherwise
     /// the full report with expressions in `style`, marked up by `paint`.
     pub fn render(&self, style: Style, paint: &dyn Paint) -> String {
-        if style == Style::Latex {
-            return self.render_latex();
-        }
-        let mut o = String::new();
-        self.render_steps(style, paint, &mut o);
-        self.render_energy(style, paint, &mut o);
-        self.render_constraints(style, paint, &mut o);
-        o
+        text(|o| {
+            if style == Style::Latex {
+                return self.render_latex(o);
+            }
+            self.render_steps(style, paint, o)?;
+            self.render_energy(style, paint, o)?;
+            self.render_constraints(style, paint, o)
+        })
     }
 
-    fn render_latex(&self) -> String {
-        let mut o = String::new();
-        let _ = writeln!(o, "\\begin{{align*}}");
-        let _ = writeln!(o, "L &= {} \\\\", self.lagrangian.latex);
+    fn render_latex(&self, o: &mut String) -> fmt::Result {
+        writeln!(o, "\\begin{{align*}}")?;
+        writeln!(o, "L &= {} \\\\", self.lagrangian.latex)?;
         for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
             let (q, qd) = (&q.latex, &qd.latex);
-            let _ = writeln!(
+            writeln!(
                 o,
                 "p_{{{q}}} = \\frac{{\\partial L}}{{\\partial {qd}}} &= {} \\\\",
                 self.momenta[i].latex
-            );
-            let _ = writeln!(
+            )?;
+            writeln!(
                 o,
                 "\\frac{{d}}{{dt}} p_{{{q}}} &= {} \\\\",
                 self.momenta_dt[i].latex
-            );
-            let _ = writeln!(
+            )?;
+            writeln!(
                 o,
                 "\\frac{{\\partial L}}{{\\partial {q}}} &= {} \\\\",
                 self.generalized_forces[i].latex
-            );
-            let _ = writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex);
+            )?;
+            writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex)?;
         }
-        let _ = writeln!(o, "h &= {}", self.energy_function.latex);
-        let _ = writeln!(o, "\\end{{align*}}");
-        o
+        writeln!(o, "h &= {}", self.energy_function.latex)?;
+        writeln!(o, "\\end{{align*}}")
     }
 
-    fn render_steps(&self, style: Style, paint: &dyn Paint, o: &mut String) {
-        let _ = writeln!(
+    fn render_steps(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+        writeln!(
             o,
             "{} L = {}",
             paint.heading("Lagrangian:"),
             self.lagrangian.get(style)
-        );
+        )?;
         let coords: Vec<&str> = self
             .coordinate_labels
             .iter()
             .map(|l| l.0.get(style))
             .collect();
         let params: Vec<&str> = self.parameter_labels.iter().map(|p| p.get(style)).collect();
-        let _ = writeln!(
+        writeln!(
             o,
             "{} {}    {} {}",
             paint.heading("coordinates:"),
@@ -251,17 +252,17 @@ impl DerivationReport {
             } else {
                 params.join(", ")
             }
-        );
+        )?;
         for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
             let (q, qd) = (q.get(style), qd.get(style));
-            let _ = writeln!(o, "\n{} {q}", paint.heading("Coordinate"));
-            let _ = writeln!(o, "  p = ∂L/∂{qd} = {}", self.momenta[i].get(style));
-            let _ = writeln!(o, "  d/dt p = {}", self.momenta_dt[i].get(style));
-            let _ = writeln!(o, "  ∂L/∂{q} = {}", self.generalized_forces[i].get(style));
+            writeln!(o, "\n{} {q}", paint.heading("Coordinate"))?;
+            writeln!(o, "  p = ∂L/∂{qd} = {}", self.momenta[i].get(style))?;
+            writeln!(o, "  d/dt p = {}", self.momenta_dt[i].get(style))?;
+            writeln!(o, "  ∂L/∂{q} = {}", self.generalized_forces[i].get(style))?;
             if let Some(force) = &self.applied_forces[i] {
-                let _ = writeln!(o, "  Q = {}", force.get(style));
+                writeln!(o, "  Q = {}", force.get(style))?;
             }
-            let _ = writeln!(
+            writeln!(
                 o,
                 "  {} {} = 0",
                 if self.applied_forces[i].is_none() {
@@ -270,27 +271,28 @@ impl DerivationReport {
                     "d/dt p − ∂L/∂q − Q:"
                 },
                 paint.good(self.factored_equations[i].get(style))
-            );
+            )?;
         }
-        let _ = writeln!(
+        writeln!(
             o,
             "\n{} (M q̈ = f)",
             paint.heading("Mass matrix M and forcing f")
-        );
+        )?;
         for (row, f) in self.mass_matrix.iter().zip(&self.forcing) {
             let cells: Vec<&str> = row.iter().map(|m| m.get(style)).collect();
-            let _ = writeln!(o, "  [ {} ]   [ {} ]", cells.join(", "), f.get(style));
+            writeln!(o, "  [ {} ]   [ {} ]", cells.join(", "), f.get(style))?;
         }
+        Ok(())
     }
 
-    fn render_energy(&self, style: Style, paint: &dyn Paint, o: &mut String) {
-        let _ = writeln!(
+    fn render_energy(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+        writeln!(
             o,
             "\n{} h = Σ q̇ ∂L/∂q̇ − L = {}",
             paint.heading("Energy function:"),
             self.energy_function.get(style)
-        );
-        let _ = writeln!(
+        )?;
+        writeln!(
             o,
             "  conserved: {}",
             if self.energy_conserved {
@@ -298,8 +300,8 @@ impl DerivationReport {
             } else {
                 "no"
             }
-        );
-        let _ = writeln!(
+        )?;
+        writeln!(
             o,
             "  h = T + V: {}",
             if self.energy_is_total {
@@ -307,45 +309,47 @@ impl DerivationReport {
             } else {
                 format!("no (T + V = {})", self.total_energy.get(style))
             }
-        );
+        )?;
         if self.conserved_momenta.is_empty() {
-            let _ = writeln!(o, "{} none", paint.heading("Cyclic coordinates:"));
+            writeln!(o, "{} none", paint.heading("Cyclic coordinates:"))?;
         }
         for c in &self.conserved_momenta {
-            let _ = writeln!(
+            writeln!(
                 o,
                 "{} {} — conserved momentum {}",
                 paint.heading("Cyclic coordinate:"),
                 self.coordinate_labels[c.index].0.get(style),
                 c.momentum.get(style)
-            );
+            )?;
         }
+        Ok(())
     }
 
-    fn render_constraints(&self, style: Style, paint: &dyn Paint, o: &mut String) {
+    fn render_constraints(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let Some(aug) = &self.augmented_equations else {
-            return;
+            return Ok(());
         };
-        let _ = writeln!(o, "\n{}", paint.heading("Constraints"));
+        writeln!(o, "\n{}", paint.heading("Constraints"))?;
         for c in &self.constraints {
-            let _ = writeln!(o, "  {} = 0 ({:?})", c.constraint.get(style), c.kind);
+            writeln!(o, "  {} = 0 ({:?})", c.constraint.get(style), c.kind)?;
         }
-        let _ = writeln!(o, "  with multipliers λ:");
+        writeln!(o, "  with multipliers λ:")?;
         for e in aug {
-            let _ = writeln!(o, "  {} = 0", e.get(style));
+            writeln!(o, "  {} = 0", e.get(style))?;
         }
         match &self.multipliers {
             Some(ms) => {
                 for (j, m) in ms.iter().enumerate() {
-                    let _ = writeln!(o, "  λ{} = {}", j + 1, m.get(style));
+                    writeln!(o, "  λ{} = {}", j + 1, m.get(style))?;
                 }
             }
             None => {
-                let _ = writeln!(
+                writeln!(
                     o,
                     "  (the multipliers are solved numerically at a state; the system is too large for a closed form)"
-                );
+                )?;
             }
         }
+        Ok(())
     }
 }

@@ -6,7 +6,7 @@
 
 use serde::{Serialize, Serializer};
 
-use crate::expr::{Id, Pool, Style};
+use crate::expr::{Factored, Id, Pool, Style};
 
 /// An expression in plain syntax, Unicode and LaTeX.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -26,6 +26,15 @@ impl Formula {
             plain: pool.display(e, Style::Plain),
             unicode: pool.display(e, Style::Unicode),
             latex: pool.display(e, Style::Latex),
+        }
+    }
+
+    /// A factored form of `pool` (see [`Pool::factored`]) in every notation.
+    pub fn factored(pool: &Pool, f: &Factored) -> Formula {
+        Formula {
+            plain: pool.display_factored(f, Style::Plain),
+            unicode: pool.display_factored(f, Style::Unicode),
+            latex: pool.display_factored(f, Style::Latex),
         }
     }
 

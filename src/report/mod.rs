@@ -30,6 +30,16 @@ pub use problems::{
 };
 pub use read::{ReadOptions, Reading, reading};
 
+/// Runs a renderer that writes into a `String`, and returns the text: the one place where a
+/// renderer's [`std::fmt::Result`] is turned into text. Writing into a `String` never fails, and
+/// the renderers format only strings and numbers, whose `Display` never fails either; an error
+/// here would be a bug in a renderer, not something about the input.
+fn text(render: impl FnOnce(&mut String) -> std::fmt::Result) -> String {
+    let mut o = String::new();
+    render(&mut o).expect("writing a report into a String cannot fail");
+    o
+}
+
 /// How a renderer marks up text for a face. Every method defaults to no markup; a terminal
 /// face overrides them with colours, a browser face could emit HTML.
 pub trait Paint {

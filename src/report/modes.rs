@@ -7,13 +7,13 @@
 //! always printed.
 
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use serde::{Serialize, Serializer};
 
-use super::{Formula, Paint};
+use super::{Formula, Paint, text};
 use crate::check::compare::fmt_value;
-use crate::expr::{Id, Program, Style};
+use crate::expr::{Id, ParseError, Program, Style, read_expr};
 use crate::mechanics::equilibria::Stability;
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
@@ -50,6 +50,17 @@ pub enum ModesError {
     /// The equilibrium given is not numeric, but every parameter has a number.
     #[error("the equilibrium's values must be numbers here")]
     PointNotNumeric,
+    /// A value of the equilibrium given did not read. The face labels the value as its user
+    /// gave it (a command line, by the flag that gave it).
+    #[error("cannot read the equilibrium's value of `{coordinate}`: {error}")]
+    PointValue {
+        /// The coordinate, as named in the equilibrium given.
+        coordinate: String,
+        /// The value as given.
+        source_text: String,
+        /// Why it did not read.
+        error: Box<ParseError>,
+    },
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
@@ -172,13 +183,13 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
     Ok(ModesReport {
         characteristic_polynomial: symbolic
             .as_ref()
-            .map(|s| Formula::new(pool, s.characteristic)),
+            .map(|s| Formula::factored(pool, &s.characteristic_shown)),
         continuum,
         equilibria,
         omega_squared: symbolic.as_ref().map(|s| {
-            s.omega_squared
+            s.omega_squared_shown
                 .iter()
-                .map(|&w| Formula::new(pool, w))
+                .map(|w| Formula::factored(pool, w))
                 .collect()
         }),
         coordinate_labels,
@@ -215,7 +226,12 @@ fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesE
             .iter()
             .position(|n| *n == crate::expr::names::normalize(name))
             .ok_or(MechError::UnknownCoordinate { name: name.clone() })?;
-        point[k] = Some(sys.read(v, &format!("--at {name}"), &ctx)?);
+        let value = read_expr(v, &ctx, &mut sys.pool).map_err(|error| ModesError::PointValue {
+            coordinate: name.clone(),
+            source_text: v.clone(),
+            error: Box::new(error),
+        })?;
+        point[k] = Some(value);
     }
     point
         .into_iter()
@@ -279,34 +295,37 @@ fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumMod
 impl ModesReport {
     /// The report as text, expressions and coordinates in `style`, marked up by `paint`.
     pub fn render(&self, style: Style, paint: &dyn Paint) -> String {
-        let mut o = String::new();
+        text(|o| self.write_text(style, paint, o))
+    }
+
+    fn write_text(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         if self.continuum {
-            let _ = writeln!(
+            writeln!(
                 o,
                 "every point in the search range is an equilibrium: they are not isolated (neutral)"
-            );
+            )?;
         }
         for m in &self.equilibria {
-            self.render_equilibrium(m, style, paint, &mut o);
+            self.render_equilibrium(m, style, paint, o)?;
         }
         if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
-            let _ = writeln!(
+            writeln!(
                 o,
                 "{} det(K − ω²M) = {}",
                 paint.heading("characteristic polynomial:"),
                 p.get(style)
-            );
+            )?;
             for w in ws {
-                let _ = writeln!(o, "ω² = {}", paint.good(w.get(style)));
+                writeln!(o, "ω² = {}", paint.good(w.get(style)))?;
             }
             if ws.is_empty() {
-                let _ = writeln!(
+                writeln!(
                     o,
                     "(closed-form roots are given for one or two coordinates)"
-                );
+                )?;
             }
         }
-        o
+        Ok(())
     }
 
     fn render_equilibrium(
@@ -315,7 +334,7 @@ impl ModesReport {
         style: Style,
         paint: &dyn Paint,
         o: &mut String,
-    ) {
+    ) -> fmt::Result {
         let point: Vec<String> = self
             .coordinate_labels
             .iter()
@@ -327,28 +346,28 @@ impl ModesReport {
             Stability::Unstable => paint.bad("unstable"),
             Stability::Marginal => paint.warn("marginal"),
         };
-        let _ = writeln!(
+        writeln!(
             o,
             "{} {}: {st}",
             paint.heading("equilibrium"),
             point.join(", ")
-        );
+        )?;
         if m.gyroscopic {
-            let _ = writeln!(
+            writeln!(
                 o,
                 "  velocity-dependent terms survive here: solved as a first-order system"
-            );
+            )?;
         }
         let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
         if !m.frequencies.is_empty() {
-            let _ = writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "));
+            writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "))?;
         }
         if !m.growth_rates.is_empty() {
-            let _ = writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "));
+            writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "))?;
         }
         for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
             let desc = m.descriptions.get(k).map_or("", String::as_str);
-            let _ = writeln!(
+            writeln!(
                 o,
                 "  mode {}: ω² = {}, shape ({}){}",
                 k + 1,
@@ -359,7 +378,8 @@ impl ModesReport {
                 } else {
                     format!(" — {desc}")
                 }
-            );
+            )?;
         }
+        Ok(())
     }
 }

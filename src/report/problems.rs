@@ -2,11 +2,11 @@
 //! (`problems show`: a problem for a terminal) and [`Verification`] (`problems verify`: every
 //! stated answer proved against the physics).
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use serde::Serialize;
 
-use super::Paint;
+use super::{Paint, text};
 use crate::bank::{Bank, Problem, verify::verify};
 use crate::expr::names;
 
@@ -50,30 +50,33 @@ fn failures(bank: &Bank) -> Vec<String> {
     bank.failures.iter().map(ToString::to_string).collect()
 }
 
-fn render_failures(failures: &[String], paint: &dyn Paint, o: &mut String) {
+fn render_failures(failures: &[String], paint: &dyn Paint, o: &mut String) -> fmt::Result {
     for f in failures {
-        let _ = writeln!(o, "{} {f}", paint.bad("✗"));
+        writeln!(o, "{} {f}", paint.bad("✗"))?;
     }
+    Ok(())
 }
 
 impl ProblemList {
     /// Two lines per problem (id and title; part ids), then the failures.
     pub fn render(&self, paint: &dyn Paint) -> String {
-        let mut o = String::new();
+        text(|o| self.write_text(paint, o))
+    }
+
+    fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let w = self.problems.iter().map(|p| p.id.len()).max().unwrap_or(0);
         for p in &self.problems {
             // Padded before painting, so that escape codes do not count towards the width.
-            let _ = writeln!(
+            writeln!(
                 o,
                 "{}  {}\n{:w$}  parts: {}",
                 paint.heading(&format!("{:w$}", p.id)),
                 p.title,
                 "",
                 p.parts.join(", ")
-            );
+            )?;
         }
-        render_failures(&self.failures, paint, &mut o);
-        o
+        render_failures(&self.failures, paint, o)
     }
 }
 
@@ -162,20 +165,23 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
 impl ProblemSheet {
     /// The statement, symbols, assumptions and parts, and how to answer.
     pub fn render(&self, paint: &dyn Paint) -> String {
-        let mut o = String::new();
+        text(|o| self.write_text(paint, o))
+    }
+
+    fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let h = |t: &str| paint.heading(t);
-        let _ = writeln!(o, "{}  ({})", h(&self.title), self.id);
+        writeln!(o, "{}  ({})", h(&self.title), self.id)?;
         if !self.source.is_empty() {
-            let _ = writeln!(o, "{}", paint.dim(&self.source));
+            writeln!(o, "{}", paint.dim(&self.source))?;
         }
-        let _ = writeln!(o, "\n{}", self.statement);
-        let _ = writeln!(o, "\n{} {}", h("coordinates:"), self.coordinates.join(", "));
-        let _ = writeln!(o, "{} {}", h("parameters: "), self.parameters.join(", "));
+        writeln!(o, "\n{}", self.statement)?;
+        writeln!(o, "\n{} {}", h("coordinates:"), self.coordinates.join(", "))?;
+        writeln!(o, "{} {}", h("parameters: "), self.parameters.join(", "))?;
         if !self.assumptions.is_empty() {
-            let _ = writeln!(o, "{} {}", h("assuming:   "), self.assumptions.join(", "));
+            writeln!(o, "{} {}", h("assuming:   "), self.assumptions.join(", "))?;
         }
         for (i, part) in self.parts.iter().enumerate() {
-            let _ = writeln!(
+            writeln!(
                 o,
                 "\n{} {} ({}, {} point{})",
                 h(&format!("{}.", i + 1)),
@@ -183,18 +189,17 @@ impl ProblemSheet {
                 part.kind,
                 part.points,
                 if part.points == 1.0 { "" } else { "s" }
-            );
-            let _ = writeln!(o, "   {}", part.prompt);
+            )?;
+            writeln!(o, "   {}", part.prompt)?;
             if let Some(answers) = &part.answers {
-                let _ = writeln!(o, "   {} {}", paint.dim("answer:"), answers.join("; "));
+                writeln!(o, "   {} {}", paint.dim("answer:"), answers.join("; "))?;
             }
         }
-        let _ = writeln!(
+        writeln!(
             o,
             "\nAnswer with `lagrange check {} <part> \"<answer>\"`.",
             self.id
-        );
-        o
+        )
     }
 }
 
@@ -283,24 +288,26 @@ impl Verification {
 
     /// A ✓ or ✗ line per problem with its findings, the load failures, and a count.
     pub fn render(&self, paint: &dyn Paint) -> String {
-        let mut o = String::new();
+        text(|o| self.write_text(paint, o))
+    }
+
+    fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         for p in &self.problems {
             if p.findings.is_empty() {
-                let _ = writeln!(o, "{} {} ({} parts proved)", paint.good("✓"), p.id, p.parts);
+                writeln!(o, "{} {} ({} parts proved)", paint.good("✓"), p.id, p.parts)?;
             } else {
-                let _ = writeln!(o, "{} {}", paint.bad("✗"), p.id);
+                writeln!(o, "{} {}", paint.bad("✗"), p.id)?;
                 for f in &p.findings {
-                    let _ = writeln!(o, "  {f}");
+                    writeln!(o, "  {f}")?;
                 }
             }
         }
-        render_failures(&self.failures, paint, &mut o);
-        let _ = writeln!(
+        render_failures(&self.failures, paint, o)?;
+        writeln!(
             o,
             "{} problems, {} failing",
             self.problems.len() + self.failures.len(),
             self.failing()
-        );
-        o
+        )
     }
 }

@@ -2,11 +2,11 @@
 //! which names are coordinates and which parameters, its dimension, and optionally a partial
 //! and the time derivative — built by [`reading`], rendered by [`Reading::render`].
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use serde::Serialize;
 
-use super::{Formula, Paint};
+use super::{Formula, Paint, text};
 use crate::expr::{
     self, Context, DimError, Dimension, Dimensions, Id, Node, ParseError, Pool, Style,
 };
@@ -205,57 +205,62 @@ impl Reading {
 
     /// The report as text, derivatives in Unicode, marked up by `paint`. When the partial
     /// derivative's variable is not one variable the text stops before it: the face says why.
-    pub fn render(&self, paint: &dyn Paint) -> String {
-        let mut o = String::new();
+    ///
+    /// `give_dimensions` follows an unknown dimension, in parentheses: how the face's user
+    /// gives symbols their dimensions (the command line names its flag); empty, nothing does.
+    pub fn render(&self, paint: &dyn Paint, give_dimensions: &str) -> String {
+        text(|o| self.write_text(paint, give_dimensions, o))
+    }
+
+    fn write_text(&self, paint: &dyn Paint, give_dimensions: &str, o: &mut String) -> fmt::Result {
         let h = |t: &str| paint.heading(t);
-        let _ = writeln!(o, "{} {}", h("read as:"), self.forms.plain);
-        let _ = writeln!(o, "{} {}", h("unicode:"), self.forms.unicode);
-        let _ = writeln!(o, "{} {}", h("latex:  "), self.forms.latex);
-        let _ = writeln!(o, "{} {}", h("kind:   "), self.kind);
-        let _ = writeln!(
+        writeln!(o, "{} {}", h("read as:"), self.forms.plain)?;
+        writeln!(o, "{} {}", h("unicode:"), self.forms.unicode)?;
+        writeln!(o, "{} {}", h("latex:  "), self.forms.latex)?;
+        writeln!(o, "{} {}", h("kind:   "), self.kind)?;
+        writeln!(
             o,
             "{} {}",
             h("coordinates:"),
             join_or_none(&self.coordinates)
-        );
-        let _ = writeln!(
+        )?;
+        writeln!(
             o,
             "{} {}",
             h("parameters: "),
             join_or_none(&self.parameters)
-        );
+        )?;
         match &self.dimension {
             None => {}
             Some(DimensionFinding::Known(d)) => {
-                let _ = writeln!(o, "{} {d}", h("dimension:  "));
+                writeln!(o, "{} {d}", h("dimension:  "))?;
+            }
+            Some(DimensionFinding::Unknown) if give_dimensions.is_empty() => {
+                writeln!(o, "{} unknown", h("dimension:  "))?;
             }
             Some(DimensionFinding::Unknown) => {
-                let _ = writeln!(
-                    o,
-                    "{} unknown (give every symbol a dimension with --dims)",
-                    h("dimension:  ")
-                );
+                writeln!(o, "{} unknown ({give_dimensions})", h("dimension:  "))?;
             }
             Some(DimensionFinding::Inconsistent(e)) => {
-                let _ = writeln!(o, "{} {}", h("dimension:  "), paint.bad(e));
+                writeln!(o, "{} {}", h("dimension:  "), paint.bad(e))?;
             }
         }
         match &self.partial {
             None => {}
-            Some(Partial::NotAVariable) => return o,
+            Some(Partial::NotAVariable) => return Ok(()),
             Some(Partial::Taken {
                 variable,
                 derivatives,
             }) => {
                 for d in derivatives {
-                    let _ = writeln!(o, "{} {}", h(&format!("∂/∂{variable}:")), d.unicode);
+                    writeln!(o, "{} {}", h(&format!("∂/∂{variable}:")), d.unicode)?;
                 }
             }
         }
         for d in self.time_derivatives.iter().flatten() {
-            let _ = writeln!(o, "{} {}", h("d/dt:"), d.unicode);
+            writeln!(o, "{} {}", h("d/dt:"), d.unicode)?;
         }
-        o
+        Ok(())
     }
 }
 
