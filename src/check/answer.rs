@@ -4,7 +4,7 @@
 
 use rustc_hash::FxHashMap;
 
-use super::common::{at_rest, invalid_reading, point_text, verdict};
+use super::common::{at_rest, invalid_reading, point_text, undefined_everywhere, verdict};
 use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
 use super::error::CheckError;
@@ -75,8 +75,19 @@ pub(crate) fn check_prepared(
             },
         },
     };
+    never_correct_with_unlike_dimensions(&mut v);
     v.sort();
     v
+}
+
+/// An answer whose terms have unlike dimensions is never correct, even where its numbers
+/// agree with the reference (`(m + 1)·(θ'' + g/l·sin θ) = 0`).
+fn never_correct_with_unlike_dimensions(v: &mut Verdict) {
+    if v.status == Status::Correct && v.diagnoses.iter().any(|d| d.code == Code::Dimension) {
+        v.status = Status::Incorrect;
+        v.score = 0.0;
+        v.diagnoses.retain(|d| d.code == Code::Dimension);
+    }
 }
 
 /// What the comparison of an expression answer with its reference found, before it is put
@@ -248,6 +259,10 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         ));
         return v;
     };
+    if p.system.pool.is_undefined(s) {
+        v.diagnoses.push(undefined_everywhere());
+        return v;
+    }
     v.diagnoses
         .extend(dimension_check(problem, p, s, reference));
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
@@ -259,10 +274,15 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         }
     };
     let judgement = judge(part, p, s, reference, &rel);
-    if judgement.accepts() {
-        v.status = Status::Correct;
-    }
+    let unlike = v.diagnoses.iter().any(|d| d.code == Code::Dimension);
     match judgement {
+        // Numbers that agree do not make an answer with unlike terms right: the dimension
+        // diagnosis is the reason, and nothing else is said.
+        j if j.accepts() && unlike => {}
+        j if j.accepts() => {
+            v.status = Status::Correct;
+            v.diagnoses.extend(j.details(p));
+        }
         Judgement::Unexplained => diagnose_expression(part, p, s, reference, rel, &mut v),
         j => v.diagnoses.extend(j.details(p)),
     }

@@ -6,7 +6,7 @@ use super::compare::fmt_value;
 use super::points::PointSet;
 use super::prepare::Prepared;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::ParseErrorKind;
+use crate::expr::{ParseErrorKind, Sym};
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, Problem};
 
@@ -64,6 +64,38 @@ pub(super) fn point_text(p: &Prepared, k: usize) -> String {
         parts.push(format!("{} = {}", q.name, fmt_value(x[at.param(j)])));
     }
     parts.join(", ")
+}
+
+/// The diagnosis of an answer that is undefined everywhere (it contains 1/0, log(−1), …).
+pub(super) fn undefined_everywhere() -> Diagnosis {
+    Diagnosis::new(
+        Code::Undefined,
+        "your answer is undefined everywhere: it divides by zero or takes a function outside its domain (such as the log of a negative number), and 0 times an undefined value is still undefined",
+    )
+}
+
+/// Any point as text, with velocities, in Unicode: `θ = 0.3, θ̇ = 0, m = 1.2`. With `only`,
+/// just those variables (what a factor depends on).
+pub(super) fn state_text(p: &Prepared, x: &[f64], only: Option<&[(Sym, u8)]>) -> String {
+    let at = p.system.state_layout();
+    let shown = |s: Sym, order: u8| only.is_none_or(|o| o.contains(&(s, order)));
+    let mut slots: Vec<(Sym, u8, usize)> = Vec::new();
+    for (i, c) in p.system.coordinates.iter().enumerate() {
+        slots.push((c.sym, 0, at.q(i)));
+        slots.push((c.sym, 1, at.qdot(i)));
+    }
+    for (j, q) in p.system.parameters.iter().enumerate() {
+        slots.push((q.sym, 0, at.param(j)));
+    }
+    slots
+        .into_iter()
+        .filter(|&(s, o, _)| shown(s, o))
+        .map(|(s, o, k)| {
+            let name = p.system.pool.var_name(s, o, crate::expr::Style::Unicode);
+            format!("{name} = {}", fmt_value(x[k]))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The sample points with every velocity (and acceleration) set to zero.

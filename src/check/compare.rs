@@ -56,61 +56,57 @@ pub fn relate(
 ) -> Result<Relation, CheckError> {
     let vals = values(sys, &[b], pts)?;
     let avals = values(sys, &[a], pts)?;
+    let sizes = term_sizes(sys, a, b, pts)?;
+    // (point, a, b, size of the terms of a and of b at that point)
     let mut pairs = Vec::new();
     for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
         let Some(vb) = vb else { continue };
         let Some(va) = va else {
             return Ok(Relation::Undefined { point: k });
         };
-        pairs.push((k, va[0], vb[0]));
+        pairs.push((k, va[0], vb[0], sizes[k]));
     }
     if pairs.is_empty() {
         return Err(CheckError::ReferenceUndefined);
     }
-    let scale = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
-    if pairs.iter().all(|&(_, x, y)| close(x, y, scale, tol)) {
+    // Every comparison is relative to the size of the quantities at its own point (the sum of
+    // the magnitudes of the terms of both sides there), never to other points: a point where
+    // everything is small must not be judged against one where everything is large.
+    if pairs
+        .iter()
+        .all(|&(_, x, y, (sa, sb))| close(x, y, sa + sb, tol))
+    {
         return Ok(Relation::Equal);
     }
     // Up to a constant: the difference does not change when the state (t, q, q', q'') changes
     // and the parameters stay — the constant may depend on parameters (a zero level m·g·l).
     let c = pairs[0].1 - pairs[0].2;
-    if pairs.iter().all(|&(_, x, y)| close(x - y, c, scale, tol)) {
+    if pairs
+        .iter()
+        .all(|&(_, x, y, (sa, sb))| close(x - y, c, sa + sb, tol))
+    {
         return Ok(Relation::UpToConstant(c));
     }
-    let time = sys.pool.time();
-    let stateful = sys
-        .pool
-        .variables(b)
-        .iter()
-        .any(|(s, _)| *s == time || sys.coordinates.iter().any(|c| c.sym == *s));
-    if stateful && let Some(moved) = moved_states(sys, pts) {
-        let da = values(sys, &[a], &moved)?;
-        let db = values(sys, &[b], &moved)?;
-        let same = pairs.iter().all(|&(k, x, y)| match (&da[k], &db[k]) {
-            (Some(u), Some(w)) => close(x - y, u[0] - w[0], scale, tol),
-            _ => true,
-        });
-        if same {
-            return Ok(Relation::UpToConstant(c));
-        }
+    if same_difference_when_moved(sys, a, b, pts, &pairs, tol)? {
+        return Ok(Relation::UpToConstant(c));
     }
-    if let Some(&(_, x0, y0)) = pairs
+    if let Some(&(_, x0, y0, _)) = pairs
         .iter()
-        .find(|p| p.2.abs() > tolerance::FACTOR_FLOOR * (scale + tolerance::TINY))
+        .find(|p| p.2.abs() > tolerance::FACTOR_FLOOR * (p.3.1 + tolerance::TINY))
     {
         let f = x0 / y0;
         if f.is_finite()
             && f != 0.0
             && pairs
                 .iter()
-                .all(|&(_, x, y)| close(x, f * y, scale * f.abs(), tol))
+                .all(|&(_, x, y, (sa, sb))| close(x, f * y, sa + f.abs() * sb, tol))
         {
             return Ok(Relation::Factor(f));
         }
     }
     let bad = pairs
         .iter()
-        .find(|&&(_, x, y)| !close(x, y, scale, tol))
+        .find(|&&(_, x, y, (sa, sb))| !close(x, y, sa + sb, tol))
         .map_or(0, |p| p.0);
     Ok(Relation::Different { point: bad })
 }
@@ -239,4 +235,57 @@ pub fn fmt_value(x: f64) -> String {
     let s = format!("{x:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" { "0".into() } else { s }
+}
+
+/// The size of the quantities in `a` and in `b` at each point: the sum of the magnitudes of
+/// each one's top-level terms (0 where undefined). Rounding in a sum is relative to this, not
+/// to the sum itself, which may cancel to (nearly) nothing.
+fn term_sizes(sys: &System, a: Id, b: Id, pts: &PointSet) -> Result<Vec<(f64, f64)>, CheckError> {
+    let terms = |e: Id| -> Vec<Id> {
+        match sys.pool.node(e) {
+            crate::expr::Node::Add(t) => t.to_vec(),
+            _ => vec![e],
+        }
+    };
+    let (ta, tb) = (terms(a), terms(b));
+    let ids: Vec<Id> = ta.iter().chain(&tb).copied().collect();
+    let sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+    Ok(values(sys, &ids, pts)?
+        .into_iter()
+        .map(|v| v.map_or((0.0, 0.0), |v| (sum(&v[..ta.len()]), sum(&v[ta.len()..]))))
+        .collect())
+}
+
+/// For a reference that depends on the state: whether a − b stays the same at every point
+/// when only the state moves (the parameters stay), i.e. the difference is a constant that may
+/// depend on the parameters.
+fn same_difference_when_moved(
+    sys: &System,
+    a: Id,
+    b: Id,
+    pts: &PointSet,
+    pairs: &[(usize, f64, f64, (f64, f64))],
+    tol: f64,
+) -> Result<bool, CheckError> {
+    let time = sys.pool.time();
+    let stateful = sys
+        .pool
+        .variables(b)
+        .iter()
+        .any(|(s, _)| *s == time || sys.coordinates.iter().any(|c| c.sym == *s));
+    let Some(moved) = moved_states(sys, pts).filter(|_| stateful) else {
+        return Ok(false);
+    };
+    let da = values(sys, &[a], &moved)?;
+    let db = values(sys, &[b], &moved)?;
+    let moved_sizes = term_sizes(sys, a, b, &moved)?;
+    Ok(pairs
+        .iter()
+        .all(|&(k, x, y, (sa, sb))| match (&da[k], &db[k]) {
+            (Some(u), Some(w)) => {
+                let size = sa + sb + moved_sizes[k].0 + moved_sizes[k].1;
+                close(x - y, u[0] - w[0], size, tol)
+            }
+            _ => true,
+        }))
 }

@@ -6,8 +6,9 @@
 use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
-use super::common::{at_rest, point_text, verdict};
+use super::common::{at_rest, point_text, undefined_everywhere, verdict};
 use super::compare::{Relation, relate, values};
+use super::degenerate::degeneracy;
 use super::diagnose::{factor_in_term, sign_in_term, swapped};
 use super::error::CheckError;
 use super::points::PointSet;
@@ -68,7 +69,8 @@ pub(crate) fn equations_hold(
     let truth = true_accelerations(p)?;
     let pts = p.points.clone();
     for &r in res {
-        match miss(p, r, &pts, &truth) {
+        let tol = p.tolerance;
+        match miss(p, r, &pts, &truth, tol) {
             None => {}
             Some(Miss::Residual(x)) if !system => {
                 return Ok(Some(format!(
@@ -90,7 +92,7 @@ pub(crate) fn equations_hold(
             "the equations do not determine the accelerations".into(),
         ));
     }
-    Ok(None)
+    Ok(degeneracy(p, res).map(|d| d.details().message))
 }
 
 /// An equation's affine form at one point: the coefficients of q'' and the rest.
@@ -129,8 +131,15 @@ enum Miss {
     Unevaluable,
 }
 
-/// `None` when equation `r` holds at accelerations `acc` (per point) and involves them.
-fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Option<Miss> {
+/// `None` when equation `r` holds at accelerations `acc` (per point), to the relative
+/// tolerance `tol`, and involves them.
+fn miss(
+    p: &mut Prepared,
+    r: Id,
+    pts: &PointSet,
+    acc: &[Option<Vec<f64>>],
+    tol: f64,
+) -> Option<Miss> {
     let Ok(rows) = affine(p, r, pts) else {
         return Some(Miss::Unevaluable);
     };
@@ -145,7 +154,7 @@ fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Op
         if coef.iter().any(|c| *c != 0.0) {
             any_acc = true;
         }
-        if (lhs + b).abs() > tolerance::RESIDUAL * (scale + tolerance::TINY) {
+        if (lhs + b).abs() > tol * (scale + tolerance::TINY) {
             return Some(Miss::Residual(lhs + b));
         }
         checked += 1;
@@ -157,9 +166,11 @@ fn miss(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> Op
     }
 }
 
-/// Whether equation `r` holds at accelerations `acc` (per point), and involves them.
+/// Whether equation `r` holds at accelerations `acc` (per point), to the part's tolerance,
+/// and involves them.
 fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
-    miss(p, r, pts, acc).is_none()
+    let tol = p.tolerance;
+    miss(p, r, pts, acc, tol).is_none()
 }
 
 /// True accelerations at arbitrary points.
@@ -342,6 +353,13 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         return w;
     };
     v.reading = reading_of(p, &eqs, bare);
+    if eqs
+        .iter()
+        .any(|&(l, r)| p.system.pool.is_undefined(l) || p.system.pool.is_undefined(r))
+    {
+        v.diagnoses.push(undefined_everywhere());
+        return v;
+    }
     for &(l, r) in &eqs {
         if let Err(e) = p.system.pool.check_equation_dimension(l, r, &problem.dims) {
             v.diagnoses
@@ -410,7 +428,12 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
         ));
     } else if ok.iter().all(|o| *o) {
         if rank == want {
-            v.status = Status::Correct;
+            // Holding at the true accelerations is not enough: the equations must determine
+            // them everywhere, not only away from where a factor vanishes.
+            match degeneracy(p, res) {
+                None => v.status = Status::Correct,
+                Some(d) => v.diagnoses.push(d.details()),
+            }
         } else {
             v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
                 "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
@@ -467,6 +490,14 @@ fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
         }
     }
     let n = p.system.n();
+    // Each row is scaled to unit length first: an equation multiplied by 1e-9 or 1e9 is the
+    // same equation, and must not look dependent next to an unscaled one.
+    for row in &mut m {
+        let norm = row.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > 0.0 {
+            row.iter_mut().for_each(|x| *x /= norm);
+        }
+    }
     let a = DMatrix::from_fn(m.len(), n, |i, j| m[i][j]);
     let scale = a.amax().max(tolerance::TINY);
     a.svd(false, false)
@@ -492,6 +523,13 @@ fn diagnose_equation(
         return;
     }
     let truth = truth.to_vec();
+    if miss(p, r, &pts, &truth, tolerance::ROUNDED).is_none() {
+        v.diagnoses.push(Diagnosis::new(
+            Code::RoundedConstant,
+            format!("{which} holds only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"),
+        ));
+        return;
+    }
     let mut holds_true = |p: &mut Prepared, c: Id| holds(p, c, &pts, &truth);
     if let Some(d) = swapped(p, r, &mut holds_true) {
         v.diagnoses.push(d);

@@ -4,7 +4,7 @@
 use super::common::{invalid_reading, verdict};
 use super::compare::{close, values};
 use super::error::CheckError;
-use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate};
+use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate_within};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Dimension, Id, ParseError, Reading, Style, read, read_expr};
@@ -156,8 +156,9 @@ fn same_item(
         let Some(x) = x else { return false };
         for (i, (u, w)) in x.iter().zip(y).enumerate() {
             let periodic = part.kind == PartKind::Equilibria && p.system.coordinates[i].periodic;
-            let ok = if periodic && tol <= tolerance::STRICT {
-                same_coordinate(true, *u, *w)
+            // One relative tolerance for every kind: the part's (π + 1e-6 is not π).
+            let ok = if periodic {
+                same_coordinate_within(true, *u, *w, tol)
             } else {
                 close(*u, *w, 0.0, tol)
             };
@@ -311,6 +312,18 @@ fn classify_unmatched(
         && let Some(f) = frequency_slip(part, p, &lists.student[i], lists.reference, free, &label)
     {
         return f;
+    }
+    if let Some(k) = free.iter().position(|&j| {
+        same_item(
+            part,
+            p,
+            &lists.student[i],
+            &lists.reference[j],
+            tolerance::ROUNDED,
+        )
+    }) {
+        free.remove(k);
+        return ItemFinding::Rounded { label };
     }
     // An item of the wrong dimension says so.
     let want = match part.kind {

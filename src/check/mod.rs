@@ -9,6 +9,7 @@
 pub(crate) mod answer;
 mod common;
 pub(crate) mod compare;
+mod degenerate;
 mod diagnose;
 pub(crate) mod equations;
 pub mod error;

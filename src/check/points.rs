@@ -28,7 +28,9 @@ impl PointSet {
     }
 
     /// Like [`draw`](Self::draw), but a point where any of `defined` is undefined (the
-    /// reference answer, say) is redrawn.
+    /// reference answer, say) is redrawn; and a further [`WIDE_SHARE`] of points is drawn far
+    /// outside the nominal ranges ([`wide_point`]), since an answer must hold for every angle
+    /// and every parameter value the assumptions allow, not only inside the sampled box.
     pub fn draw_defined(
         sys: &System,
         assumptions: &[Assumption],
@@ -36,25 +38,9 @@ impl PointSet {
         seed: u64,
         count: usize,
     ) -> Result<PointSet, CheckError> {
-        let must: Option<Program> = if defined.is_empty() {
-            None
-        } else {
-            Some(
-                sys.compile(defined)
-                    .map_err(|error| CheckError::Compile { error })?,
-            )
-        };
-        let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
-        let prog: Option<Program> = if roots.is_empty() {
-            None
-        } else {
-            Some(
-                sys.compile(&roots)
-                    .map_err(|error| CheckError::Compile { error })?,
-            )
-        };
+        let filter = Filter::new(sys, assumptions, defined)?;
         let mut sampler = Sampler::new(seed);
-        let mut points = Vec::with_capacity(count);
+        let mut points = Vec::with_capacity(count + count / WIDE_SHARE);
         let mut draws = 0;
         while points.len() < count {
             draws += 1;
@@ -68,25 +54,24 @@ impl PointSet {
                 });
             }
             let x = sys.sample_point(&mut sampler);
-            if let Some(p) = &prog {
-                let Ok(v) = p.eval(&x) else { continue };
-                let ok = assumptions.iter().enumerate().all(|(i, a)| {
-                    if a.greater {
-                        v[2 * i] > v[2 * i + 1]
-                    } else {
-                        v[2 * i] < v[2 * i + 1]
-                    }
-                });
-                if !ok {
-                    continue;
-                }
+            if filter.accepts(&x) {
+                points.push(x);
             }
-            if let Some(m) = &must
-                && m.eval(&x).is_err()
-            {
-                continue;
+        }
+        if defined.is_empty() {
+            return Ok(PointSet { points });
+        }
+        // A separate stream, so the nominal points are the ones every earlier version drew.
+        let mut wide = Sampler::new(seed ^ WIDE_SEED);
+        let want = points.len() + count / WIDE_SHARE;
+        for _ in 0..MAX_DRAWS {
+            if points.len() >= want {
+                break;
             }
-            points.push(x);
+            let x = wide_point(sys, &mut wide);
+            if filter.accepts(&x) {
+                points.push(x);
+            }
         }
         Ok(PointSet { points })
     }
@@ -95,5 +80,91 @@ impl PointSet {
     pub fn params<'a>(&'a self, sys: &System, k: usize) -> &'a [f64] {
         let start = sys.state_layout().params_start();
         &self.points[k][start..]
+    }
+}
+
+/// One point in [`WIDE_SHARE`] is drawn far outside the nominal ranges.
+pub(crate) const WIDE_SHARE: usize = 3;
+
+/// Mixed into the seed of the wide points' stream.
+const WIDE_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// How far beyond its nominal range a wide point may take a non-periodic coordinate (in
+/// half-widths of the range) or a parameter (as a factor either way).
+const WIDEN: f64 = 10.0;
+
+/// A point far outside the nominal box: angles anywhere in [−4π, 4π], other coordinates up to
+/// [`WIDEN`] half-widths from the middle of their range, parameters log-uniform from
+/// 1/[`WIDEN`] of their least to [`WIDEN`] times their greatest value. Velocities,
+/// accelerations and time are drawn as usual.
+pub(crate) fn wide_point(sys: &System, s: &mut Sampler) -> Vec<f64> {
+    let layout = sys.state_layout();
+    let mut x = sys.sample_point(s);
+    for (i, c) in sys.coordinates.iter().enumerate() {
+        x[layout.q(i)] = if c.periodic {
+            s.uniform(-4.0 * std::f64::consts::PI, 4.0 * std::f64::consts::PI)
+        } else {
+            let (lo, hi) = c.range;
+            let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+            s.uniform(mid - WIDEN * half, mid + WIDEN * half)
+        };
+    }
+    for (j, p) in sys.parameters.iter().enumerate() {
+        let (lo, hi) = p.range;
+        if lo > 0.0 && hi >= lo {
+            let (a, b) = ((lo / WIDEN).ln(), (hi * WIDEN).ln());
+            x[layout.param(j)] = s.uniform(a, b).exp();
+        }
+    }
+    x
+}
+
+/// The tests a drawn point must pass: every assumption holds, and every expression that must
+/// be defined is.
+pub(crate) struct Filter {
+    assumptions: Vec<bool>,
+    assumed: Option<Program>,
+    must: Option<Program>,
+}
+
+impl Filter {
+    /// The tests for `assumptions` and for `defined` being defined.
+    pub(crate) fn new(
+        sys: &System,
+        assumptions: &[Assumption],
+        defined: &[Id],
+    ) -> Result<Filter, CheckError> {
+        let compile = |ids: &[Id]| -> Result<Option<Program>, CheckError> {
+            if ids.is_empty() {
+                return Ok(None);
+            }
+            sys.compile(ids)
+                .map(Some)
+                .map_err(|error| CheckError::Compile { error })
+        };
+        let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
+        Ok(Filter {
+            assumptions: assumptions.iter().map(|a| a.greater).collect(),
+            assumed: compile(&roots)?,
+            must: compile(defined)?,
+        })
+    }
+
+    /// Whether point `x` passes.
+    pub(crate) fn accepts(&self, x: &[f64]) -> bool {
+        if let Some(p) = &self.assumed {
+            let Ok(v) = p.eval(x) else { return false };
+            let ok = self.assumptions.iter().enumerate().all(|(i, &greater)| {
+                if greater {
+                    v[2 * i] > v[2 * i + 1]
+                } else {
+                    v[2 * i] < v[2 * i + 1]
+                }
+            });
+            if !ok {
+                return false;
+            }
+        }
+        self.must.as_ref().is_none_or(|m| m.eval(x).is_ok())
     }
 }

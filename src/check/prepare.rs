@@ -21,6 +21,8 @@ pub struct Prepared {
     pub assumptions: Vec<Assumption>,
     pub points: PointSet,
     pub context: Context,
+    /// The part's relative tolerance (the documented one unless the part sets its own).
+    pub tolerance: f64,
     /// The true accelerations at each point, computed once (None where undefined).
     pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
     /// For an `equation` part whose reference has no accelerations: its residual (decided once).
@@ -75,6 +77,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         assumptions,
         points,
         context,
+        tolerance: part.tolerance,
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
@@ -164,15 +167,22 @@ pub(crate) fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckEr
         .collect()
 }
 
-/// Whether two coordinate values are the same (modulo 2π for periodic coordinates).
+/// Whether two coordinate values found numerically are the same (modulo 2π for periodic
+/// coordinates), to the precision of a root search ([`tolerance::COORDINATE`]).
 pub(crate) fn same_coordinate(periodic: bool, a: f64, b: f64) -> bool {
+    same_coordinate_within(periodic, a, b, tolerance::COORDINATE)
+}
+
+/// Whether two coordinate values agree to the relative tolerance `tol` (modulo 2π for
+/// periodic coordinates, where the difference is measured after wrapping).
+pub(crate) fn same_coordinate_within(periodic: bool, a: f64, b: f64, tol: f64) -> bool {
     let d = if periodic { wrap_angle(a - b) } else { a - b };
     let d = if periodic && (d.abs() - std::f64::consts::PI).abs() < tolerance::ANGLE {
         std::f64::consts::PI.min(d.abs())
     } else {
         d
     };
-    d.abs() <= tolerance::COORDINATE * (1.0 + a.abs().max(b.abs()))
+    d.abs() <= tol * (1.0 + a.abs().max(b.abs()))
 }
 
 /// Reads a frequency item, allowing a label: `omega = sqrt(g/l)` or `sqrt(g/l)`.
@@ -233,7 +243,11 @@ mod tests {
         let problem = crate::bank::load_str("half-line.toml", text).unwrap();
         let part = problem.part("root").unwrap();
         let p = prepare(&problem, part).unwrap();
-        assert_eq!(p.points.points.len(), POINTS);
+        // The nominal points and, beyond them, the share drawn far outside the box.
+        assert_eq!(
+            p.points.points.len(),
+            POINTS + POINTS / crate::check::points::WIDE_SHARE
+        );
         assert!(
             p.points.points.iter().all(|x| x[1] >= 0.0),
             "a point with x < 0 was kept"

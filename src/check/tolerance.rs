@@ -1,8 +1,9 @@
 //! Every numeric tolerance of the checker and of problem verification, one per purpose, so that
 //! a test's looseness is chosen once and named where it is used.
 
-/// Default relative tolerance of a part's comparison with its reference (a part may set its
-/// own), with an absolute floor relative to the scale of the values compared.
+/// The one documented relative tolerance of a part's comparison with its reference, for every
+/// kind of part (expressions, equations through their residuals at the true accelerations,
+/// list items, equilibrium angles modulo 2π); a part may set its own `tolerance`.
 pub const TOLERANCE: f64 = 1e-9;
 
 /// Relative tolerance when the checker itself decides that two expressions are the same: a
@@ -38,14 +39,6 @@ pub const COORDINATE: f64 = 1e-6;
 /// How far a power-of-two exponent may be from a half-integer, or from another, and still
 /// count as the same (monomial ratios of parameters).
 pub const EXPONENT: f64 = 1e-6;
-
-/// An equation's residual at the true accelerations, relative to its terms, below which it
-/// holds.
-pub const RESIDUAL: f64 = 1e-7;
-
-/// A part tolerance at or below this is strict: periodic coordinates are then compared modulo
-/// 2π at [`COORDINATE`] precision rather than with the part's tolerance.
-pub const STRICT: f64 = 1e-8;
 
 /// The least relative tolerance for frequencies from the eigen-solver.
 pub const EIGEN: f64 = 1e-8;

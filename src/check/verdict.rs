@@ -57,6 +57,9 @@ pub enum Code {
     OmegaSquared,
     /// ω given for ω² (or √ω for ω).
     OmegaRoot,
+    /// An equation multiplied by a factor that vanishes somewhere (the energy law θ'·(EOM) = 0,
+    /// θ·(EOM) = 0): it no longer determines the accelerations there.
+    VanishingFactor,
     /// The linearized (small-angle) equation given for the full one.
     SmallAngle,
     /// Two symbols exchanged.
@@ -91,7 +94,7 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 25] = [
+    pub const ALL: [Code; 26] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
@@ -102,6 +105,7 @@ impl Code {
         Code::GaveLagrangian,
         Code::OmegaSquared,
         Code::OmegaRoot,
+        Code::VanishingFactor,
         Code::SmallAngle,
         Code::SwappedSymbols,
         Code::SignError,
@@ -132,6 +136,7 @@ impl Code {
             Code::GaveLagrangian => "gave-lagrangian",
             Code::OmegaSquared => "omega-squared",
             Code::OmegaRoot => "omega-root",
+            Code::VanishingFactor => "vanishing-factor",
             Code::SmallAngle => "small-angle",
             Code::SwappedSymbols => "swapped-symbols",
             Code::SignError => "sign-error",
@@ -212,7 +217,7 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 25] = [
+        const DOCUMENTED: [&str; 26] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
@@ -223,6 +228,7 @@ mod tests {
             "gave-lagrangian",
             "omega-squared",
             "omega-root",
+            "vanishing-factor",
             "small-angle",
             "swapped-symbols",
             "sign-error",

@@ -442,12 +442,27 @@ impl Pool {
         if let Some(v) = self.func_exact(f, a) {
             return v;
         }
+        if self.outside_domain(f, a) {
+            // log(−1), asin(2): undefined, so that 0·log(−1) is undefined and not 0.
+            return self.undefined();
+        }
         if (f.is_odd() || f.is_even()) && self.is_negative_form(a) {
             let na = self.neg(a);
             let inner = self.intern(Node::Func(f, na));
             return if f.is_odd() { self.neg(inner) } else { inner };
         }
         self.intern(Node::Func(f, a))
+    }
+
+    /// Whether `f(a)` is undefined for a constant `a` (no variables): a value outside the
+    /// function's real domain (log of a negative number or of 0, asin(2)). Overflow (exp(1000))
+    /// is a number too large for a float, not a domain error, and is left alone.
+    fn outside_domain(&self, f: Func, a: Id) -> bool {
+        if !matches!(f, Func::Log | Func::Asin | Func::Acos) || !self.variables(a).is_empty() {
+            return false;
+        }
+        let x = super::eval::eval_tree(self, a, &|_, _| f64::NAN);
+        x.is_finite() && !f.apply(x).is_finite()
     }
 
     /// Whether `a` is written with a leading minus: a negative number, a product with a

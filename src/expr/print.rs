@@ -12,7 +12,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive};
 
 use super::names;
-use super::node::{Func, Id, Node};
+use super::node::{Func, Id, Node, Sym};
 use super::order::{self, natural_cmp};
 use super::pool::Pool;
 use super::simplify::Factored;
@@ -38,6 +38,12 @@ impl Pool {
     /// Prints `id` in `style`.
     pub fn display(&self, id: Id, style: Style) -> String {
         Printer { pool: self, style }.sum(id)
+    }
+
+    /// A variable (symbol `s` with `order` time derivatives) in `style`, as it prints
+    /// inside an expression: `θ̇`, `theta'`, `\dot{\theta}`.
+    pub fn var_name(&self, s: Sym, order: u8, style: Style) -> String {
+        Printer { pool: self, style }.var(self.name(s), order)
     }
 
     /// Plain syntax.

@@ -9,5 +9,6 @@ mod dimensions;
 mod helpers;
 mod mechanics;
 mod props;
+mod soundness;
 mod symbolic;
 mod syntax;
