@@ -232,6 +232,14 @@ pub fn fmt_value(x: f64) -> String {
             return name.to_string();
         }
     }
+    // Very small and very large values in scientific notation: 1e-12 is not "0", and 1e300
+    // is not a 301-digit number.
+    if x != 0.0 && x.is_finite() && !(1e-4..1e7).contains(&x.abs()) {
+        let s = format!("{x:.5e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
+    }
     let s = format!("{x:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" { "0".into() } else { s }

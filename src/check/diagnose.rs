@@ -21,7 +21,9 @@ pub fn terms(p: &mut Prepared, e: Id) -> Vec<Id> {
 
 /// `Some(text)` when `c` is a simple fraction (denominator ≤ 12), e.g. `2`, `½`, `−3/2`.
 pub fn nice_fraction(c: f64) -> Option<String> {
-    if !c.is_finite() {
+    // Beyond this an integer is no "simple fraction" (and no longer fits the i64 it is
+    // printed through): 1e300 is shown in scientific notation instead.
+    if !c.is_finite() || c.abs() > 1e6 {
         return None;
     }
     for q in 1..=12i64 {

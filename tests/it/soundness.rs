@@ -212,3 +212,25 @@ fn verification_refuses_a_reference_multiplied_by_a_vanishing_factor() {
         "{findings:#?}"
     );
 }
+
+#[test]
+fn huge_and_tiny_factors_are_named_by_their_size() {
+    let reference = "(1/2*m*l^2*theta'^2 + m*g*l*cos(theta))";
+    for (factor, shown) in [("1e300", "1e300"), ("1e-12", "1e-12")] {
+        let v = verdict(
+            "simple-pendulum",
+            "lagrangian",
+            &format!("{factor}*{reference}"),
+        );
+        assert_eq!(v.status, Status::Correct, "{v:#?}");
+        let text = &v.diagnoses[0].message;
+        assert!(text.contains(&format!("your L is {shown} times")), "{text}");
+        let v = verdict(
+            "simple-pendulum",
+            "kinetic",
+            &format!("{factor}*1/2*m*l^2*theta'^2"),
+        );
+        assert_eq!(v.status, Status::Incorrect, "{v:#?}");
+        assert!(v.diagnoses[0].message.contains(shown), "{:#?}", v.diagnoses);
+    }
+}
