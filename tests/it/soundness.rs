@@ -5,6 +5,7 @@
 //! test. Each case is the exact input that was wrongly accepted (or rejected) before.
 
 use lagrange::{Checker, Code, Status, Verdict, embedded};
+use proptest::prelude::prop_oneof;
 
 fn verdict(problem: &str, part: &str, answer: &str) -> Verdict {
     let p = embedded::problem(problem).unwrap_or_else(|| panic!("no problem {problem}"));
@@ -232,5 +233,109 @@ fn huge_and_tiny_factors_are_named_by_their_size() {
         );
         assert_eq!(v.status, Status::Incorrect, "{v:#?}");
         assert!(v.diagnoses[0].message.contains(shown), "{:#?}", v.diagnoses);
+    }
+}
+
+/// The residual `lhs − rhs` of an equation's text, or the text itself.
+fn residual(text: &str) -> String {
+    match text.split_once('=') {
+        Some((l, r)) => format!("({l}) - ({r})"),
+        None => text.to_string(),
+    }
+}
+
+/// A wrong answer built from a reference: `kind` 0 multiplies an equation by a factor that
+/// vanishes somewhere, 1 scales one term by (1 + eps), 2 adds eps times a term times a
+/// state-dependent factor. `None` when the construction does not apply to the part.
+fn wrong_answer(
+    problem: &lagrange::Problem,
+    part: &lagrange::Part,
+    kind: u8,
+    pick: usize,
+    eps: f64,
+) -> Option<String> {
+    use lagrange::PartKind::*;
+    let coordinate = &problem.system.coordinates[pick % problem.system.n()].name;
+    let mut answers = part.answers.clone();
+    let k = pick % answers.len();
+    let mut pool = problem.system.pool.clone();
+    let ctx = problem.system.context();
+    let item = residual(&answers[k]);
+    let id = lagrange::read_expr(&item, &ctx, &mut pool).ok()?;
+    let terms: Vec<String> = match pool.node(id) {
+        lagrange::expr::Node::Add(t) => t.iter().map(|&t| pool.plain(t)).collect(),
+        _ => vec![pool.plain(id)],
+    };
+    let term = &terms[pick % terms.len()];
+    // Adding a constant is allowed where the answer is up to a constant (or a Lagrangian).
+    let term_id = lagrange::read_expr(term, &ctx, &mut pool).ok()?;
+    let stateful = pool
+        .variables(term_id)
+        .iter()
+        .any(|(s, _)| problem.system.coordinates.iter().any(|c| c.sym == *s));
+    // Scaling the only term of an equation or a Lagrangian scales the whole: equivalent.
+    let whole = terms.len() == 1 && (matches!(part.kind, Equation | Equations | Lagrangian));
+    if term == "0"
+        || (kind == 1 && whole)
+        || (kind == 1 && !stateful && (part.up_to_constant || part.kind == Lagrangian))
+    {
+        return None;
+    }
+    let equation = matches!(part.kind, Equation | Equations);
+    answers[k] = match (kind, part.kind) {
+        (0, Equation | Equations) => {
+            let factors = [
+                format!("{coordinate}'"),
+                format!("sin({coordinate})"),
+                format!("({coordinate} - {eps})^2"),
+                format!("({coordinate}')^2"),
+            ];
+            format!("{}*({item}) = 0", factors[pick % factors.len()])
+        }
+        (1, Expression | Lagrangian | Equation | Equations) => {
+            format!("{item} + {eps}*({term})") + if equation { " = 0" } else { "" }
+        }
+        (2, Expression | Lagrangian | Equation | Equations) => {
+            format!("{item} + {eps}*({term})*cos({coordinate})")
+                + if equation { " = 0" } else { "" }
+        }
+        (1 | 2, Frequencies | Values) => format!("(1 + {eps})*({})", answers[k]),
+        _ => return None,
+    };
+    Some(answers.join(if part.kind == Equations { "; " } else { ", " }))
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::test_runner::Config {
+        cases: 300,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5_0a4d),
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    })]
+
+    /// References multiplied by a vanishing factor, with one term scaled by 1 + eps, or with
+    /// a small state-dependent term added are never called correct. (eps stays 100 times
+    /// above the tolerance, which is relative to the size of all the terms at a point.)
+    #[test]
+    fn constructed_wrong_answers_are_never_correct(
+        which in 0usize..1000,
+        kind in 0u8..3,
+        pick in 0usize..1000,
+        eps in prop_oneof![1e-7..1e-5, 1e-5..1e-2, 0.01..0.5f64],
+    ) {
+        let bank = lagrange::embedded::bank();
+        let parts: Vec<(&lagrange::Problem, &lagrange::Part)> = bank
+            .problems
+            .iter()
+            .flat_map(|p| p.parts.iter().map(move |q| (p, q)))
+            .collect();
+        let (problem, part) = parts[which % parts.len()];
+        if let Some(answer) = wrong_answer(problem, part, kind, pick, eps) {
+            let v = Checker::new(problem).check(&part.id, &answer).expect("the part prepares");
+            proptest::prop_assert!(
+                v.status != Status::Correct,
+                "{}/{}: {answer} was called correct", problem.id, part.id
+            );
+        }
     }
 }
