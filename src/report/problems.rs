@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use super::{Paint, text};
 use crate::bank::{Bank, Problem, verify::verify};
+use crate::expr::error::visible;
 use crate::expr::names;
 
 /// One line per problem of a bank, and the files that failed to load.
@@ -260,15 +261,33 @@ pub struct VerifiedProblem {
 }
 
 /// Verifies every problem of `bank`.
+/// Two problems with one id (from files of different names, or from several folders) are a
+/// finding on the second: `check` would reach only the first.
 pub fn verification(bank: &Bank) -> Verification {
     Verification {
         problems: bank
             .problems
             .iter()
-            .map(|p| VerifiedProblem {
-                id: p.id.clone(),
-                parts: p.parts.len(),
-                findings: verify(p).iter().map(ToString::to_string).collect(),
+            .enumerate()
+            .map(|(i, p)| {
+                let mut findings: Vec<String> = Vec::new();
+                if let Some(first) = bank.problems[..i].iter().find(|q| q.id == p.id) {
+                    let f = crate::bank::Finding {
+                        file: p.file.clone(),
+                        problem: Some(p.id.clone()),
+                        part: None,
+                        line: 1,
+                        code: "duplicate-id",
+                        message: format!("{} already defines the problem `{}`", first.file, p.id),
+                    };
+                    findings.push(f.to_string());
+                }
+                findings.extend(verify(p).iter().map(ToString::to_string));
+                VerifiedProblem {
+                    id: p.id.clone(),
+                    parts: p.parts.len(),
+                    findings,
+                }
             })
             .collect(),
         failures: failures(bank),
@@ -294,9 +313,15 @@ impl Verification {
     fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         for p in &self.problems {
             if p.findings.is_empty() {
-                writeln!(o, "{} {} ({} parts proved)", paint.good("✓"), p.id, p.parts)?;
+                writeln!(
+                    o,
+                    "{} {} ({} parts proved)",
+                    paint.good("✓"),
+                    visible(&p.id),
+                    p.parts
+                )?;
             } else {
-                writeln!(o, "{} {}", paint.bad("✗"), p.id)?;
+                writeln!(o, "{} {}", paint.bad("✗"), visible(&p.id))?;
                 for f in &p.findings {
                     writeln!(o, "  {f}")?;
                 }
