@@ -286,3 +286,24 @@ pub(crate) fn push_shown(out: &mut String, c: char, keep_newlines: bool) {
         out.push(c);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_are_escaped_and_invisible_ones_named() {
+        assert_eq!(visible("theta\u{1b}]0;x\u{7}"), "theta\\u{1b}]0;x\\u{7}");
+        assert_eq!(visible("a\nb"), "a\\u{a}b");
+        assert_eq!(visible_lines("a\nb\u{1b}"), "a\nb\\u{1b}");
+        assert_eq!(visible("x\u{200b}"), "x⟨U+200B zero-width space⟩");
+        assert_eq!(visible("θ̇ · ½"), "θ̇ · ½");
+        assert_eq!(
+            describe_char('\u{202e}'),
+            "invisible character U+202E right-to-left override"
+        );
+        assert_eq!(describe_char('\u{1b}'), "control character `\\u{1b}`");
+        assert_eq!(describe_char('$'), "character `$`");
+        assert_eq!(invisible_name('a'), None);
+    }
+}

@@ -296,3 +296,34 @@ fn modes_double_pendulum_asks_only_for_the_parameters_l_uses() {
     let w1 = ((2.0 - 2f64.sqrt()) * 9.8f64).sqrt();
     assert!(out.contains(&format!("{w1:.6}")), "{out}");
 }
+
+#[test]
+fn a_problem_files_title_and_prompt_are_shown_escaped() {
+    let tmp = std::env::temp_dir().join(format!("lagrange-show-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let text = std::fs::read_to_string(root().join("problems/simple-pendulum.toml"))
+        .unwrap()
+        .replace(
+            "title = \"Simple pendulum\"",
+            "title = \"Pendulum\\u001b]0;pwned\\u0007\"",
+        )
+        .replace(
+            "prompt = \"Write the kinetic energy T of the bob.\"",
+            "prompt = \"T?\\u202E evil\"",
+        );
+    std::fs::write(tmp.join("a.toml"), text).unwrap();
+    let dir = tmp.display().to_string();
+    let (code, show, _) = lagrange(&["--problems", &dir, "problems", "show", "simple-pendulum"]);
+    let (_, list, _) = lagrange(&["--problems", &dir, "problems", "list"]);
+    std::fs::remove_dir_all(&tmp).ok();
+    assert_eq!(code, 0);
+    for out in [&show, &list] {
+        assert_no_raw_controls(out);
+        assert_no_invisibles(out);
+        assert!(out.contains("Pendulum\\u{1b}]0;pwned\\u{7}"), "{out}");
+    }
+    assert!(
+        show.contains("T?⟨U+202E right-to-left override⟩ evil"),
+        "{show}"
+    );
+}
