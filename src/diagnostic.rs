@@ -9,6 +9,15 @@ use std::ops::Range;
 use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
 
 use crate::expr::ParseError;
+use crate::expr::error::{needs_showing, push_shown, visible_lines};
+
+/// Longest source line shown whole under a diagnostic, in bytes; a longer one is cut to a
+/// window around the span, so a 20,000-byte input does not fill the terminal.
+const MAX_SHOWN_LINE: usize = 200;
+/// How much of a long line is shown before the span, in bytes.
+const SHOWN_BEFORE: usize = 60;
+/// How much of a long line is shown from the span's start, in bytes.
+const SHOWN_FROM: usize = 100;
 
 /// A message, optionally about a span of some source text.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -75,23 +84,31 @@ pub fn render(name: &str, src: &str, d: &Diagnostic, color: bool) -> String {
     while !src.is_char_boundary(end) {
         end += 1;
     }
-    let span = (name, start..end);
+    let (shown, range) = shown_source(src, start..end);
+    let name = visible_lines(name);
+    let name = name.as_str();
+    let (message, label, help) = (
+        visible_lines(&d.message),
+        visible_lines(&d.label),
+        visible_lines(&d.help),
+    );
+    let span = (name, range);
     let config = Config::default()
         .with_index_type(IndexType::Byte)
         .with_color(color);
     let mut report = Report::build(ReportKind::Error, span.clone())
         .with_config(config)
         .with_code(&d.code)
-        .with_message(&d.message)
-        .with_label(Label::new(span).with_message(&d.label));
-    if !d.help.is_empty() {
-        report = report.with_help(&d.help);
+        .with_message(&message)
+        .with_label(Label::new(span).with_message(&label));
+    if !help.is_empty() {
+        report = report.with_help(&help);
     }
     let mut out = Vec::new();
     // Writing into a Vec cannot fail; if it ever did, fall back to the plain form.
     if report
         .finish()
-        .write((name, Source::from(src)), &mut out)
+        .write((name, Source::from(shown)), &mut out)
         .is_err()
     {
         return render_plain(d);
@@ -100,12 +117,62 @@ pub fn render(name: &str, src: &str, d: &Diagnostic, color: bool) -> String {
 }
 
 /// `error[code]: message` and, when there is one, an indented help line.
+/// Control and invisible characters in the message and help are made visible (user text is
+/// echoed in messages, and must not drive the terminal).
 pub fn render_plain(d: &Diagnostic) -> String {
-    let mut s = format!("error[{}]: {}\n", d.code, d.message);
+    let mut s = format!("error[{}]: {}\n", d.code, visible_lines(&d.message));
     if !d.help.is_empty() {
-        s.push_str(&format!("  help: {}\n", d.help));
+        s.push_str(&format!("  help: {}\n", visible_lines(&d.help)));
     }
     s
+}
+
+/// The source text as shown under a diagnostic, and the span moved into it. Text whose
+/// characters all show as themselves, on lines of reasonable length, is shown as it is.
+/// Otherwise only the span's line is shown (preceded by empty lines, so its number stays),
+/// cut to a window around the span when long (`…` marks the cuts), with control characters
+/// escaped and invisible ones named; a span running past the window or the line is cut.
+fn shown_source(src: &str, span: Range<usize>) -> (String, Range<usize>) {
+    let line_start = src[..span.start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = src[span.start..]
+        .find('\n')
+        .map_or(src.len(), |i| span.start + i);
+    let longest = src.split('\n').map(str::len).max().unwrap_or(0);
+    if longest <= MAX_SHOWN_LINE && !src.chars().any(|c| c != '\n' && needs_showing(c)) {
+        return (src.to_string(), span);
+    }
+    let (mut lo, mut hi) = (line_start, line_end);
+    if line_end - line_start > MAX_SHOWN_LINE {
+        lo = span.start.saturating_sub(SHOWN_BEFORE).max(line_start);
+        hi = (span.start + SHOWN_FROM).min(line_end);
+        while !src.is_char_boundary(lo) {
+            lo -= 1;
+        }
+        while !src.is_char_boundary(hi) {
+            hi += 1;
+        }
+    }
+    let end = span.end.clamp(span.start, hi);
+    let mut out = "\n".repeat(src[..line_start].matches('\n').count());
+    if lo > line_start {
+        out.push('…');
+    }
+    let (mut new_start, mut new_end) = (None, None);
+    for (i, c) in src[lo..hi].char_indices() {
+        if lo + i == span.start {
+            new_start = Some(out.len());
+        }
+        if lo + i == end {
+            new_end = Some(out.len());
+        }
+        push_shown(&mut out, c, false);
+    }
+    let at_hi = out.len();
+    if hi < line_end {
+        out.push('…');
+    }
+    let new_start = new_start.unwrap_or(at_hi);
+    (out, new_start..new_end.unwrap_or(at_hi).max(new_start))
 }
 
 /// Renders a parse error of `src`.

@@ -32,6 +32,20 @@ impl Assumption {
                     read_expr(a, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
                 let rhs =
                     read_expr(b, ctx, &mut sys.pool).map_err(|e| format!("in `{text}`: {e}"))?;
+                // Assumptions restrict the parameters' samples; a coordinate (or time) in one
+                // would be ignored when sampling, and wrongly narrow the proof's claim.
+                let time = sys.pool.time();
+                let mut vars = sys.pool.variables(lhs);
+                vars.extend(sys.pool.variables(rhs));
+                if let Some((s, _)) = vars
+                    .iter()
+                    .find(|(s, _)| *s == time || sys.coordinates.iter().any(|c| c.sym == *s))
+                {
+                    return Err(format!(
+                        "`{text}` involves `{}`, which is not a parameter: `assume` restricts parameters only",
+                        sys.pool.name(*s)
+                    ));
+                }
                 return Ok(Assumption {
                     text: text.to_string(),
                     lhs,

@@ -14,6 +14,14 @@ use super::schema::{AnchorSpec, AnswerSpec, BodySpec, PartSpec, PotentialSpec, P
 
 /// Builds a problem from a parsed file. Every error is a finding with a line.
 pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding> {
+    check_id(pf.id.get_ref(), "problem").map_err(|why| Finding {
+        file: file.to_string(),
+        problem: None,
+        part: None,
+        line: line_of(text, pf.id.span().start),
+        code: "bad-id",
+        message: why,
+    })?;
     let b = Builder {
         file,
         text,
@@ -48,12 +56,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         )?),
         None => None,
     };
-    let lagrangian_line = pf
-        .lagrangian
-        .as_ref()
-        .map(|l| line_of(text, l.span().start))
-        .or_else(|| pf.bodies.first().map(|b| line_of(text, b.span().start)))
-        .unwrap_or(b.id_line);
+    let lagrangian_line = lagrangian_line(text, &pf, b.id_line);
     let mut system = if !bodies.is_empty() {
         System::from_bodies(pool, coordinates, &bodies, &potentials)
     } else if let Some(l) = stated {
@@ -90,6 +93,15 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     })
 }
 
+/// The line of the `lagrangian` key, else of the first body, else of the id.
+fn lagrangian_line(text: &str, pf: &ProblemFile, id_line: usize) -> usize {
+    pf.lagrangian
+        .as_ref()
+        .map(|l| line_of(text, l.span().start))
+        .or_else(|| pf.bodies.first().map(|b| line_of(text, b.span().start)))
+        .unwrap_or(id_line)
+}
+
 /// What every finding of one file shares: the file, its text and the problem id.
 struct Builder<'a> {
     file: &'a str,
@@ -118,9 +130,19 @@ impl Builder<'_> {
         pool: &mut Pool,
         dims: &mut Dimensions,
     ) -> Result<Vec<Coordinate>, Finding> {
-        let mut coordinates = Vec::new();
+        let mut coordinates: Vec<Coordinate> = Vec::new();
         for c in &pf.coordinates {
             let name = crate::expr::names::normalize(&c.name);
+            if let Err(why) = crate::mechanics::system::check_coordinate_name(&name) {
+                return Err(self.fail(self.id_line, "reserved-name", why.to_string()));
+            }
+            if coordinates.iter().any(|x| x.name == name) {
+                return Err(self.fail(
+                    self.id_line,
+                    "duplicate-coordinate",
+                    format!("coordinate `{name}` is declared twice"),
+                ));
+            }
             let d = match &c.dimension {
                 Some(d) => {
                     Dimension::parse(d).map_err(|e| self.fail(self.id_line, "bad-dimension", e))?
@@ -129,8 +151,8 @@ impl Builder<'_> {
                 None => Dimension::new(0, 1, 0),
             };
             dims.set(&name, d);
-            let range = match c.range {
-                Some([a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
+            let range = match c.range.as_deref() {
+                Some(&[a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
                 Some(r) => {
                     return Err(self.fail(
                         self.id_line,
@@ -163,6 +185,24 @@ impl Builder<'_> {
         let mut parameters = Vec::new();
         for (name, p) in &pf.parameters {
             let name = crate::expr::names::normalize(name);
+            if let Some(why) = reserved(&name) {
+                return Err(self.fail(
+                    self.id_line,
+                    "reserved-name",
+                    format!("parameter `{name}`: {why}; rename the parameter"),
+                ));
+            }
+            if pf
+                .coordinates
+                .iter()
+                .any(|c| crate::expr::names::normalize(&c.name) == name)
+            {
+                return Err(self.fail(
+                    self.id_line,
+                    "reserved-name",
+                    format!("parameter `{name}` is also declared as a coordinate"),
+                ));
+            }
             let d = Dimension::parse(&p.dimension).map_err(|e| {
                 self.fail(
                     self.id_line,
@@ -170,16 +210,19 @@ impl Builder<'_> {
                     format!("parameter `{name}`: {e}"),
                 )
             })?;
-            let [lo, hi] = p.range;
-            if !(lo > 0.0 && hi > lo && hi.is_finite()) {
-                return Err(self.fail(
-                    self.id_line,
-                    "bad-range",
-                    format!(
-                        "parameter `{name}` has range [{lo}, {hi}]; it needs a positive range [low, high]"
-                    ),
-                ));
-            }
+            let (lo, hi) = match p.range[..] {
+                [lo, hi] if lo > 0.0 && hi > lo && hi.is_finite() => (lo, hi),
+                _ => {
+                    return Err(self.fail(
+                        self.id_line,
+                        "bad-range",
+                        format!(
+                            "parameter `{name}` has range {:?}; it needs a positive range [low, high]",
+                            p.range
+                        ),
+                    ));
+                }
+            };
             dims.set(&name, d);
             parameters.push(Parameter {
                 sym: pool.symbol(&name),
@@ -233,6 +276,9 @@ impl Builder<'_> {
         let mut parts = Vec::new();
         for sp in &pf.parts {
             let line = line_of(self.text, sp.span().start);
+            if let Err(why) = check_id(&sp.get_ref().id, "part") {
+                return Err(self.fail(line, "bad-id", why));
+            }
             parts.push(
                 build_part(sp.get_ref(), line, system).map_err(|(code, m)| Finding {
                     part: Some(sp.get_ref().id.clone()),
@@ -412,6 +458,71 @@ impl Reader<'_> {
     }
 }
 
+/// Smallest and largest relative tolerance a part may set: below 1e-15 is under the rounding
+/// of f64; above 1e-2 a wrong answer (a constant off by 1 %, or `0` at 100 %) would pass.
+const MIN_TOLERANCE: f64 = 1e-15;
+const MAX_TOLERANCE: f64 = 1e-2;
+/// Largest weight of a part.
+const MAX_POINTS: f64 = 1e6;
+
+/// Why `name` cannot be a parameter's name: it would read as time, π or a function.
+fn reserved(name: &str) -> Option<String> {
+    crate::mechanics::system::check_coordinate_name(name)
+        .err()
+        .map(|e| e.reason())
+}
+
+/// An id is used on the command line and printed in reports: it must be non-empty and made
+/// of letters, digits, `-`, `_` and `.` only (no spaces, control or invisible characters).
+fn check_id(id: &str, what: &str) -> Result<(), String> {
+    const MAX_ID: usize = 100;
+    if id.is_empty() {
+        return Err(format!("the {what} id is empty"));
+    }
+    if id.chars().count() > MAX_ID {
+        return Err(format!("the {what} id is longer than {MAX_ID} characters"));
+    }
+    if let Some(c) = id
+        .chars()
+        .find(|&c| !(c.is_alphanumeric() || matches!(c, '-' | '_' | '.')))
+    {
+        return Err(format!(
+            "the {what} id `{}` has the {}; an id is letters, digits, `-`, `_` and `.`",
+            crate::expr::error::visible(id),
+            crate::expr::error::describe_char(c)
+        ));
+    }
+    Ok(())
+}
+
+/// The part's tolerance and weight, each checked to be a number in its range (a NaN, a
+/// negative or a huge tolerance would let `check` accept wrong answers).
+fn tolerance_and_points(sp: &PartSpec) -> Result<(f64, f64), (&'static str, String)> {
+    let tolerance = match sp.tolerance {
+        None => crate::check::tolerance::TOLERANCE,
+        Some(t) if (MIN_TOLERANCE..=MAX_TOLERANCE).contains(&t) => t,
+        Some(t) => {
+            return Err((
+                "bad-tolerance",
+                format!(
+                    "tolerance = {t:?}: a relative tolerance lies between {MIN_TOLERANCE:e} and {MAX_TOLERANCE:e} (default 1e-9); a larger one would accept wrong answers"
+                ),
+            ));
+        }
+    };
+    let points = match sp.points {
+        None => 1.0,
+        Some(p) if (0.0..=MAX_POINTS).contains(&p) => p,
+        Some(p) => {
+            return Err((
+                "bad-points",
+                format!("points = {p:?}: a part's weight is a number from 0 to {MAX_POINTS:e}"),
+            ));
+        }
+    };
+    Ok((tolerance, points))
+}
+
 fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'static str, String)> {
     let kind = PartKind::parse(&sp.kind).ok_or_else(|| {
         ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force)", sp.kind))
@@ -424,6 +535,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         return Err(("no-answer", "the part has an empty answer".into()));
     }
     let quantity = quantity_of(sp, sys)?;
+    let (tolerance, points) = tolerance_and_points(sp)?;
     let up_to_constant = match sp.up_to.as_deref() {
         None => false,
         Some("constant") => true,
@@ -454,7 +566,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         prompt: sp.prompt.clone(),
         answers,
         hints: sp.hints.clone(),
-        points: sp.points.unwrap_or(1.0),
+        points,
         substitute: sp
             .substitute
             .iter()
@@ -463,7 +575,7 @@ fn build_part(sp: &PartSpec, line: usize, sys: &System) -> Result<Part, (&'stati
         at: sp.at.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
         up_to_constant,
         wrong: sp.wrong.clone(),
-        tolerance: sp.tolerance.unwrap_or(crate::check::tolerance::TOLERANCE),
+        tolerance,
         stability: sp.stability.clone(),
         quantity,
         dimension,
@@ -502,17 +614,31 @@ fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, S
         "none" => Quantity::None,
         other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
     };
-    if let Quantity::Multiplier(j) = quantity
-        && j >= sys.constraints.len()
-    {
-        return Err((
-            "bad-quantity",
-            format!(
-                "the problem has {} constraint(s); there is no multiplier {}",
-                sys.constraints.len(),
-                j + 1
-            ),
-        ));
-    }
+    check_multiplier(sp.multiplier, quantity, sys.constraints.len())?;
     Ok(quantity)
+}
+
+/// The `multiplier` key and a multiplier quantity fit the problem's constraints: a multiplier
+/// exists only for a constraint, numbered from 1, and the key only on a multiplier part.
+fn check_multiplier(
+    key: Option<usize>,
+    quantity: Quantity,
+    constraints: usize,
+) -> Result<(), (&'static str, String)> {
+    let bad = |m: String| Err(("bad-multiplier", m));
+    match quantity {
+        Quantity::Multiplier(_) if constraints == 0 => bad(
+            "the problem has no constraints, so there is no multiplier to ask for: add `constraints`, or choose another quantity".into(),
+        ),
+        _ if key == Some(0) => bad("multiplier = 0: multipliers are numbered from 1".into()),
+        Quantity::Multiplier(j) if j >= constraints => bad(format!(
+            "multiplier = {}: the problem has {constraints} constraint(s)",
+            j + 1
+        )),
+        Quantity::Multiplier(_) => Ok(()),
+        _ if key.is_some() => bad(
+            "`multiplier` applies only to a multiplier part (a constraint force, or quantity = \"multiplier\")".into(),
+        ),
+        _ => Ok(()),
+    }
 }

@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+use crate::expr::error::{visible, visible_lines};
+
 /// One problem found in a problem file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Finding {
@@ -17,13 +19,15 @@ pub struct Finding {
     pub message: String,
 }
 
+/// File names, part ids and messages quote the file's own text, which may hold control or
+/// invisible characters: they are shown escaped or named, never as themselves.
 impl fmt::Display for Finding {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}: ", self.file, self.line)?;
+        write!(f, "{}:{}: ", visible(&self.file), self.line)?;
         if let Some(p) = &self.part {
-            write!(f, "part `{p}`: ")?;
+            write!(f, "part `{}`: ", visible(p))?;
         }
-        write!(f, "{} [{}]", self.message, self.code)
+        write!(f, "{} [{}]", visible_lines(&self.message), self.code)
     }
 }
 
@@ -40,9 +44,9 @@ impl From<&Finding> for crate::diagnostic::Diagnostic {
     /// The finding as a diagnostic: its location leads the message (a finding points at a
     /// line of a file, not at a span of an answer).
     fn from(f: &Finding) -> Self {
-        let mut message = format!("{}:{}: ", f.file, f.line);
+        let mut message = format!("{}:{}: ", visible(&f.file), f.line);
         if let Some(p) = &f.part {
-            message.push_str(&format!("part `{p}`: "));
+            message.push_str(&format!("part `{}`: ", visible(p)));
         }
         message.push_str(&f.message);
         crate::diagnostic::Diagnostic::new(f.code, message, "")

@@ -44,8 +44,9 @@ pub struct CoordinateSpec {
     #[serde(default)]
     pub periodic: bool,
     /// Sampling and equilibrium-search range (default [−π, π] for periodic ones, [−2, 2]
-    /// otherwise).
-    pub range: Option<[f64; 2]>,
+    /// otherwise). A list, not a pair, so that a list of another length is a finding that
+    /// names the field rather than silently read.
+    pub range: Option<Vec<f64>>,
     /// Dimension, e.g. "L" (default: dimensionless if periodic, L otherwise).
     pub dimension: Option<String>,
     pub description: Option<String>,
@@ -56,8 +57,8 @@ pub struct CoordinateSpec {
 #[serde(deny_unknown_fields)]
 pub struct ParameterSpec {
     pub dimension: String,
-    /// Positive sampling range.
-    pub range: [f64; 2],
+    /// Positive sampling range (a list, checked to have two elements).
+    pub range: Vec<f64>,
     pub description: Option<String>,
 }
 

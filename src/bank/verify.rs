@@ -106,6 +106,21 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         code,
         message,
     };
+    // A part the engine derives nothing for would be "proved" without any check.
+    if part.quantity == Quantity::None
+        && matches!(
+            part.kind,
+            PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce
+        )
+    {
+        return Err(fail(
+            "unprovable",
+            format!(
+                "verification cannot prove this {} part: say what it is with `quantity` (kinetic, potential, lagrangian, momentum, energy-function, multiplier, acceleration)",
+                part.kind.name()
+            ),
+        ));
+    }
     let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
     let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
@@ -138,6 +153,17 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     }
     for w in &part.wrong {
         let v = crate::check::answer::check_prepared(problem, part, &mut p, w);
+        // A `wrong` example that cannot be checked proves nothing: it is a typo in the file.
+        if v.status == crate::check::Status::Invalid {
+            let why: Vec<String> = v.diagnoses.iter().map(|d| d.message.clone()).collect();
+            return Err(fail(
+                "unreadable-wrong",
+                format!(
+                    "the `wrong` example `{w}` cannot be checked: {}",
+                    why.join("; ")
+                ),
+            ));
+        }
         if v.status == crate::check::Status::Correct {
             return Err(fail(
                 "wrong-accepted",
@@ -564,11 +590,39 @@ fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check 
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
         let stated_pts: Vec<&[f64]> = v.chunks(n).collect();
+        if let Some(f) = repeated_equilibrium(part, p, &stated_pts) {
+            return Err(f);
+        }
         if let Some(f) = compare_equilibria(part, p, &params, &stated_pts)? {
             return Err(f.details(&parameter_text(&p.system, &params)));
         }
     }
     Ok(())
+}
+
+/// Two stated equilibria that are the same point (θ = π and θ = −π for a periodic θ): a
+/// student listing each point once would be graded as missing one.
+fn repeated_equilibrium(part: &Part, p: &Prepared, stated_pts: &[&[f64]]) -> Option<Failed> {
+    let coords = &p.system.coordinates;
+    for (i, a) in stated_pts.iter().enumerate() {
+        for (j, b) in stated_pts.iter().enumerate().skip(i + 1) {
+            let same = a
+                .iter()
+                .zip(b.iter())
+                .enumerate()
+                .all(|(c, (x, y))| same_coordinate(coords[c].periodic, *x, *y));
+            if same {
+                return Some(Failed::new(
+                    "duplicate-equilibrium",
+                    format!(
+                        "`{}` and `{}` are the same equilibrium (an angle is periodic): list each point once",
+                        part.answers[i], part.answers[j]
+                    ),
+                ));
+            }
+        }
+    }
+    None
 }
 
 fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {

@@ -41,7 +41,7 @@ pub fn run(
     let Some(problem) = found.as_ref() else {
         eprintln!(
             "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",
-            args.problem
+            lagrange::expr::error::visible(&args.problem)
         );
         return Ok(ExitCode::from(2));
     };

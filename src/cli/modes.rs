@@ -72,6 +72,9 @@ fn modes_report(
             source_text,
             error,
         }),
+        ModesError::UndefinedValue { .. } => CliError::Usage(format!(
+            "{e}: give --params a number (or an expression in other parameters)"
+        )),
         ModesError::PointNotNumeric => CliError::usage("--at values must be numbers here"),
         ModesError::SymbolicNeedsPoint => {
             CliError::usage("--symbolic needs the equilibrium, given with --at")

@@ -7,6 +7,7 @@ use clap::Args;
 use colored::Colorize;
 
 use lagrange::diagnostic::{Diagnostic, render, render_plain};
+use lagrange::mechanics::system::NameError;
 use lagrange::mechanics::{MechError, System};
 use lagrange::report::Paint;
 
@@ -65,6 +66,7 @@ impl SystemArgs {
         if coords.is_empty() {
             return Err(CliError::usage("--coords names no coordinate"));
         }
+        lagrange::mechanics::system::check_coordinate_names(&coords).map_err(CliError::Name)?;
         let mut sys = match (&self.lagrangian, &self.kinetic, &self.potential) {
             (Some(l), _, _) => System::from_lagrangian(l, &coords)?,
             (None, Some(t), Some(v)) => System::from_energies(t, v, &coords)?,
@@ -92,6 +94,8 @@ pub enum CliError {
     Usage(String),
     /// The mechanics could not be done.
     Mech(MechError),
+    /// A name given to --coords cannot be a coordinate.
+    Name(NameError),
 }
 
 impl CliError {
@@ -121,6 +125,11 @@ pub fn report(e: &CliError, color: bool) -> ExitCode {
             },
         ) => render(what, source_text, &Diagnostic::from(m), color),
         CliError::Mech(m) => render_plain(&Diagnostic::from(m).with_help(help(m))),
+        CliError::Name(n) => render_plain(&Diagnostic::new(
+            n.code(),
+            format!("--coords: {n}"),
+            n.help(),
+        )),
     };
     eprint!("{text}");
     ExitCode::from(2)

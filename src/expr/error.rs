@@ -17,7 +17,7 @@ pub enum ParseErrorKind {
     TooLong { len: usize, max: usize },
     #[error("the expression is nested more than {max} levels deep")]
     TooDeep { max: usize },
-    #[error("unexpected character `{0}`")]
+    #[error("unexpected {}", describe_char(*.0))]
     UnexpectedChar(char),
     #[error("this `(` is never closed")]
     UnclosedParen,
@@ -50,6 +50,14 @@ pub enum ParseErrorKind {
     ChainedEquals,
     #[error("this number cannot be read")]
     BadNumber,
+    /// A decimal exponent beyond the limit (`1e301`): refused rather than rounded to ∞ or 0.
+    #[error(
+        "this number's exponent is beyond ±{max}: lagrange reads numbers from 1e-{max} to 1e{max}"
+    )]
+    ExponentTooLarge { max: i64 },
+    /// A literal with too many digits.
+    #[error("this number has more than {max} digits")]
+    TooManyDigits { max: usize },
     #[error("`{name}(…)` takes the name of a coordinate")]
     DotNeedsName { name: String },
     #[error("a derivative mark applies to a name")]
@@ -78,6 +86,8 @@ impl ParseErrorKind {
             Self::ListNotAllowed => "list-not-allowed",
             Self::ChainedEquals => "chained-equals",
             Self::BadNumber => "bad-number",
+            Self::ExponentTooLarge { .. } => "number-too-large",
+            Self::TooManyDigits { .. } => "too-many-digits",
             Self::DotNeedsName { .. } => "dot-needs-name",
             Self::PrimeWithoutName => "prime-without-name",
             Self::EquationExpected => "equation-expected",
@@ -94,6 +104,9 @@ impl ParseErrorKind {
                 '{' | '}' => "use round parentheses `( )` for grouping".into(),
                 '\\' => "type plain syntax, not LaTeX: `sin(theta)`, `theta''`".into(),
                 '!' => "factorials are not part of the language".into(),
+                c if c.is_control() || invisible_name(*c).is_some() => {
+                    "delete it (retype the answer if you cannot see it)".into()
+                }
                 _ => "use numbers, names, + - * / ^, parentheses and functions".into(),
             },
             Self::UnclosedParen => "add a `)` to close it".into(),
@@ -126,6 +139,14 @@ impl ParseErrorKind {
             Self::ListNotAllowed => "give a single answer, without `,` or `;`".into(),
             Self::ChainedEquals => "write one equation per item, separated by `;`".into(),
             Self::BadNumber => "write numbers like `2`, `0.5` or `1e-3`".into(),
+            Self::ExponentTooLarge { max } => {
+                format!(
+                    "rescale the quantity (change units) so that it lies between 1e-{max} and 1e{max}"
+                )
+            }
+            Self::TooManyDigits { .. } => {
+                "round it, or write it with an exponent, e.g. `1.5e3`".into()
+            }
             Self::DotNeedsName { name } => format!("write `{name}(theta)` for a coordinate theta"),
             Self::PrimeWithoutName => "write `theta'`, not `(…)'`".into(),
             Self::EquationExpected => "write an equation with `=`".into(),
@@ -161,5 +182,128 @@ impl ParseError {
     /// The one-line help.
     pub fn help(&self) -> String {
         self.kind.help()
+    }
+}
+
+/// Invisible characters (zero-width, bidirectional controls and the like) and their names:
+/// shown by name, never as themselves, since they cannot be seen and some reorder the text
+/// around them on a terminal.
+const INVISIBLE: &[(char, &str)] = &[
+    ('\u{00AD}', "soft hyphen"),
+    ('\u{034F}', "combining grapheme joiner"),
+    ('\u{061C}', "Arabic letter mark"),
+    ('\u{180E}', "Mongolian vowel separator"),
+    ('\u{200B}', "zero-width space"),
+    ('\u{200C}', "zero-width non-joiner"),
+    ('\u{200D}', "zero-width joiner"),
+    ('\u{200E}', "left-to-right mark"),
+    ('\u{200F}', "right-to-left mark"),
+    ('\u{2028}', "line separator"),
+    ('\u{2029}', "paragraph separator"),
+    ('\u{202A}', "left-to-right embedding"),
+    ('\u{202B}', "right-to-left embedding"),
+    ('\u{202C}', "pop directional formatting"),
+    ('\u{202D}', "left-to-right override"),
+    ('\u{202E}', "right-to-left override"),
+    ('\u{2060}', "word joiner"),
+    ('\u{2061}', "function application"),
+    ('\u{2062}', "invisible times"),
+    ('\u{2063}', "invisible separator"),
+    ('\u{2064}', "invisible plus"),
+    ('\u{2066}', "left-to-right isolate"),
+    ('\u{2067}', "right-to-left isolate"),
+    ('\u{2068}', "first strong isolate"),
+    ('\u{2069}', "pop directional isolate"),
+    ('\u{FEFF}', "zero-width no-break space"),
+];
+
+/// The name of an invisible character (`U+200B zero-width space`), or `None` for a character
+/// that shows as itself. Variation selectors, tags and interlinear annotation marks, which
+/// are invisible too, get a generic name.
+pub fn invisible_name(c: char) -> Option<String> {
+    let name = INVISIBLE
+        .iter()
+        .find(|(x, _)| *x == c)
+        .map(|(_, n)| *n)
+        .or(match c {
+            '\u{FE00}'..='\u{FE0F}' | '\u{E0100}'..='\u{E01EF}' => Some("variation selector"),
+            '\u{E0000}'..='\u{E007F}' => Some("tag character"),
+            '\u{FFF9}'..='\u{FFFB}' => Some("interlinear annotation mark"),
+            _ => None,
+        })?;
+    Some(format!("U+{:04X} {name}", c as u32))
+}
+
+/// A character for a message: `` `$` ``, a control character escaped (`` `\u{1b}` ``, so a
+/// terminal never obeys it), an invisible one by name.
+pub fn describe_char(c: char) -> String {
+    if let Some(name) = invisible_name(c) {
+        format!("invisible character {name}")
+    } else if c.is_control() {
+        format!("control character `{}`", c.escape_unicode())
+    } else {
+        format!("character `{c}`")
+    }
+}
+
+/// User text made safe to echo on one line: control characters (newlines included) escaped
+/// as `\u{1b}`, invisible characters named as `⟨U+200B zero-width space⟩`. Text without
+/// either is returned unchanged.
+pub fn visible(text: &str) -> String {
+    show(text, false)
+}
+
+/// [`visible`], keeping line breaks: for whole messages, which may span lines.
+pub fn visible_lines(text: &str) -> String {
+    show(text, true)
+}
+
+fn show(text: &str, keep_newlines: bool) -> String {
+    if !text.chars().any(needs_showing) {
+        return text.to_string();
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    for c in text.chars() {
+        push_shown(&mut out, c, keep_newlines);
+    }
+    out
+}
+
+/// Whether `c` is shown other than as itself.
+pub(crate) fn needs_showing(c: char) -> bool {
+    c.is_control() || invisible_name(c).is_some()
+}
+
+/// Appends `c` as [`visible`] shows it.
+pub(crate) fn push_shown(out: &mut String, c: char, keep_newlines: bool) {
+    if keep_newlines && c == '\n' {
+        out.push(c);
+    } else if let Some(name) = invisible_name(c) {
+        out.push_str(&format!("⟨{name}⟩"));
+    } else if c.is_control() {
+        out.extend(c.escape_unicode());
+    } else {
+        out.push(c);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_are_escaped_and_invisible_ones_named() {
+        assert_eq!(visible("theta\u{1b}]0;x\u{7}"), "theta\\u{1b}]0;x\\u{7}");
+        assert_eq!(visible("a\nb"), "a\\u{a}b");
+        assert_eq!(visible_lines("a\nb\u{1b}"), "a\nb\\u{1b}");
+        assert_eq!(visible("x\u{200b}"), "x⟨U+200B zero-width space⟩");
+        assert_eq!(visible("θ̇ · ½"), "θ̇ · ½");
+        assert_eq!(
+            describe_char('\u{202e}'),
+            "invisible character U+202E right-to-left override"
+        );
+        assert_eq!(describe_char('\u{1b}'), "control character `\\u{1b}`");
+        assert_eq!(describe_char('$'), "character `$`");
+        assert_eq!(invisible_name('a'), None);
     }
 }

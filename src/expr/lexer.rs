@@ -18,6 +18,8 @@ pub type Span = Range<usize>;
 
 /// Largest decimal exponent accepted in a number literal (`1e400` is refused, not infinite).
 const MAX_DECIMAL_EXPONENT: i64 = 300;
+/// Most digits read in one number literal (and in one superscript exponent).
+const MAX_DIGITS: usize = 1000;
 
 /// A token kind.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,8 +33,9 @@ pub enum Tok {
     },
     /// `'` after a name: one time derivative.
     Prime,
-    /// A superscript integer exponent (`²`, `⁻¹`).
-    Super(i64),
+    /// A superscript integer exponent (`²`, `⁻¹`), of any size: the printer writes every
+    /// integer exponent this way, so every one must read back.
+    Super(BigInt),
     Plus,
     Minus,
     Star,
@@ -135,7 +138,13 @@ fn superscript(src: &str, start: usize) -> Result<(Tok, usize), ParseError> {
         }
         end = start + j + d.len_utf8();
     }
-    let n: i64 = text
+    if text.len() > MAX_DIGITS {
+        return Err(ParseError::new(
+            ParseErrorKind::TooManyDigits { max: MAX_DIGITS },
+            start..end,
+        ));
+    }
+    let n: BigInt = text
         .parse()
         .map_err(|_| ParseError::new(ParseErrorKind::BadNumber, start..end))?;
     Ok((Tok::Super(n), end))
@@ -269,14 +278,22 @@ fn number(src: &str, start: usize) -> Result<(BigRational, usize), ParseError> {
             }
             let e: i64 = src[k..j].parse().unwrap_or(i64::MAX);
             if e > MAX_DECIMAL_EXPONENT {
-                return Err(ParseError::new(ParseErrorKind::BadNumber, start..j));
+                return Err(ParseError::new(
+                    ParseErrorKind::ExponentTooLarge {
+                        max: MAX_DECIMAL_EXPONENT,
+                    },
+                    start..j,
+                ));
             }
             exp = if neg { -e } else { e };
             i = j;
         }
     }
-    if digits.len() > 1000 {
-        return Err(ParseError::new(ParseErrorKind::BadNumber, start..i));
+    if digits.len() > MAX_DIGITS {
+        return Err(ParseError::new(
+            ParseErrorKind::TooManyDigits { max: MAX_DIGITS },
+            start..i,
+        ));
     }
     let mantissa: BigInt = digits.parse().unwrap_or_default();
     let shift = exp - frac_len;
@@ -320,8 +337,8 @@ mod tests {
             ("θ̈₁", vec![name("theta1", 2)]),
             ("θ₁̇", vec![name("theta1", 1)]),
             ("mθ", vec![name("m", 0), name("theta", 0)]),
-            ("l²", vec![name("l", 0), Tok::Super(2)]),
-            ("T⁻²", vec![name("T", 0), Tok::Super(-2)]),
+            ("l²", vec![name("l", 0), Tok::Super(2.into())]),
+            ("T⁻²", vec![name("T", 0), Tok::Super((-2).into())]),
             ("a·b", vec![name("a", 0), Tok::Star, name("b", 0)]),
             ("x**2", vec![name("x", 0), Tok::Caret, num(2, 1)]),
             ("a − b", vec![name("a", 0), Tok::Minus, name("b", 0)]),
@@ -351,6 +368,9 @@ mod tests {
         let e = lex("x $ y").unwrap_err();
         assert_eq!(e.kind, ParseErrorKind::UnexpectedChar('$'));
         assert_eq!(e.span, 2..3);
-        assert_eq!(lex("1e999").unwrap_err().kind, ParseErrorKind::BadNumber);
+        assert_eq!(
+            lex("1e999").unwrap_err().kind,
+            ParseErrorKind::ExponentTooLarge { max: 300 }
+        );
     }
 }

@@ -288,7 +288,7 @@ impl Parser<'_> {
             let sp = self.here();
             self.pos += 1;
             let exp = Ast {
-                kind: AstKind::Num(num_rational::BigRational::from_integer(n.into())),
+                kind: AstKind::Num(num_rational::BigRational::from_integer(n)),
                 span: sp.clone(),
             };
             let span = a.span.start..sp.end;

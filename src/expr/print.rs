@@ -229,6 +229,17 @@ fn mass_first(name: &str) -> u8 {
     u8::from(letters != "m" && letters != "M")
 }
 
+/// An integer in superscript digits, exactly, however large (`⁻¹²`): it must read back.
+fn superscript(n: &BigInt) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| match c.to_digit(10) {
+            Some(d) => names::superscript(i64::from(d)),
+            None => "⁻".to_string(),
+        })
+        .collect()
+}
+
 /// An exponent being printed: an exact number or an expression.
 #[derive(Clone)]
 enum Exp {
@@ -265,6 +276,22 @@ impl Printer<'_> {
 
     /// Text and precedence.
     fn expr(&self, id: Id) -> (String, u8) {
+        if self.pool.is_undefined(id) {
+            // Undefined is stored as 0^(−1); shown as 0/0, which reads back as undefined and
+            // does not suggest a division of something non-zero.
+            let text = match self.style {
+                Style::Latex => "\\frac{0}{0}",
+                _ => "0/0",
+            };
+            return (
+                text.into(),
+                if self.style == Style::Latex {
+                    ATOM
+                } else {
+                    PRODUCT
+                },
+            );
+        }
         match self.pool.node(id) {
             Node::Add(ch) => {
                 let mut terms = ch.to_vec();
@@ -488,9 +515,7 @@ impl Printer<'_> {
             self.wrap((base.0, 0), ATOM)
         };
         let exp = match (&e, self.style) {
-            (Exp::Num(v), Style::Unicode) if v.is_integer() => {
-                names::superscript(v.to_integer().to_i64().unwrap_or(0))
-            }
+            (Exp::Num(v), Style::Unicode) if v.is_integer() => superscript(&v.to_integer()),
             (Exp::Num(v), Style::Latex) => format!("^{{{v}}}"),
             (Exp::Num(v), _) if v.is_integer() && !v.is_negative() => format!("^{v}"),
             (Exp::Num(v), _) => format!("^({v})"),

@@ -61,6 +61,14 @@ pub enum ModesError {
         /// Why it did not read.
         error: Box<ParseError>,
     },
+    /// A parameter's value is undefined (`g=0/0`) or not finite (`g=log(0)`).
+    #[error("the value of `{name}`, {text}, is undefined")]
+    UndefinedValue {
+        /// The parameter.
+        name: String,
+        /// Its value as given.
+        text: String,
+    },
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
@@ -139,7 +147,11 @@ fn stability_name<S: Serializer>(s: &Stability, ser: S) -> Result<S::Ok, S::Erro
 pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesError> {
     let mut sys = sys.clone();
     set_ranges(&mut sys, opts)?;
-    sys.substitute_parameters(&opts.params)?;
+    let values = sys.substitute_parameters(&opts.params)?;
+    check_values(&sys, &values, &opts.params)?;
+    // Parameters declared but not used by L (a bank problem's `l` for its equal-length
+    // part) need no value.
+    sys.drop_unused_parameters();
     let d = sys.derive()?;
     let coordinate_labels: Vec<Formula> = sys
         .coordinates
@@ -194,6 +206,27 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         }),
         coordinate_labels,
     })
+}
+
+/// A constant value that does not evaluate to a finite number is its own error, rather than
+/// an undefined L reported as a degenerate system.
+fn check_values(
+    sys: &System,
+    values: &rustc_hash::FxHashMap<(crate::expr::Sym, u8), Id>,
+    given: &[(String, String)],
+) -> Result<(), ModesError> {
+    for (&(sym, _), &v) in values {
+        let finite = sys.pool.variables(v).is_empty().then(|| constant(sys, v));
+        if sys.pool.is_undefined(v) || finite.is_some_and(|x| !x.is_some_and(f64::is_finite)) {
+            let name = sys.pool.name(sym).to_string();
+            let text = given
+                .iter()
+                .find(|(n, _)| crate::expr::names::normalize(n.trim()) == name)
+                .map_or_else(String::new, |(_, t)| t.clone());
+            return Err(ModesError::UndefinedValue { name, text });
+        }
+    }
+    Ok(())
 }
 
 /// Applies the default and the named search ranges.

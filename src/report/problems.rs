@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use super::{Paint, text};
 use crate::bank::{Bank, Problem, verify::verify};
+use crate::expr::error::{visible, visible_lines};
 use crate::expr::names;
 
 /// One line per problem of a bank, and the files that failed to load.
@@ -65,13 +66,14 @@ impl ProblemList {
 
     fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let w = self.problems.iter().map(|p| p.id.len()).max().unwrap_or(0);
+        // Ids are checked on loading; titles are the file's text, shown made visible.
         for p in &self.problems {
             // Padded before painting, so that escape codes do not count towards the width.
             writeln!(
                 o,
                 "{}  {}\n{:w$}  parts: {}",
                 paint.heading(&format!("{:w$}", p.id)),
-                p.title,
+                visible(&p.title),
                 "",
                 p.parts.join(", ")
             )?;
@@ -170,35 +172,39 @@ impl ProblemSheet {
 
     fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let h = |t: &str| paint.heading(t);
-        writeln!(o, "{}  ({})", h(&self.title), self.id)?;
+        // The file's text is shown with control and invisible characters made visible, so a
+        // problem file cannot drive the terminal (colours come from `paint`, after this).
+        writeln!(o, "{}  ({})", h(&visible(&self.title)), visible(&self.id))?;
         if !self.source.is_empty() {
-            writeln!(o, "{}", paint.dim(&self.source))?;
+            writeln!(o, "{}", paint.dim(&visible(&self.source)))?;
         }
-        writeln!(o, "\n{}", self.statement)?;
+        writeln!(o, "\n{}", visible_lines(&self.statement))?;
         writeln!(o, "\n{} {}", h("coordinates:"), self.coordinates.join(", "))?;
         writeln!(o, "{} {}", h("parameters: "), self.parameters.join(", "))?;
         if !self.assumptions.is_empty() {
-            writeln!(o, "{} {}", h("assuming:   "), self.assumptions.join(", "))?;
+            let shown = visible(&self.assumptions.join(", "));
+            writeln!(o, "{} {shown}", h("assuming:   "))?;
         }
         for (i, part) in self.parts.iter().enumerate() {
             writeln!(
                 o,
                 "\n{} {} ({}, {} point{})",
                 h(&format!("{}.", i + 1)),
-                h(&part.id),
+                h(&visible(&part.id)),
                 part.kind,
                 part.points,
                 if part.points == 1.0 { "" } else { "s" }
             )?;
-            writeln!(o, "   {}", part.prompt)?;
+            writeln!(o, "   {}", visible_lines(&part.prompt))?;
             if let Some(answers) = &part.answers {
-                writeln!(o, "   {} {}", paint.dim("answer:"), answers.join("; "))?;
+                let shown = visible(&answers.join("; "));
+                writeln!(o, "   {} {shown}", paint.dim("answer:"))?;
             }
         }
         writeln!(
             o,
             "\nAnswer with `lagrange check {} <part> \"<answer>\"`.",
-            self.id
+            visible(&self.id)
         )
     }
 }
@@ -260,15 +266,33 @@ pub struct VerifiedProblem {
 }
 
 /// Verifies every problem of `bank`.
+/// Two problems with one id (from files of different names, or from several folders) are a
+/// finding on the second: `check` would reach only the first.
 pub fn verification(bank: &Bank) -> Verification {
     Verification {
         problems: bank
             .problems
             .iter()
-            .map(|p| VerifiedProblem {
-                id: p.id.clone(),
-                parts: p.parts.len(),
-                findings: verify(p).iter().map(ToString::to_string).collect(),
+            .enumerate()
+            .map(|(i, p)| {
+                let mut findings: Vec<String> = Vec::new();
+                if let Some(first) = bank.problems[..i].iter().find(|q| q.id == p.id) {
+                    let f = crate::bank::Finding {
+                        file: p.file.clone(),
+                        problem: Some(p.id.clone()),
+                        part: None,
+                        line: 1,
+                        code: "duplicate-id",
+                        message: format!("{} already defines the problem `{}`", first.file, p.id),
+                    };
+                    findings.push(f.to_string());
+                }
+                findings.extend(verify(p).iter().map(ToString::to_string));
+                VerifiedProblem {
+                    id: p.id.clone(),
+                    parts: p.parts.len(),
+                    findings,
+                }
             })
             .collect(),
         failures: failures(bank),
@@ -294,9 +318,15 @@ impl Verification {
     fn write_text(&self, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         for p in &self.problems {
             if p.findings.is_empty() {
-                writeln!(o, "{} {} ({} parts proved)", paint.good("✓"), p.id, p.parts)?;
+                writeln!(
+                    o,
+                    "{} {} ({} parts proved)",
+                    paint.good("✓"),
+                    visible(&p.id),
+                    p.parts
+                )?;
             } else {
-                writeln!(o, "{} {}", paint.bad("✗"), p.id)?;
+                writeln!(o, "{} {}", paint.bad("✗"), visible(&p.id))?;
                 for f in &p.findings {
                     writeln!(o, "  {f}")?;
                 }

@@ -90,7 +90,7 @@ fn cases() -> Vec<(&'static str, String, Want, Context)> {
         ),
         ("list-not-allowed", "m, g".into(), Want::Expr, closed()),
         ("chained-equals", "m = g = l".into(), Want::Any, closed()),
-        ("bad-number", "1e999*m".into(), Want::Any, closed()),
+        ("number-too-large", "1e999*m".into(), Want::Any, closed()),
         ("dot-needs-name", "dot(2)".into(), Want::Any, mech_ctx()),
         ("prime-without-name", "(m + g)'".into(), Want::Any, closed()),
     ]

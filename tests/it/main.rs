@@ -7,6 +7,7 @@ mod corpus;
 mod diagnostics;
 mod dimensions;
 mod helpers;
+mod hostile;
 mod mechanics;
 mod props;
 mod soundness;
