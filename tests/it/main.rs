@@ -9,5 +9,6 @@ mod dimensions;
 mod helpers;
 mod mechanics;
 mod props;
+mod scale;
 mod symbolic;
 mod syntax;
