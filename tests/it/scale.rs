@@ -475,3 +475,51 @@ fn is_zero_is_relative_to_the_terms() {
         }
     }
 }
+
+// ---- the audit: Coriolis terms and indefinite masses at every scale ----
+
+#[test]
+fn a_rotating_frame_keeps_its_coriolis_terms_at_small_masses() {
+    // In a frame rotating at W, an isotropic oscillator has ω = √(k/m) ± W = 1 and 3. The
+    // velocity coupling C = 2·m·W was called zero below 1e-12 (absolute), giving √3 twice.
+    let l = "1/2*m*(x'^2 + y'^2) + m*W*(x*y' - y*x') + 1/2*m*W^2*(x^2+y^2) \
+             - 1/2*k*(x^2+y^2)";
+    for m in [1e-15, 1.0, 1e15] {
+        let (ms, ks) = (format!("{m:e}"), format!("{:e}", 4.0 * m));
+        let mut sys = numeric(l, &["x", "y"], &[("m", &ms), ("W", "1"), ("k", &ks)]);
+        let d = sys.derive().unwrap();
+        let modes = sys.modes_at(&d, &[], &[0.0, 0.0]).unwrap();
+        assert!(modes.gyroscopic, "m = {m}");
+        let w = &modes.frequencies;
+        assert!(
+            w.len() == 2 && rel_close(w[0], 1.0) && rel_close(w[1], 3.0),
+            "m = {m}: {w:?}"
+        );
+        assert_eq!(modes.stability, Stability::Stable);
+    }
+}
+
+#[test]
+fn an_indefinite_mass_matrix_solves_at_extreme_scales() {
+    // M = s·diag(1, −1, 1) is invertible at every scale s; the old test compared det(M)
+    // with 1e-12·sⁿ, which underflows (s = 1e-110) or overflows (s = 1e110) for n = 3.
+    for s in [1e-110, 1.0, 1e110] {
+        let ss = format!("{s:e}");
+        let mut sys = numeric(
+            "1/2*a*(x'^2 - y'^2 + z'^2) - 1/2*a*(x^2 + y^2 + z^2)",
+            &["x", "y", "z"],
+            &[("a", &ss)],
+        );
+        let d = sys.derive().unwrap();
+        let dynamics = lagrange::mechanics::accel::Dynamics::new(&sys, &d).unwrap();
+        let point = sys.state_layout().at_rest(&[1.0, 1.0, 1.0], &[]);
+        let acc = dynamics
+            .accelerations(&point, &mut dynamics.scratch())
+            .unwrap_or_else(|e| panic!("s = {s}: {e}"));
+        // x'' = −x, y'' = +y, z'' = −z
+        assert!(
+            rel_close(acc[0], -1.0) && rel_close(acc[1], 1.0) && rel_close(acc[2], -1.0),
+            "s = {s}: {acc:?}"
+        );
+    }
+}
