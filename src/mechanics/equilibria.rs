@@ -112,8 +112,7 @@ impl Statics {
             }
         }
         let program = sys.compile(&roots)?;
-        let n = g.len();
-        let sizes = sys.magnitudes(&roots[..n + n * n])?;
+        let sizes = sys.magnitudes(&roots)?;
         if params.len() != sys.parameters.len() {
             return Err(MechError::ParameterCount {
                 expected: sys.parameters.len(),
@@ -139,7 +138,7 @@ impl Statics {
         x
     }
 
-    /// G and J at `q` with the sizes of their terms (G first, then J row-major).
+    /// G, J and M at `q` with the sizes of their terms (G first, then J and M row-major).
     fn sizes(&self, q: &[f64]) -> Option<Vec<Sized>> {
         self.sizes.eval(&self.point(q))
     }
@@ -219,6 +218,13 @@ impl System {
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let mut scratch = statics.program.scratch();
         let starts = start_points(&ranges);
+        if let Some(q) = starts.first()
+            && starts.iter().all(|q| statics.sizes(q).is_none())
+        {
+            // Undefined at every start: name what fails rather than find nothing.
+            let what = "the equations at rest";
+            return Err(self.undefined_at(&statics.sizes, &statics.point(q), what));
+        }
         if is_continuum(&statics, &starts) {
             return Ok(Equilibria {
                 points: Vec::new(),

@@ -34,6 +34,8 @@ enum Op {
 #[derive(Clone, Debug)]
 pub(crate) struct Magnitudes {
     ops: Vec<Op>,
+    /// The node each step evaluates (to name the one that fails).
+    ids: Vec<Id>,
     outputs: Vec<usize>,
 }
 
@@ -71,16 +73,35 @@ impl Magnitudes {
             });
         }
         let outputs = roots.iter().map(slot).collect();
-        Ok(Magnitudes { ops, outputs })
+        Ok(Magnitudes {
+            ops,
+            ids: reach,
+            outputs,
+        })
     }
 
     /// Evaluates every root at `x`; `None` where something is undefined (not finite).
     pub(crate) fn eval(&self, x: &[f64]) -> Option<Vec<Sized>> {
+        self.run(x).ok()
+    }
+
+    /// The first part that is not finite at `x`, and whether it overflowed (rather than
+    /// being undefined: a pole or a domain error); `None` when everything is defined there.
+    pub(crate) fn failure(&self, x: &[f64]) -> Option<(Id, bool)> {
+        self.run(x).err()
+    }
+
+    fn run(&self, x: &[f64]) -> Result<Vec<Sized>, (Id, bool)> {
         let mut s: Vec<Sized> = Vec::with_capacity(self.ops.len());
-        for op in &self.ops {
+        for (op, &id) in self.ops.iter().zip(&self.ids) {
             let r = step(op, &s, x);
             if !r.value.is_finite() {
-                return None;
+                let pole = match op {
+                    Op::Pow(b, _, _) => s[*b].value == 0.0,
+                    Op::Func(f, _) => *f == Func::Log,
+                    _ => false,
+                };
+                return Err((id, r.value.is_infinite() && !pole));
             }
             // A magnitude that overflows says nothing; the value alone is the safe bound
             // (it makes the test stricter, never calls a nonzero value zero).
@@ -94,7 +115,7 @@ impl Magnitudes {
                 magnitude,
             });
         }
-        Some(self.outputs.iter().map(|&k| s[k]).collect())
+        Ok(self.outputs.iter().map(|&k| s[k]).collect())
     }
 }
 
@@ -225,17 +246,20 @@ pub(crate) fn non_finite_constant(pool: &Pool, roots: &[Id]) -> Option<MechError
             Node::Func(f, a) => f.apply(value[a]),
         };
         if !v.is_finite() {
-            let expr = pool.plain(id);
             // ±∞ from finite operands is an overflow, unless it is a pole (1/0, log 0).
             let pole = match pool.node(id) {
                 Node::Pow(b, _) => value[b] == 0.0,
-                Node::Func(Func::Log, _) => true,
+                Node::Func(f, _) => *f == Func::Log,
                 _ => false,
             };
             return Some(if v.is_infinite() && !pole {
-                MechError::Overflow { expr }
+                MechError::Overflow {
+                    expr: pool.plain(id),
+                }
             } else {
-                MechError::UndefinedConstant { expr }
+                MechError::UndefinedConstant {
+                    expr: pool.plain(id),
+                }
             });
         }
         value.insert(id, v);

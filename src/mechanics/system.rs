@@ -320,6 +320,25 @@ impl System {
         })
     }
 
+    /// Why the expressions of `m` cannot be evaluated at the point `x`: the part that overflows (as
+    /// [`MechError::Overflow`]) or is undefined there. For a result that was undefined at
+    /// every sampled point, so that the error names the culprit instead of a consequence
+    /// ("the mass matrix is singular", "no equilibrium was found").
+    pub(crate) fn undefined_at(&self, m: &Magnitudes, x: &[f64], what: &str) -> MechError {
+        let Some((id, overflow)) = m.failure(x) else {
+            return MechError::Undefined { what: what.into() };
+        };
+        if overflow {
+            MechError::Overflow {
+                expr: self.pool.plain(id),
+            }
+        } else {
+            MechError::Undefined {
+                what: format!("`{}` (in {what})", self.pool.plain(id)),
+            }
+        }
+    }
+
     /// A random point in the standard layout.
     pub fn sample_point(&self, s: &mut Sampler) -> Vec<f64> {
         // Draws happen in layout order, so a seed gives the same point as it always has.

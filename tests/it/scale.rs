@@ -336,6 +336,25 @@ fn an_overflowing_potential_is_reported_as_an_overflow() {
 }
 
 #[test]
+fn an_overflow_at_every_sampled_point_is_named() {
+    // Not a constant, but overflowing for every parameter value sampled (m in [0.5, 2] gives exp(1500) at least):
+    // the mass matrix was "singular", the equilibria "not found".
+    let mut sys = System::from_lagrangian("1/2*exp(1000*m + 1000)*x'^2 - 1/2*x^2", &["x"]).unwrap();
+    let err = sys.derive().unwrap_err();
+    assert!(
+        matches!(&err, MechError::Overflow { expr } if expr == "exp(1000*m + 1000)"),
+        "{err:?}"
+    );
+    let mut sys = System::from_lagrangian("1/2*m*x'^2 - exp(1000*m + 1000)*x^2", &["x"]).unwrap();
+    let d = sys.derive().unwrap();
+    let err = sys.equilibria(&d, &[1.0]).unwrap_err();
+    assert!(
+        matches!(&err, MechError::Overflow { expr } if expr == "exp(1000*m + 1000)"),
+        "{err:?}"
+    );
+}
+
+#[test]
 fn cli_reports_an_overflow_by_name() {
     for args in [
         &[
