@@ -8,6 +8,10 @@ use super::error::MechError;
 use super::system::System;
 use crate::expr::Program;
 
+/// A mass matrix whose smallest singular value is below this fraction of its largest is
+/// singular (the test derive uses when it checks M).
+const SINGULAR: f64 = 1e-12;
+
 /// M and f compiled together; evaluates accelerations without re-reading expressions.
 #[derive(Clone, Debug)]
 pub struct Dynamics {
@@ -68,14 +72,22 @@ pub(crate) fn solve(
         return Ok(ch.solve(f));
     }
     let scale = m.amax();
-    if let Some(x) = m.clone().lu().solve(f)
+    // Invertible when the smallest singular value is not rounding relative to the largest
+    // (a determinant against scaleⁿ under- or overflows for masses of 1e-110 or 1e110).
+    let sv = m.singular_values();
+    let (lo, hi) = sv
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    if hi > 0.0
+        && lo > SINGULAR * hi
+        && let Some(x) = m.clone().lu().solve(f)
         && x.iter().all(|v| v.is_finite())
-        && m.clone().lu().determinant().abs() > 1e-12 * scale.powi(m.nrows() as i32)
     {
         return Ok(x);
     }
     for (i, name) in names.iter().enumerate() {
-        if m.row(i).amax() <= 1e-14 * scale.max(1e-300) {
+        // Relative to the largest entry; an all-zero M has every row zero.
+        if m.row(i).amax() <= 1e-14 * scale {
             return Err(MechError::NoKineticTerm { name: name.clone() });
         }
     }

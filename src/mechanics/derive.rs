@@ -116,11 +116,17 @@ impl System {
         let prog = self.compile(&entries)?;
         let mut sampler = super::sample::Sampler::new(0x5eed_0002);
         let mut scratch = prog.scratch();
-        for _ in 0..24 {
+        // The first point where M is undefined, while it is undefined at every point.
+        let mut nowhere = None;
+        for k in 0..24 {
             let x = self.sample_point(&mut sampler);
             if prog.run(&x, &mut scratch).is_err() {
+                if k == 0 {
+                    nowhere = Some(x);
+                }
                 continue;
             }
+            nowhere = None;
             let m = nalgebra::DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch));
             // A kinetic energy is positive definite: Cholesky settles it. Otherwise (an
             // indefinite but invertible M) compare the extreme singular values; a determinant
@@ -143,6 +149,9 @@ impl System {
             if hi > 0.0 && lo > 1e-12 * hi {
                 return Ok(());
             }
+        }
+        if let Some(x) = nowhere {
+            return Err(self.undefined_at(&self.magnitudes(&entries)?, &x, "the mass matrix"));
         }
         Err(MechError::SingularMass {
             names: self

@@ -9,6 +9,7 @@ use rustc_hash::FxHashMap;
 use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::generalized_eigen;
+use super::magnitude::{Magnitudes, Sized};
 use super::sample::Sampler;
 use super::state::Layout;
 use super::system::System;
@@ -18,12 +19,23 @@ use crate::expr::{Id, Program};
 /// the largest one: linear analysis cannot tell the sign of what rounding leaves.
 pub(crate) const EIGENVALUE_ZERO: f64 = 1e-9;
 
-/// A Newton root is kept when its residual is within this fraction of (1 + |J|) after the
-/// iteration budget (the iteration itself aims at [`NEWTON_TARGET`]).
+/// A Newton root is kept when its residual is within this fraction of the force scale (the
+/// typical size of the generalized forces' terms over the search range) after the iteration
+/// budget (the iteration itself aims at [`NEWTON_TARGET`]). Relative, never absolute: a
+/// spring of 1e-12 N/m has forces of 1e-12 N, and its equilibrium is still a single point.
 const NEWTON_ACCEPT: f64 = 1e-9;
 
-/// Residual, relative to (1 + |J|), at which Newton's iteration stops.
+/// Residual, relative to the force scale, at which Newton's iteration stops.
 const NEWTON_TARGET: f64 = 1e-11;
+
+/// Newton's iterates may wander this many range widths away before the start is given up.
+const NEWTON_WANDER: f64 = 1e6;
+
+/// A coordinate of a root within this fraction of its range width of 0 is set to 0.
+const ROOT_SNAP: f64 = 1e-12;
+
+/// Two roots closer than this fraction of the range width (per coordinate) are one.
+const SAME_ROOT: f64 = 1e-6;
 
 /// A root may lie this fraction of the range outside a non-periodic coordinate's range
 /// (a root found exactly on the edge is not lost to rounding).
@@ -65,9 +77,11 @@ pub struct Equilibria {
     pub continuum: bool,
 }
 
-/// Programs for the static problem: G(q) = f(q, 0, t = 0), J = ∂G/∂q, and M(q, 0).
+/// Programs for the static problem: G(q) = f(q, 0, t = 0), J = ∂G/∂q, and M(q, 0); and G
+/// and J with the sizes of their terms, which every zero test here is relative to.
 pub struct Statics {
     program: Program,
+    sizes: Magnitudes,
     layout: Layout,
     base: Vec<f64>,
 }
@@ -98,6 +112,7 @@ impl Statics {
             }
         }
         let program = sys.compile(&roots)?;
+        let sizes = sys.magnitudes(&roots)?;
         if params.len() != sys.parameters.len() {
             return Err(MechError::ParameterCount {
                 expected: sys.parameters.len(),
@@ -108,9 +123,31 @@ impl Statics {
         let base = layout.at_rest(&[], params);
         Ok(Statics {
             program,
+            sizes,
             layout,
             base,
         })
+    }
+
+    /// The sample point at rest at `q`.
+    fn point(&self, q: &[f64]) -> Vec<f64> {
+        let mut x = self.base.clone();
+        for (i, &v) in q.iter().enumerate() {
+            x[self.layout.q(i)] = v;
+        }
+        x
+    }
+
+    /// G, J and M at `q` with the sizes of their terms (G first, then J and M row-major).
+    fn sizes(&self, q: &[f64]) -> Option<Vec<Sized>> {
+        self.sizes.eval(&self.point(q))
+    }
+
+    /// The size of the generalized forces at `q`: the largest term magnitude among the Gᵢ.
+    fn force_size(&self, q: &[f64]) -> Option<f64> {
+        let n = self.layout.coordinates();
+        let s = self.sizes(q)?;
+        Some(s[..n].iter().fold(0.0, |a, v| a.max(v.magnitude)))
     }
 
     fn eval(
@@ -118,10 +155,7 @@ impl Statics {
         q: &[f64],
         scratch: &mut [f64],
     ) -> Option<(DVector<f64>, DMatrix<f64>, DMatrix<f64>)> {
-        let mut x = self.base.clone();
-        for (i, &v) in q.iter().enumerate() {
-            x[self.layout.q(i)] = v;
-        }
+        let x = self.point(q);
         self.program.run(&x, scratch).ok()?;
         let n = self.layout.coordinates();
         let g = DVector::from_fn(n, |i, _| self.program.output(i, scratch));
@@ -141,16 +175,38 @@ impl Statics {
         let k = -&j;
         let k = (&k + k.transpose()) * 0.5;
         let (vals, vecs) = generalized_eigen(&k, &m)?;
-        let scale = vals.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+        // ω² is zero relative to the larger of the eigenvalues and the size of the terms of
+        // K (per unit mass): a stiffness that is rounding left over from cancelling terms
+        // is zero however the eigenvalues compare with each other, and a weak but real one
+        // (k = 1e-12) is not.
+        let scale = vals
+            .iter()
+            .fold(self.stiffness_size(q, &m), |a, v| a.max(v.abs()));
         let tol = EIGENVALUE_ZERO * scale;
         let st = if vals.iter().any(|&v| v < -tol) {
             Stability::Unstable
-        } else if vals.iter().any(|&v| v.abs() <= tol) || scale <= 1e-250 {
+        } else if vals.iter().any(|&v| v.abs() <= tol) {
             Stability::Marginal
         } else {
             Stability::Stable
         };
         Ok((st, vals.iter().copied().collect(), vecs))
+    }
+
+    /// The size of the terms of K = −J at `q` per unit of mass: maxᵢ Σⱼ |Kᵢⱼ terms| / Mᵢᵢ,
+    /// the scale of ω² that rounding in K is measured against (0 when K is exactly 0).
+    fn stiffness_size(&self, q: &[f64], m: &DMatrix<f64>) -> f64 {
+        let n = self.layout.coordinates();
+        let Some(s) = self.sizes(q) else {
+            return 0.0;
+        };
+        (0..n)
+            .map(|i| {
+                let row: f64 = (0..n).map(|j| s[n + i * n + j].magnitude).sum();
+                row / m[(i, i)].abs()
+            })
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
     }
 }
 
@@ -162,21 +218,33 @@ impl System {
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let mut scratch = statics.program.scratch();
         let starts = start_points(&ranges);
-        if is_continuum(&statics, &starts, &mut scratch) {
+        if let Some(q) = starts.first()
+            && starts.iter().all(|q| statics.sizes(q).is_none())
+        {
+            // Undefined at every start: name what fails rather than find nothing.
+            let what = "the equations at rest";
+            return Err(self.undefined_at(&statics.sizes, &statics.point(q), what));
+        }
+        if is_continuum(&statics, &starts) {
             return Ok(Equilibria {
                 points: Vec::new(),
                 continuum: true,
             });
         }
+        let widths = range_widths(&ranges, &periodic);
+        let scale = NewtonScale {
+            force: force_scale(&statics, &starts),
+            limit: NEWTON_WANDER * widths.iter().fold(1.0f64, |a, &w| a.max(w)),
+        };
         let mut found: Vec<Vec<f64>> = Vec::new();
         for q0 in starts {
-            let Some(q) = newton(&statics, q0, &mut scratch) else {
+            let Some(q) = newton(&statics, q0, scale, &mut scratch) else {
                 continue;
             };
             let Some(q) = normalize_root(q, &ranges, &periodic) else {
                 continue;
             };
-            if !found.iter().any(|p| same_point(p, &q, &periodic)) {
+            if !found.iter().any(|p| same_point(p, &q, &periodic, &widths)) {
                 found.push(q);
             }
         }
@@ -246,19 +314,61 @@ fn start_points(ranges: &[(f64, f64)]) -> Vec<Vec<f64>> {
     starts
 }
 
-/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum.
-fn is_continuum(statics: &Statics, starts: &[Vec<f64>], scratch: &mut [f64]) -> bool {
+/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum. Each
+/// force is zero when it is rounding relative to its own terms (the bead on the parabola at
+/// ω² = 2ga), never when it is merely small (a spring of 1e-12).
+fn is_continuum(statics: &Statics, starts: &[Vec<f64>]) -> bool {
+    let n = statics.layout.coordinates();
     let mut zero_at_start = 0;
     let mut defined = 0;
     for q in starts {
-        if let Some((g, j, _)) = statics.eval(q, scratch) {
+        if let Some(s) = statics.sizes(q) {
             defined += 1;
-            if g.amax() <= 1e-10 * (1.0 + j.amax()) {
+            if s[..n].iter().all(|v| v.negligible()) {
                 zero_at_start += 1;
             }
         }
     }
     defined > 0 && zero_at_start * 10 >= defined * 9
+}
+
+/// Newton's yardsticks: the typical size of the forces, and how far iterates may wander.
+#[derive(Clone, Copy, Debug)]
+struct NewtonScale {
+    force: f64,
+    limit: f64,
+}
+
+/// The typical size of the generalized forces over the search range: the median, over the
+/// starting points, of the largest term magnitude (a median, so that a pole inside the
+/// range does not make every residual look small).
+fn force_scale(statics: &Statics, starts: &[Vec<f64>]) -> f64 {
+    let mut sizes: Vec<f64> = starts
+        .iter()
+        .filter_map(|q| statics.force_size(q))
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .collect();
+    if sizes.is_empty() {
+        return 0.0;
+    }
+    sizes.sort_by(f64::total_cmp);
+    sizes[sizes.len() / 2]
+}
+
+/// The width of each coordinate's range (2π for an angle), kept finite.
+fn range_widths(ranges: &[(f64, f64)], periodic: &[bool]) -> Vec<f64> {
+    ranges
+        .iter()
+        .zip(periodic)
+        .map(|(&(lo, hi), &per)| {
+            let w = if per { std::f64::consts::TAU } else { hi - lo };
+            if w.is_finite() && w > 0.0 {
+                w
+            } else {
+                f64::MAX
+            }
+        })
+        .collect()
 }
 
 /// A root with periodic coordinates wrapped into (−π, π] and tiny values set to 0; `None`
@@ -276,33 +386,47 @@ fn normalize_root(mut q: Vec<f64>, ranges: &[(f64, f64)], periodic: &[bool]) -> 
                 return None;
             }
         }
-        if q[i].abs() < 1e-12 {
+        let width = if periodic[i] {
+            std::f64::consts::TAU
+        } else {
+            (ranges[i].1 - ranges[i].0).min(f64::MAX)
+        };
+        if q[i].abs() < ROOT_SNAP * width {
             q[i] = 0.0;
         }
     }
     Some(q)
 }
 
-/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π).
-fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
-    a.iter().zip(b).zip(periodic).all(|((x, y), &per)| {
-        let d = if per {
-            wrap_angle(x - y).abs()
-        } else {
-            (x - y).abs()
-        };
-        d < 1e-6 * (1.0 + x.abs())
-    })
+/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π), each
+/// coordinate relative to the width of its range.
+fn same_point(a: &[f64], b: &[f64], periodic: &[bool], widths: &[f64]) -> bool {
+    a.iter()
+        .zip(b)
+        .zip(periodic.iter().zip(widths))
+        .all(|((x, y), (&per, &w))| {
+            let d = if per {
+                wrap_angle(x - y).abs()
+            } else {
+                (x - y).abs()
+            };
+            d < SAME_ROOT * w
+        })
 }
 
-/// Newton's method with backtracking from `q`; `None` when it does not converge.
-fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>> {
+/// Newton's method with backtracking from `q`; `None` when it does not converge. The
+/// residual is measured against the force scale, never against 1.
+fn newton(
+    s: &Statics,
+    mut q: Vec<f64>,
+    scale: NewtonScale,
+    scratch: &mut [f64],
+) -> Option<Vec<f64>> {
     let n = q.len();
     for _ in 0..60 {
         let (g, j, _) = s.eval(&q, scratch)?;
-        let scale = 1.0 + j.amax();
-        if g.amax() <= NEWTON_TARGET * scale {
-            return Some(q);
+        if g.amax() <= NEWTON_TARGET * scale.force {
+            return Some(polish(s, q, &g, &j, scratch));
         }
         let step = j.clone().lu().solve(&(-&g))?;
         if !step.iter().all(|v| v.is_finite()) {
@@ -325,12 +449,32 @@ fn newton(s: &Statics, mut q: Vec<f64>, scratch: &mut [f64]) -> Option<Vec<f64>>
         if !accepted {
             return None;
         }
-        if q.iter().any(|v| v.abs() > 1e6) {
+        if q.iter().any(|v| v.abs() > scale.limit) {
             return None;
         }
     }
-    let (g, j, _) = s.eval(&q, scratch)?;
-    (g.amax() <= NEWTON_ACCEPT * (1.0 + j.amax())).then_some(q)
+    let (g, _, _) = s.eval(&q, scratch)?;
+    (g.amax() <= NEWTON_ACCEPT * scale.force).then_some(q)
+}
+
+/// One more Newton step from a converged `q`, kept when it does not make the residual
+/// worse: the target is relative to the forces over the whole range, so a root that is tiny
+/// compared with the range (x₀ = m g sin α / k = 5e-12) still gets its full precision.
+fn polish(
+    s: &Statics,
+    q: Vec<f64>,
+    g: &DVector<f64>,
+    j: &DMatrix<f64>,
+    scratch: &mut [f64],
+) -> Vec<f64> {
+    let Some(step) = j.clone().lu().solve(&(-g)) else {
+        return q;
+    };
+    let trial: Vec<f64> = q.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
+    match s.eval(&trial, scratch) {
+        Some((g2, _, _)) if trial.iter().all(|v| v.is_finite()) && g2.amax() <= g.amax() => trial,
+        _ => q,
+    }
 }
 
 /// An angle in (−π, π].

@@ -68,6 +68,16 @@ pub enum MechError {
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
+    /// A constant part of an expression overflows: its value is beyond the largest number
+    /// lagrange computes with, so nothing that contains it can be evaluated anywhere.
+    #[error(
+        "`{expr}` overflows: its value is beyond the largest number lagrange computes with (about 1.8e308)"
+    )]
+    Overflow { expr: String },
+    /// A constant part of an expression has no value (`log(-1)`), so nothing that contains
+    /// it can be evaluated anywhere.
+    #[error("`{expr}` is undefined")]
+    UndefinedConstant { expr: String },
 }
 
 impl MechError {
@@ -92,6 +102,8 @@ impl MechError {
             MechError::SingularMassHere => "singular-mass-here",
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
             MechError::DependentConstraints => "dependent-constraints",
+            MechError::Overflow { .. } => "overflow",
+            MechError::UndefinedConstant { .. } => "undefined-constant",
         }
     }
 
@@ -136,6 +148,10 @@ impl MechError {
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
             }
+            MechError::Overflow { .. } => {
+                "choose units in which the quantities are moderate numbers".into()
+            }
+            MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
         }
     }
 }

@@ -13,6 +13,7 @@ pub mod equilibria;
 pub mod error;
 pub mod fixtures;
 pub(crate) mod linalg;
+pub(crate) mod magnitude;
 pub mod modes;
 pub(crate) mod sample;
 pub mod state;

@@ -70,8 +70,7 @@ impl System {
         let n = self.n();
         let (stability, vals, vecs) = statics.stability(q0)?;
         // Velocity-linear terms at the equilibrium: C = ∂f/∂q' at (q₀, 0).
-        let c = self.velocity_coupling(d, params, q0)?;
-        if c.amax() > 1e-12 {
+        if let Some(c) = self.velocity_coupling(d, params, q0)? {
             return self.first_order_modes(d, params, q0, c);
         }
         let mut modes = Vec::with_capacity(n);
@@ -101,12 +100,14 @@ impl System {
         })
     }
 
+    /// C = ∂f/∂q' at (q₀, 0), or `None` when every entry is zero up to rounding relative to
+    /// its own terms (never relative to 1: a Coriolis term 2·m·Ω with m = 1e-15 is real).
     fn velocity_coupling(
         &mut self,
         d: &Derivation,
         params: &[f64],
         q0: &[f64],
-    ) -> Result<DMatrix<f64>, MechError> {
+    ) -> Result<Option<DMatrix<f64>>, MechError> {
         let n = self.n();
         let coords = self.coordinate_syms();
         let mut roots = Vec::with_capacity(n * n);
@@ -115,8 +116,16 @@ impl System {
                 roots.push(self.pool.diff(f, c, 1));
             }
         }
-        let v = self.values_at_rest(&roots, params, q0)?;
-        Ok(DMatrix::from_fn(n, n, |r, c| v[r * n + c]))
+        let v = self
+            .magnitudes(&roots)?
+            .eval(&self.state_layout().at_rest(q0, params))
+            .ok_or_else(|| MechError::Undefined {
+                what: "the linearized equations".into(),
+            })?;
+        if v.iter().all(|x| x.negligible()) {
+            return Ok(None);
+        }
+        Ok(Some(DMatrix::from_fn(n, n, |r, c| v[r * n + c].value)))
     }
 
     /// The values of `roots` at rest at `q0` (for the linearized equations).

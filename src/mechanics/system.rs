@@ -9,6 +9,7 @@ pub use super::coordinate::{
     Coordinate, DEFAULT_COORDINATE_RANGE, DEFAULT_PARAMETER_RANGE, Parameter,
 };
 use super::error::MechError;
+use super::magnitude::{Magnitudes, non_finite_constant};
 use super::sample::Sampler;
 use super::state::Layout;
 use crate::expr::error::visible;
@@ -45,10 +46,6 @@ pub struct System {
 
 /// Sampling range of velocities and accelerations.
 pub const RATE_RANGE: (f64, f64) = (-2.0, 2.0);
-
-/// [`System::is_zero`]'s tolerance, relative to the largest term at the point: cancellation
-/// in a sum of O(1) terms leaves rounding far below it, a real difference far above.
-const ZERO_TEST_TOLERANCE: f64 = 1e-9;
 
 impl System {
     /// A system with `coordinates` whose Lagrangian is typed text. Every other symbol is a
@@ -322,10 +319,42 @@ impl System {
         v
     }
 
-    /// Compiles expressions over the standard layout.
+    /// Compiles expressions over the standard layout. A constant part that overflows
+    /// (`exp(1000)`) or has no value is refused by name: the program could not run anywhere.
     pub fn compile(&self, roots: &[Id]) -> Result<Program, MechError> {
-        Program::compile(&self.pool, roots, &self.layout())
-            .map_err(|u| MechError::UnknownSymbol { name: u.name })
+        let program = Program::compile(&self.pool, roots, &self.layout())
+            .map_err(|u| MechError::UnknownSymbol { name: u.name })?;
+        match non_finite_constant(&self.pool, roots) {
+            Some(e) => Err(e),
+            None => Ok(program),
+        }
+    }
+
+    /// Expressions over the standard layout evaluated with the sizes of their terms, for
+    /// zero tests relative to those sizes.
+    pub(crate) fn magnitudes(&self, roots: &[Id]) -> Result<Magnitudes, MechError> {
+        Magnitudes::new(&self.pool, roots, &self.layout()).map_err(|s| MechError::UnknownSymbol {
+            name: self.pool.name(s).to_string(),
+        })
+    }
+
+    /// Why the expressions of `m` cannot be evaluated at the point `x`: the part that overflows (as
+    /// [`MechError::Overflow`]) or is undefined there. For a result that was undefined at
+    /// every sampled point, so that the error names the culprit instead of a consequence
+    /// ("the mass matrix is singular", "no equilibrium was found").
+    pub(crate) fn undefined_at(&self, m: &Magnitudes, x: &[f64], what: &str) -> MechError {
+        let Some((id, overflow)) = m.failure(x) else {
+            return MechError::Undefined { what: what.into() };
+        };
+        if overflow {
+            MechError::Overflow {
+                expr: self.pool.plain(id),
+            }
+        } else {
+            MechError::Undefined {
+                what: format!("`{}` (in {what})", self.pool.plain(id)),
+            }
+        }
     }
 
     /// A random point in the standard layout.
@@ -346,34 +375,24 @@ impl System {
     }
 
     /// Whether `e` vanishes identically, decided at 12 seeded random points (points where
-    /// it is undefined are skipped).
+    /// it is undefined are skipped). At each point the value must be negligible relative to
+    /// the size of its own terms (see [`magnitude`](super::magnitude)), never relative to 1:
+    /// a mass of 1e-30 is not zero, rounding in a sum of terms of 1e30 is.
     pub fn is_zero(&self, e: Id) -> bool {
         if self.pool.is_zero(e) {
             return true;
         }
-        let Ok(p) = self.compile(&[e]) else {
-            return false;
-        };
-        let terms: Vec<Id> = match self.pool.node(e) {
-            crate::expr::Node::Add(t) => t.to_vec(),
-            _ => vec![e],
-        };
-        let Ok(tp) = self.compile(&terms) else {
+        let Ok(m) = self.magnitudes(&[e]) else {
             return false;
         };
         let mut sampler = Sampler::new(0x5eed_0001);
-        let mut scratch = p.scratch();
-        let mut tscratch = tp.scratch();
         let mut checked = 0;
         for _ in 0..48 {
             let x = self.sample_point(&mut sampler);
-            if p.run(&x, &mut scratch).is_err() || tp.run(&x, &mut tscratch).is_err() {
+            let Some(v) = m.eval(&x) else {
                 continue;
-            }
-            let scale = (0..terms.len())
-                .map(|k| tp.output(k, &tscratch).abs())
-                .fold(0.0, f64::max);
-            if p.output(0, &scratch).abs() > ZERO_TEST_TOLERANCE * (1.0 + scale) {
+            };
+            if !v[0].negligible() {
                 return false;
             }
             checked += 1;

@@ -10,6 +10,7 @@ mod helpers;
 mod hostile;
 mod mechanics;
 mod props;
+mod scale;
 mod soundness;
 mod symbolic;
 mod syntax;
