@@ -189,18 +189,28 @@ pub(crate) fn degeneracy(p: &mut Prepared, res: &[Id]) -> Option<Degeneracy> {
         return None;
     }
     let det = DetC::new(p, res)?;
-    let nominal: Vec<f64> = p
-        .points
+    let found = probe(p, &det)?;
+    Some(explain(p, res, found))
+}
+
+/// The size det C has at `x`'s parameter values: the largest |det C| over the states of the
+/// first few sample points with those parameters. Parameters may span many decades (wide
+/// points), so a value is small or not only next to others at the same parameters.
+fn local_scale(p: &Prepared, det: &DetC, x: &[f64]) -> f64 {
+    let start = p.system.state_layout().params_start();
+    p.points
         .points
         .iter()
-        .filter_map(|x| match det.at(x) {
-            Det::Value(d) => Some(d.abs()),
-            _ => None,
+        .take(4)
+        .filter_map(|y| {
+            let mut y = y.clone();
+            y[start..].copy_from_slice(&x[start..]);
+            match det.at(&y) {
+                Det::Value(d) => Some(d.abs()),
+                _ => None,
+            }
         })
-        .collect();
-    let scale = median(nominal)?;
-    let found = probe(p, &det, scale)?;
-    Some(explain(p, res, found))
+        .fold(0.0, f64::max)
 }
 
 /// Where det C was found to vanish.
@@ -212,8 +222,7 @@ enum Found {
 }
 
 /// Looks for a point where det C vanishes, is undefined, or changes sign.
-fn probe(p: &Prepared, det: &DetC, scale: f64) -> Option<Found> {
-    let zero = tolerance::SAME * scale;
+fn probe(p: &Prepared, det: &DetC) -> Option<Found> {
     let filter = Filter::new(&p.system, &p.assumptions, &[]).ok()?;
     let mut candidates: Vec<Vec<f64>> = p.points.points.clone();
     for base in p.points.points.iter().take(BASES) {
@@ -228,7 +237,7 @@ fn probe(p: &Prepared, det: &DetC, scale: f64) -> Option<Found> {
         match det.at(&x) {
             Det::Skip => {}
             Det::Undefined => return Some(Found::At { x, undefined: true }),
-            Det::Value(d) if d.abs() <= zero => {
+            Det::Value(d) if d.abs() <= tolerance::SAME * local_scale(p, det, &x).max(d.abs()) => {
                 return Some(Found::At {
                     x,
                     undefined: false,
@@ -247,7 +256,7 @@ fn probe(p: &Prepared, det: &DetC, scale: f64) -> Option<Found> {
         .points
         .iter()
         .take(BASES)
-        .find_map(|base| scan_lines(p, det, &filter, base, zero))
+        .find_map(|base| scan_lines(p, det, &filter, base))
 }
 
 /// Points derived from `base`: each velocity 0, all velocities 0, each coordinate at 0 (and
@@ -286,7 +295,7 @@ fn special_points(p: &Prepared, base: &[f64]) -> Vec<Vec<f64>> {
 
 /// Scans lines through `base` in each coordinate, velocity and parameter for a sign change of
 /// det C or a minimum of |det C| that reaches zero.
-fn scan_lines(p: &Prepared, det: &DetC, filter: &Filter, base: &[f64], zero: f64) -> Option<Found> {
+fn scan_lines(p: &Prepared, det: &DetC, filter: &Filter, base: &[f64]) -> Option<Found> {
     let at = p.system.state_layout();
     let mut lines: Vec<(usize, f64, f64)> = Vec::new();
     for (i, c) in p.system.coordinates.iter().enumerate() {
@@ -304,7 +313,7 @@ fn scan_lines(p: &Prepared, det: &DetC, filter: &Filter, base: &[f64], zero: f64
     }
     lines
         .into_iter()
-        .find_map(|(k, lo, hi)| scan_line(det, filter, base, k, lo, hi, zero))
+        .find_map(|(k, lo, hi)| scan_line(det, filter, base, k, lo, hi))
 }
 
 /// One line: `base` with entry `k` running over [lo, hi].
@@ -315,7 +324,6 @@ fn scan_line(
     k: usize,
     lo: f64,
     hi: f64,
-    zero: f64,
 ) -> Option<Found> {
     let point = |t: f64| {
         let mut x = base.to_vec();
@@ -336,6 +344,8 @@ fn scan_line(
         .map(|g| lo + (hi - lo) * g as f64 / (GRID - 1) as f64)
         .collect();
     let vs: Vec<Option<f64>> = ts.iter().map(|&t| value(t)).collect();
+    // Zero relative to the largest value on this line.
+    let zero = tolerance::SAME * vs.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
     for g in 1..GRID {
         let (Some(a), Some(b)) = (vs[g - 1], vs[g]) else {
             continue;

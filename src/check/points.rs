@@ -68,7 +68,7 @@ impl PointSet {
             if points.len() >= want {
                 break;
             }
-            let x = wide_point(sys, &mut wide);
+            let x = wide_point(sys, &mut wide, points.len() % 2 == 0);
             if filter.accepts(&x) {
                 points.push(x);
             }
@@ -93,11 +93,18 @@ const WIDE_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
 /// half-widths of the range) or a parameter (as a factor either way).
 const WIDEN: f64 = 10.0;
 
+/// The parameters of a free wide point range over [1/FREE_SCALE, FREE_SCALE].
+const FREE_SCALE: f64 = 100.0;
+
 /// A point far outside the nominal box: angles anywhere in [−4π, 4π], other coordinates up to
-/// [`WIDEN`] half-widths from the middle of their range, parameters log-uniform from
-/// 1/[`WIDEN`] of their least to [`WIDEN`] times their greatest value. Velocities,
+/// [`WIDEN`] half-widths from the middle of their range. Parameters are log-uniform from
+/// 1/[`WIDEN`] of their least to [`WIDEN`] times their greatest value, or, for a `free` point,
+/// over [1/[`FREE_SCALE`], [`FREE_SCALE`]] whatever their range. A right answer is an identity
+/// in the parameters (under the assumptions), so it holds there too; and a term that is
+/// negligible at the problem's scale (m·g next to k·x for an electron on a spring, 1e-30 of
+/// it) becomes comparable to the others there, so getting it wrong is seen. Velocities,
 /// accelerations and time are drawn as usual.
-pub(crate) fn wide_point(sys: &System, s: &mut Sampler) -> Vec<f64> {
+pub(crate) fn wide_point(sys: &System, s: &mut Sampler, free: bool) -> Vec<f64> {
     let layout = sys.state_layout();
     let mut x = sys.sample_point(s);
     for (i, c) in sys.coordinates.iter().enumerate() {
@@ -112,8 +119,12 @@ pub(crate) fn wide_point(sys: &System, s: &mut Sampler) -> Vec<f64> {
     for (j, p) in sys.parameters.iter().enumerate() {
         let (lo, hi) = p.range;
         if lo > 0.0 && hi >= lo {
-            let (a, b) = ((lo / WIDEN).ln(), (hi * WIDEN).ln());
-            x[layout.param(j)] = s.uniform(a, b).exp();
+            let (lo, hi) = if free {
+                (1.0 / FREE_SCALE, FREE_SCALE)
+            } else {
+                (lo / WIDEN, hi * WIDEN)
+            };
+            x[layout.param(j)] = s.uniform(lo.ln(), hi.ln()).exp();
         }
     }
     x
