@@ -307,7 +307,11 @@ fn wrong_answer(
 
 proptest::proptest! {
     #![proptest_config(proptest::test_runner::Config {
-        cases: 300,
+        // LAGRANGE_SOUNDNESS_CASES=N runs a longer search (the README's fuzzing section).
+        cases: std::env::var("LAGRANGE_SOUNDNESS_CASES")
+            .ok()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(300),
         rng_seed: proptest::test_runner::RngSeed::Fixed(0x5_0a4d),
         failure_persistence: None,
         ..proptest::test_runner::Config::default()
