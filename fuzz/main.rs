@@ -2,7 +2,7 @@
 //!
 //! ```sh
 //! cargo run --release --example fuzz -- TARGET|all --runs N [--seed S] [--start K]
-//!     [--max-mb M] [--hang-secs H] [--keep K]
+//!     [--max-mb M] [--hang-secs H] [--keep K] [--verbose]
 //! cargo run --release --example fuzz -- TARGET --replay FILE…
 //! ```
 //!
@@ -37,6 +37,8 @@ struct Opts {
     hang_secs: u64,
     keep: usize,
     worker: bool,
+    /// Print every failure's class and message (`--verbose`), not only the kept ones.
+    verbose: bool,
     /// Files to run once each (`--replay FILE…`), instead of generated inputs.
     replay: Vec<std::path::PathBuf>,
 }
@@ -51,6 +53,7 @@ fn parse_opts() -> Result<Opts, String> {
         hang_secs: 3,
         keep: 3,
         worker: false,
+        verbose: false,
         replay: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
@@ -69,6 +72,7 @@ fn parse_opts() -> Result<Opts, String> {
             "--hang-secs" => o.hang_secs = num("--hang-secs")?,
             "--keep" => o.keep = num("--keep")? as usize,
             "--worker" => o.worker = true,
+            "--verbose" => o.verbose = true,
             "--replay" => o.replay.extend(args.by_ref().map(Into::into)),
             "all" => o.targets.extend(Target::ALL),
             name => o.targets.push(Target::named(name).ok_or(format!(
@@ -280,6 +284,9 @@ fn report(o: &Opts, target: Target, i: u64, class: &str, message: &str, tally: &
     let n = tally.classes.entry(class.to_string()).or_default();
     *n += 1;
     if *n > o.keep {
+        if o.verbose {
+            println!("fail {} #{i} [{class}] {message}", target.name());
+        }
         return;
     }
     let input = target.generate(o.seed, i);
