@@ -9,5 +9,6 @@ mod dimensions;
 mod helpers;
 mod mechanics;
 mod props;
+mod resources;
 mod symbolic;
 mod syntax;
