@@ -68,6 +68,9 @@ pub enum MechError {
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
+    /// A derivative grew past the size limit.
+    #[error(transparent)]
+    TooLarge(#[from] crate::expr::pool::TooLarge),
 }
 
 impl MechError {
@@ -92,6 +95,7 @@ impl MechError {
             MechError::SingularMassHere => "singular-mass-here",
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
             MechError::DependentConstraints => "dependent-constraints",
+            MechError::TooLarge(_) => "too-large",
         }
     }
 
@@ -136,6 +140,7 @@ impl MechError {
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
             }
+            MechError::TooLarge(e) => e.help(),
         }
     }
 }

@@ -259,6 +259,68 @@ fn a_large_file_is_refused_by_its_size_before_it_is_read() {
     );
 }
 
+/// `1/2 x'^2 + (x'+2)^(x'+2)^…`, `levels` powers high.
+fn power_tower(levels: usize) -> String {
+    format!("1/2 x'^2 + {}", vec!["(x'+2)"; levels].join("^"))
+}
+
+#[test]
+fn derive_of_a_power_tower_is_refused_naming_the_limit() {
+    // 79 s, 1.15 GB and 574 MB of output before.
+    let l = power_tower(50);
+    let r = run(
+        &["derive", "--lagrangian", &l, "--coords", "x"],
+        SECONDS_30,
+        Some(400_000),
+    );
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(r.stdout.is_empty());
+    assert!(
+        r.stderr
+            .contains("error[too-large]: the derivation grows past 25000 nodes"),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.contains("help: write the expression more simply"));
+}
+
+#[test]
+fn derive_of_a_product_of_sixty_cosines_is_refused_naming_the_limit() {
+    // The momentum of L is a product of 60 cosines of x'; its time derivative has 3,600
+    // terms of 60 factors each (2 s and 4.6 MB of output in a release build before).
+    let cosines: Vec<String> = (1..=60).map(|k| format!("cos({k}x')")).collect();
+    let l = format!("1/2 x'^2 + {}", cosines.join("*"));
+    let r = run(
+        &["derive", "--lagrangian", &l, "--coords", "x"],
+        SECONDS_30,
+        Some(400_000),
+    );
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(r.stderr.contains("[too-large]"), "{}", r.stderr);
+}
+
+#[test]
+fn the_derivative_of_a_product_of_1900_factors_is_refused_at_once() {
+    // Under the input limit; the product rule would build 1,900 products of 1,900 factors
+    // (over 100 s and 900 MB before).
+    let cosines: Vec<String> = (1..=1900).map(|k| format!("cos({k}x)")).collect();
+    let product = cosines.join("*");
+    assert!(product.len() < 20_000);
+    let mut pool = lagrange::expr::Pool::new();
+    let ctx = lagrange::expr::Context::new().with_coordinates(["x"]);
+    let e = lagrange::expr::read_expr(&product, &ctx, &mut pool).unwrap();
+    let x = pool.symbol("x");
+    let start = Instant::now();
+    let d = pool.try_diff(e, x, 0);
+    assert_eq!(
+        d,
+        Err(lagrange::expr::pool::TooLarge {
+            limit: lagrange::expr::pool::MAX_TREE_SIZE
+        })
+    );
+    assert!(start.elapsed() < Duration::from_secs(5));
+}
+
 #[test]
 fn check_in_a_folder_of_many_problems_builds_only_the_one_asked_for() {
     // A bank of 30,000 files took 8 s and 434 MB per `check` (release build) before, as
