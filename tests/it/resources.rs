@@ -322,6 +322,27 @@ fn the_derivative_of_a_product_of_1900_factors_is_refused_at_once() {
 }
 
 #[test]
+fn a_20kb_answer_of_1700_terms_checks_quickly() {
+    // 7 s in a release build before (the one-term searches were quadratic).
+    let mut answer = String::from("1/2 m l^2 theta'^2");
+    for k in 2.. {
+        let term = format!("+sin({k}θ)");
+        if answer.len() + term.len() > 19_990 {
+            break;
+        }
+        answer.push_str(&term);
+    }
+    let r = run(
+        &["check", "simple-pendulum", "kinetic", &answer],
+        Duration::from_secs(10),
+        None,
+    );
+    assert_eq!(r.code, Some(1), "{}", r.stderr);
+    assert!(r.stdout.contains("incorrect"), "{}", r.stdout);
+    assert!(r.stdout.contains("[dimension]"), "{}", r.stdout);
+}
+
+#[test]
 fn check_in_a_folder_of_many_problems_builds_only_the_one_asked_for() {
     // A bank of 30,000 files took 8 s and 434 MB per `check` (release build) before, as
     // long as listing the bank: here 2,000 files, and `check` must cost a small fraction of
