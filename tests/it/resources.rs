@@ -389,3 +389,16 @@ fn check_in_a_folder_of_many_problems_builds_only_the_one_asked_for() {
         derived.stdout
     );
 }
+
+#[test]
+fn read_of_a_nested_fraction_prints_in_linear_time() {
+    // Found beyond the list: the LaTeX printer printed the denominator of a lone
+    // fraction twice, doubling the work at each level (4.7 s at 20 levels, release build).
+    let l = format!("1/2 x'^2 + {}x'{}", "1/(1+".repeat(90), ")".repeat(90));
+    let r = run(&["read", &l, "--coords", "x"], SECONDS_30, None);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let latex = r.stdout.lines().find(|l| l.starts_with("latex:")).unwrap();
+    // ½ and the 90 levels, each closed by its `+ 1`.
+    assert_eq!(latex.matches("\\frac{1}{").count(), 91, "{latex}");
+    assert_eq!(latex.matches(" + 1}").count(), 90, "{latex}");
+}
