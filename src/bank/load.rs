@@ -25,6 +25,22 @@ impl Bank {
     pub fn problem(&self, id: &str) -> Option<&Problem> {
         self.problems.iter().find(|p| p.id == id)
     }
+
+    /// Adds a problem loaded from `file`, or a `duplicate-id` finding when its id is taken.
+    pub fn add(&mut self, p: Problem, file: String) {
+        if self.problem(&p.id).is_some() {
+            self.failures.push(Finding {
+                file,
+                problem: Some(p.id.clone()),
+                part: None,
+                line: 1,
+                code: "duplicate-id",
+                message: format!("another file already defines `{}`", p.id),
+            });
+        } else {
+            self.problems.push(p);
+        }
+    }
 }
 
 /// Loads one problem from TOML text; `file` names it in findings.
@@ -109,8 +125,83 @@ fn too_deep(text: &str) -> Option<usize> {
     None
 }
 
-/// Loads every `*.toml` file in `dir` (sorted by name).
-pub fn load_dir(dir: &Path) -> Result<Bank, String> {
+/// Reads one problem file, refusing before reading anything that could hang or exhaust
+/// memory: only a regular file (after following symlinks: a FIFO would block forever, a
+/// device such as `/dev/zero` never ends) of at most [`MAX_FILE_BYTES`], and even then at
+/// most that many bytes are read (the file may grow between the check and the read).
+pub fn read_file(path: &Path) -> Result<String, Finding> {
+    use std::io::Read;
+    let fail = |code: &'static str, message: String| Finding {
+        file: path.display().to_string(),
+        problem: None,
+        part: None,
+        line: 1,
+        code,
+        message,
+    };
+    let unreadable = |e: std::io::Error| fail("unreadable-file", e.to_string());
+    let meta = std::fs::metadata(path).map_err(unreadable)?;
+    if !meta.is_file() {
+        return Err(fail(
+            "not-a-file",
+            format!(
+                "this is a {}, not a regular file: a problem file must be a plain TOML file",
+                file_kind(&meta)
+            ),
+        ));
+    }
+    let too_large = |len: u64| {
+        fail(
+            "too-large",
+            format!(
+                "the file is {len} bytes; at most {MAX_FILE_BYTES} are read: split it, one problem per file"
+            ),
+        )
+    };
+    if meta.len() > MAX_FILE_BYTES as u64 {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(unreadable)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // One byte past the limit tells a file that grew since `metadata` from one at the limit.
+    file.take(MAX_FILE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(unreadable)?;
+    if bytes.len() > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|_| {
+        fail(
+            "not-utf8",
+            "the file is not UTF-8 text: save it as UTF-8".into(),
+        )
+    })
+}
+
+/// What kind of file system entry `meta` describes, for a message.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_dir() {
+        return "folder";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "named pipe (FIFO)";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "device";
+        }
+        if t.is_socket() {
+            return "socket";
+        }
+    }
+    "special file"
+}
+
+/// The `*.toml` files in `dir`, sorted by name.
+pub fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
     let mut entries: Vec<_> = std::fs::read_dir(dir)
         .map_err(|e| format!("cannot read {}: {e}", dir.display()))?
         .filter_map(Result::ok)
@@ -118,53 +209,148 @@ pub fn load_dir(dir: &Path) -> Result<Bank, String> {
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     entries.sort();
+    Ok(entries)
+}
+
+/// Loads only the problem `id` from the folder `dir`, so that a command about one problem
+/// does not build a whole bank: `dir/ID.toml` first (problems are named after their id),
+/// then, if that file does not define it, the first file in name order that does. A file
+/// whose `id` line names another problem is read but not built. Files that fail to load
+/// are skipped, as [`load_dir`] would list them as failures.
+pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
+    let plain_name =
+        !id.is_empty() && !id.starts_with('.') && !id.contains(['/', '\\', '\0']) && id.len() < 200;
+    let named = dir.join(format!("{id}.toml"));
+    let load = |path: &Path| -> Option<Problem> {
+        let text = read_file(path).ok()?;
+        // A file that does not mention the id cannot define it (a fast substring search);
+        // one whose `id` line names another problem does not either.
+        if !text.contains(id) || declared_id(&text).is_some_and(|d| d != id) {
+            return None;
+        }
+        load_str(&path.display().to_string(), &text)
+            .ok()
+            .filter(|p| p.id == id)
+    };
+    if plain_name && let Some(p) = load(&named) {
+        return Ok(Some(p));
+    }
+    for path in toml_files(dir)? {
+        if plain_name && path == named {
+            continue;
+        }
+        if let Some(p) = load(&path) {
+            return Ok(Some(p));
+        }
+    }
+    Ok(None)
+}
+
+/// The id a problem file declares, found without parsing the TOML: a top-level line
+/// `id = "…"` (or `'…'`) before the first table, outside multi-line strings. `None` when
+/// the file says it some other way (escapes, a quoted key): then it is parsed to find out.
+fn declared_id(text: &str) -> Option<&str> {
+    let mut open: Option<&str> = None;
+    for line in text.lines() {
+        let t = line.trim();
+        if open.is_none() {
+            if t.starts_with('[') {
+                return None;
+            }
+            if let Some(v) = t.strip_prefix("id").map(str::trim_start)
+                && let Some(v) = v.strip_prefix('=').map(str::trim)
+            {
+                return quoted(v);
+            }
+        }
+        for delim in ["\"\"\"", "'''"] {
+            if open.is_none_or(|d| d == delim) && line.matches(delim).count() % 2 == 1 {
+                open = if open.is_some() { None } else { Some(delim) };
+            }
+        }
+    }
+    None
+}
+
+/// The contents of a simple one-line TOML string (no escapes), allowing a trailing comment.
+fn quoted(v: &str) -> Option<&str> {
+    let q = v.chars().next().filter(|c| *c == '"' || *c == '\'')?;
+    let rest = &v[1..];
+    let end = rest.find(q)?;
+    let (body, after) = (&rest[..end], rest[end + 1..].trim_start());
+    let simple = !body.contains('\\') && (after.is_empty() || after.starts_with('#'));
+    simple.then_some(body)
+}
+
+/// Loads every `*.toml` file in `dir` (sorted by name).
+pub fn load_dir(dir: &Path) -> Result<Bank, String> {
     let mut bank = Bank::default();
-    for path in entries {
+    for path in toml_files(dir)? {
         let name = path.display().to_string();
-        let text = match std::fs::read(&path) {
-            Ok(bytes) => match String::from_utf8(bytes) {
-                Ok(t) => t,
-                Err(_) => {
-                    bank.failures.push(Finding {
-                        file: name,
-                        problem: None,
-                        part: None,
-                        line: 1,
-                        code: "not-utf8",
-                        message: "the file is not UTF-8 text".into(),
-                    });
-                    continue;
-                }
-            },
-            Err(e) => {
-                bank.failures.push(Finding {
-                    file: name,
-                    problem: None,
-                    part: None,
-                    line: 1,
-                    code: "unreadable-file",
-                    message: e.to_string(),
-                });
-                continue;
-            }
-        };
-        match load_str(&name, &text) {
-            Ok(p) => {
-                if bank.problem(&p.id).is_some() {
-                    bank.failures.push(Finding {
-                        file: name,
-                        problem: Some(p.id.clone()),
-                        part: None,
-                        line: 1,
-                        code: "duplicate-id",
-                        message: format!("another file already defines `{}`", p.id),
-                    });
-                } else {
-                    bank.problems.push(p);
-                }
-            }
+        let loaded = read_file(&path).and_then(|text| load_str(&name, &text));
+        match loaded {
+            Ok(p) => bank.add(p, name),
             Err(f) => bank.failures.push(f),
         }
     }
     Ok(bank)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_declared_id_is_read_from_simple_lines_only() {
+        assert_eq!(
+            declared_id("id = \"atwood\"\ntitle = \"A\""),
+            Some("atwood")
+        );
+        assert_eq!(declared_id("# c\n  id='a-b'  # note\n"), Some("a-b"));
+        // Escapes and quoted keys are left to the TOML parser.
+        assert_eq!(declared_id("id = \"a\\u0062\""), None);
+        assert_eq!(declared_id("\"id\" = \"a\""), None);
+        // Not inside a multi-line string, not after the first table, not `identity`.
+        assert_eq!(
+            declared_id("s = \"\"\"\nid = \"fake\"\n\"\"\"\nid = \"real\""),
+            Some("real")
+        );
+        assert_eq!(declared_id("[parameters]\nid = \"x\""), None);
+        assert_eq!(declared_id("identity = \"x\"\nid = \"y\""), Some("y"));
+    }
+
+    #[test]
+    fn only_regular_files_are_read() {
+        let dir = std::env::temp_dir();
+        assert_eq!(read_file(&dir).unwrap_err().code, "not-a-file");
+        let missing = dir.join(format!("no-such-{}.toml", std::process::id()));
+        assert_eq!(read_file(&missing).unwrap_err().code, "unreadable-file");
+    }
+
+    #[test]
+    fn one_problem_is_found_by_file_name_or_by_id() {
+        let dir = std::env::temp_dir().join(format!("lagrange-load-one-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let atwood = super::super::embedded::FILES
+            .iter()
+            .find(|(n, _)| *n == "atwood.toml")
+            .map(|(_, t)| *t)
+            .unwrap();
+        std::fs::write(dir.join("other-name.toml"), atwood).unwrap();
+        // A file named after the id that defines another id does not hide the real one.
+        std::fs::write(
+            dir.join("pendulum.toml"),
+            atwood.replacen("id = \"atwood\"", "id = \"x\"", 1),
+        )
+        .unwrap();
+        let by_id = load_one(&dir, "atwood");
+        let named = load_one(&dir, "x");
+        let wrong_name = load_one(&dir, "pendulum");
+        let escape = load_one(&dir, "../atwood");
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(by_id.unwrap().map(|p| p.id), Some("atwood".to_string()));
+        assert_eq!(named.unwrap().map(|p| p.id), Some("x".to_string()));
+        assert!(wrong_name.unwrap().is_none());
+        assert!(escape.unwrap().is_none());
+    }
 }

@@ -2,6 +2,10 @@
 //! flipped in one term, one term off by a constant factor, two symbols swapped, constants
 //! rounded. Each search takes a test `holds(candidate)`, so the same search serves
 //! expressions (equal to the reference) and equations (satisfied by the true motion).
+//!
+//! Each candidate is a whole expression, built and evaluated at every sample point, so a
+//! search over the terms is quadratic in their number: it runs only on answers of at most
+//! [`MAX_SEARCH_TERMS`] terms (a 20 KB answer has over a thousand).
 
 use super::compare::{Relation, relate};
 use super::prepare::Prepared;
@@ -9,6 +13,11 @@ use super::tolerance;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Sym};
 use rustc_hash::FxHashMap;
+
+/// Most terms an answer may have for the one-term searches (a sign or a factor in one term)
+/// to run. Tutors' answers have a handful; past this many, a slip in one term is not the
+/// likely story, and the search would cost seconds.
+pub const MAX_SEARCH_TERMS: usize = 64;
 
 /// The terms of the expanded expression (so `½(m₁ − m₂)ẋ²` has two).
 pub fn terms(p: &mut Prepared, e: Id) -> Vec<Id> {
@@ -46,8 +55,13 @@ pub fn nice_fraction(c: f64) -> Option<String> {
 
 /// The terms of `e`, those without accelerations first: in an equation, flipping the inertia
 /// term is equivalent to flipping all the others, and the force terms are where slips happen.
+/// Empty unless there are 2 to [`MAX_SEARCH_TERMS`] terms (a one-term search is pointless
+/// with one term, and too slow with very many).
 fn terms_forces_first(p: &mut Prepared, e: Id) -> Vec<Id> {
     let mut ts = terms(p, e);
+    if ts.len() < 2 || ts.len() > MAX_SEARCH_TERMS {
+        return Vec::new();
+    }
     ts.sort_by_key(|&t| p.system.pool.variables(t).iter().any(|v| v.1 == 2));
     ts
 }
@@ -58,11 +72,7 @@ pub fn sign_in_term(
     e: Id,
     holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
 ) -> Option<Diagnosis> {
-    let ts = terms_forces_first(p, e);
-    if ts.len() < 2 {
-        return None;
-    }
-    for t in ts {
+    for t in terms_forces_first(p, e) {
         let two = p.system.pool.int(2);
         let t2 = p.system.pool.mul(two, t);
         let cand = p.system.pool.sub(e, t2);
@@ -87,11 +97,7 @@ pub fn factor_in_term(
     factor_at: &mut dyn FnMut(&mut Prepared, Id) -> Option<f64>,
     holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
 ) -> Option<Diagnosis> {
-    let ts = terms_forces_first(p, e);
-    if ts.len() < 2 {
-        return None;
-    }
-    for t in ts {
+    for t in terms_forces_first(p, e) {
         let Some(c) = factor_at(p, t) else { continue };
         let Some(nice) = nice_fraction(c) else {
             continue;

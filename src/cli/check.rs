@@ -29,15 +29,9 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    // The embedded bank builds only the problem asked for; a folder is loaded whole.
-    let found = match problems {
-        None => lagrange::bank::embedded::problem(&args.problem),
-        Some(dir) => super::problems::load_bank(Some(dir))
-            .map_err(anyhow::Error::msg)?
-            .problems
-            .into_iter()
-            .find(|p| p.id == args.problem),
-    };
+    // Only the problem asked for is built, from the embedded bank or a folder.
+    let found =
+        super::problems::find_problem(problems, &args.problem).map_err(anyhow::Error::msg)?;
     let Some(problem) = found.as_ref() else {
         eprintln!(
             "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",

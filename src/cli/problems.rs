@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use clap::Subcommand;
 
 use super::system_args::Terminal;
-use lagrange::bank::{Bank, embedded, load_dir, load_str};
+use lagrange::bank::load::{load_one, read_file};
+use lagrange::bank::{Bank, Problem, embedded, load_dir, load_str};
 use lagrange::report::{problem_list, problem_sheet, verification};
 
 #[derive(Subcommand, Debug)]
@@ -36,6 +37,15 @@ pub fn load_bank(dir: Option<&Path>) -> Result<Bank, String> {
     }
 }
 
+/// The one problem a command is about, from `dir` or the embedded bank, building only that
+/// problem (a folder of 30,000 files is not loaded whole to check one answer).
+pub fn find_problem(dir: Option<&Path>, id: &str) -> Result<Option<Problem>, String> {
+    match dir {
+        Some(d) => load_one(d, id),
+        None => Ok(embedded::problem(id)),
+    }
+}
+
 pub fn run(
     cmd: &ProblemsCommand,
     dir: Option<&Path>,
@@ -48,8 +58,8 @@ pub fn run(
             Ok(ExitCode::SUCCESS)
         }
         ProblemsCommand::Show { id, answers } => {
-            let bank = load_bank(dir).map_err(anyhow::Error::msg)?;
-            let Some(p) = bank.problem(id) else {
+            let found = find_problem(dir, id).map_err(anyhow::Error::msg)?;
+            let Some(p) = found.as_ref() else {
                 eprintln!(
                     "error: no problem `{id}`\n  help: `lagrange problems list` shows the ids"
                 );
@@ -81,8 +91,10 @@ pub fn run(
     }
 }
 
-/// A bank of the given files and folders; a file that cannot be read is an error of its own
-/// (the inner `Err`), while a file that does not load is one of the bank's failures.
+/// A bank of the given files and folders; a file that cannot be opened is an error of its
+/// own (the inner `Err`), while a file that does not load — including one that is not a
+/// regular file, is too large or is not UTF-8, refused before it is read — is one of the
+/// bank's failures.
 fn load_paths(paths: &[PathBuf]) -> anyhow::Result<Result<Bank, String>> {
     let mut b = Bank::default();
     for path in paths {
@@ -93,12 +105,15 @@ fn load_paths(paths: &[PathBuf]) -> anyhow::Result<Result<Bank, String>> {
             continue;
         }
         let name = path.display().to_string();
-        match std::fs::read_to_string(path) {
+        match read_file(path) {
             Ok(text) => match load_str(&name, &text) {
                 Ok(p) => b.problems.push(p),
                 Err(f) => b.failures.push(f),
             },
-            Err(e) => return Ok(Err(format!("cannot read {name}: {e}"))),
+            Err(f) if f.code == "unreadable-file" => {
+                return Ok(Err(format!("cannot read {name}: {}", f.message)));
+            }
+            Err(f) => b.failures.push(f),
         }
     }
     Ok(Ok(b))

@@ -51,11 +51,12 @@ impl SystemArgs {
                     "give a problem id or --lagrangian, not both",
                 ));
             }
-            let bank = super::problems::load_bank(problems).map_err(CliError::Usage)?;
-            let p = bank.problem(id).ok_or_else(|| {
-                CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
-            })?;
-            return Ok(p.system.clone());
+            let p = super::problems::find_problem(problems, id)
+                .map_err(CliError::Usage)?
+                .ok_or_else(|| {
+                    CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
+                })?;
+            return Ok(p.system);
         }
         let coords: Vec<&str> = self
             .coords

@@ -16,6 +16,31 @@ fn hash_node(node: &Node) -> u64 {
     rustc_hash::FxBuildHasher.hash_one(node)
 }
 
+/// Largest expression a differentiation may produce, and past which expansion is not done,
+/// counted as a printed tree ([`Pool::tree_size`]). The 20-link pendulum's largest is about
+/// 5,000; growth past this (a tower of powers, a product of many factors, differentiated)
+/// is refused rather than printed by the megabyte.
+pub const MAX_TREE_SIZE: usize = 25_000;
+
+/// Most nodes one differentiation or one simplification may add to the pool: a bound on
+/// its time and memory whatever the shape of the input.
+pub const MAX_NEW_NODES: usize = 200_000;
+
+/// A derivation that grew past [`MAX_TREE_SIZE`] or [`MAX_NEW_NODES`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the derivation grows past {limit} nodes")]
+pub struct TooLarge {
+    /// The limit that was reached.
+    pub limit: usize,
+}
+
+impl TooLarge {
+    /// What to do about it, in one line.
+    pub fn help(&self) -> String {
+        "write the expression more simply: towers of powers and products of many factors grow fastest when differentiated".into()
+    }
+}
+
 /// The name of the time symbol; always symbol 0 of a pool.
 pub const TIME: &str = "t";
 
@@ -23,6 +48,9 @@ pub const TIME: &str = "t";
 #[derive(Clone, Debug)]
 pub struct Pool {
     nodes: Vec<Node>,
+    /// The size of each node written out as a tree (shared sub-expressions counted every
+    /// time they occur, as a printer writes them), saturating: what printing would cost.
+    sizes: Vec<u32>,
     /// Ids by the hash of their node; equality is checked against `nodes`, so nodes are
     /// stored once.
     index: hashbrown::HashTable<Id>,
@@ -38,6 +66,9 @@ pub struct Pool {
     pub(crate) contents: FxHashMap<Id, (num_rational::BigRational, Id)>,
     /// Memo of the sign test of sums (the printed-first term is costly to find).
     pub(crate) negative_sum: std::cell::RefCell<FxHashMap<Id, bool>>,
+    /// While a simplification runs: the pool size at which it gives up (see
+    /// [`MAX_NEW_NODES`]).
+    pub(crate) budget_end: Option<usize>,
 }
 
 /// Per-node memo tables of the rewrite passes.
@@ -60,6 +91,7 @@ impl Pool {
     pub fn new() -> Self {
         let mut pool = Pool {
             nodes: Vec::new(),
+            sizes: Vec::new(),
             index: hashbrown::HashTable::new(),
             names: Vec::new(),
             sym_index: FxHashMap::default(),
@@ -69,6 +101,7 @@ impl Pool {
             caches: Caches::default(),
             contents: FxHashMap::default(),
             negative_sum: std::cell::RefCell::new(FxHashMap::default()),
+            budget_end: None,
         };
         pool.zero = pool.intern(Node::Num(BigRational::zero()));
         pool.one = pool.intern(Node::Num(BigRational::one()));
@@ -86,6 +119,8 @@ impl Pool {
             return id;
         }
         let id = Id(u32::try_from(self.nodes.len()).expect("more than 2^32 expression nodes"));
+        let size = self.tree_size_of(&node);
+        self.sizes.push(size);
         self.nodes.push(node);
         let nodes = &self.nodes;
         self.index
@@ -96,6 +131,28 @@ impl Pool {
     /// The node behind an id.
     pub fn node(&self, id: Id) -> &Node {
         &self.nodes[id.index()]
+    }
+
+    /// The number of nodes of `id` written out as a tree: every occurrence of a shared
+    /// sub-expression counts, as it does when printed (saturates at `u32::MAX`).
+    pub fn tree_size(&self, id: Id) -> usize {
+        self.sizes[id.index()] as usize
+    }
+
+    /// The tree size of a node about to be interned: one plus its children's.
+    fn tree_size_of(&self, node: &Node) -> u32 {
+        let of = |c: &Id| self.sizes[c.index()];
+        match node {
+            Node::Num(_) | Node::Var(..) | Node::Pi => 1,
+            Node::Add(c) | Node::Mul(c) => c.iter().fold(1u32, |acc, x| acc.saturating_add(of(x))),
+            Node::Pow(b, e) => 1u32.saturating_add(of(b)).saturating_add(of(e)),
+            Node::Func(_, a) => 1u32.saturating_add(of(a)),
+        }
+    }
+
+    /// Whether the running simplification has added more nodes than it may.
+    pub(crate) fn over_budget(&self) -> bool {
+        self.budget_end.is_some_and(|end| self.len() > end)
     }
 
     /// Number of distinct nodes in the pool.

@@ -438,8 +438,14 @@ impl Printer<'_> {
         let lone_den = den_items.len() == 1 && den.len() == 1;
         let denominator = match den {
             // \frac needs no parentheses around a lone sum: \frac{g}{m_{1} + m_{2}}.
-            [(b, Exp::Num(v))] if lone_den && v.is_one() && self.style == Style::Latex => {
-                self.sum(*b)
+            // The base is already printed in `den_items`: printing it again doubled the work
+            // at each level of a nested fraction (exponential time on `1/(1+1/(1+…))`).
+            [(_, Exp::Num(v))] if lone_den && v.is_one() && self.style == Style::Latex => {
+                let t = &den_items[0].0;
+                let bare = t
+                    .strip_prefix("\\left(")
+                    .and_then(|t| t.strip_suffix("\\right)"));
+                bare.map_or_else(|| t.clone(), str::to_string)
             }
             _ => self.join(den_items),
         };

@@ -10,6 +10,11 @@
 //!   `sin a cos b − cos a sin b → sin(a − b)`, and the sums likewise.
 //!
 //! Canonical construction already collects like terms, folds numbers and applies parity.
+//!
+//! Every pass is bounded, since only presentation is at stake: an expansion that would pass
+//! [`MAX_EXPANDED_TERMS`] terms or [`MAX_TREE_SIZE`] nodes is not done, the trig rules skip
+//! terms of more than [`MAX_TRIG_FACTORS`] factors, and a simplification that adds more than
+//! [`MAX_NEW_NODES`] nodes gives up and returns its input unchanged.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -17,14 +22,43 @@ use num_traits::{One, Signed};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::node::{Func, Id, Node, Sym};
-use super::pool::Pool;
+use super::pool::{MAX_NEW_NODES, MAX_TREE_SIZE, Pool};
 
 /// Largest number of terms a single expansion may produce; beyond it the product is kept.
 const MAX_EXPANDED_TERMS: usize = 4096;
 
+/// Most factors in a term searched for trig partners: the search is cubic in the number of
+/// factors, and tutors' terms have a handful (the 20-link pendulum's have at most 6).
+const MAX_TRIG_FACTORS: usize = 16;
+
 impl Pool {
     /// Simplifies for display. `positive` lists symbols known to be positive (parameters).
+    /// Past [`MAX_NEW_NODES`] new nodes it gives up and returns `e` as it was.
     pub fn simplify(&mut self, e: Id, positive: &[Sym]) -> Id {
+        self.within_budget(e, |pool| pool.simplify_unbounded(e, positive))
+    }
+
+    /// Runs a display pass with a budget of [`MAX_NEW_NODES`] new nodes (unless one already
+    /// runs, as when `simplify` expands); past it, `e` is returned as it was. The memo
+    /// tables are cleared then, since they may hold the half-done pass's results.
+    fn within_budget(&mut self, e: Id, pass: impl FnOnce(&mut Pool) -> Id) -> Id {
+        if self.budget_end.is_some() {
+            return pass(self);
+        }
+        self.budget_end = Some(self.len() + MAX_NEW_NODES);
+        let r = pass(self);
+        let over = self.over_budget();
+        self.budget_end = None;
+        if over {
+            self.caches.expand.clear();
+            self.caches.trig.clear();
+            self.caches.roots.clear();
+            return e;
+        }
+        r
+    }
+
+    fn simplify_unbounded(&mut self, e: Id, positive: &[Sym]) -> Id {
         let mut sorted_positive = positive.to_vec();
         sorted_positive.sort_unstable();
         if self.caches.roots_positive != sorted_positive {
@@ -34,6 +68,9 @@ impl Pool {
         let positive: FxHashSet<Sym> = positive.iter().copied().collect();
         let mut cur = e;
         for _ in 0..4 {
+            if self.over_budget() {
+                break;
+            }
             let x = self.expand(cur);
             let mut roots = std::mem::take(&mut self.caches.roots);
             let x = self.rewrite_cached(x, &mut roots, true, &mut |pool, n| {
@@ -110,26 +147,50 @@ impl Pool {
         new[&e]
     }
 
-    /// Multiplies out products of sums and small powers of sums (rule `expand`).
+    /// Multiplies out products of sums and small powers of sums (rule `expand`), within
+    /// the limits (see the module header).
     pub fn expand(&mut self, e: Id) -> Id {
-        let mut cache = std::mem::take(&mut self.caches.expand);
-        let r = self.rewrite_cached(e, &mut cache, true, &mut |pool, n| pool.expand_node(n));
-        self.caches.expand = cache;
+        self.within_budget(e, |pool| {
+            let mut cache = std::mem::take(&mut pool.caches.expand);
+            let r = pool.rewrite_cached(e, &mut cache, true, &mut |pool, n| pool.expand_node(n));
+            pool.caches.expand = cache;
+            r
+        })
+    }
+
+    /// One node multiplied out, or `n` itself when the result would pass a limit.
+    fn expand_node(&mut self, n: Id) -> Id {
+        if self.over_budget() {
+            return n;
+        }
+        let r = self.expand_node_unbounded(n);
+        if r != n && self.tree_size(r) > MAX_TREE_SIZE.max(self.tree_size(n)) {
+            return n;
+        }
         r
     }
 
-    fn expand_node(&mut self, n: Id) -> Id {
+    fn expand_node_unbounded(&mut self, n: Id) -> Id {
         match self.node(n).clone() {
             Node::Mul(ch) => {
+                // The number of terms is known before any is built: the product of the
+                // factors' term counts (products past the limit are kept as they are).
+                let count = ch.iter().try_fold(1usize, |acc, f| {
+                    let k = match self.node(*f) {
+                        Node::Add(t) => t.len(),
+                        _ => 1,
+                    };
+                    acc.checked_mul(k).filter(|&c| c <= MAX_EXPANDED_TERMS)
+                });
+                if count.is_none() {
+                    return n;
+                }
                 let mut acc: Vec<Id> = vec![self.one()];
                 for f in ch.iter() {
                     let terms: Vec<Id> = match self.node(*f) {
                         Node::Add(t) => t.to_vec(),
                         _ => vec![*f],
                     };
-                    if acc.len() * terms.len() > MAX_EXPANDED_TERMS {
-                        return n;
-                    }
                     let mut next = Vec::with_capacity(acc.len() * terms.len());
                     for &a in &acc {
                         for &t in &terms {
@@ -257,6 +318,9 @@ impl Pool {
         };
         let mut terms: Vec<Id> = terms.to_vec();
         for _ in 0..8 {
+            if self.over_budget() {
+                return n;
+            }
             let parts: Vec<(BigRational, Vec<Id>)> =
                 terms.iter().map(|&t| self.term_factors(t)).collect();
             let mut index: FxHashMap<Vec<Id>, usize> = FxHashMap::default();
@@ -327,6 +391,9 @@ impl Pool {
         lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
     ) -> Option<(usize, Vec<Id>)> {
         let (cx, fx) = parts[i].clone();
+        if fx.len() > MAX_TRIG_FACTORS {
+            return None;
+        }
         for (k, &f) in fx.iter().enumerate() {
             let Some(a) = self.trig_square(f, Func::Sin) else {
                 continue;
@@ -364,6 +431,9 @@ impl Pool {
         lookup: &dyn Fn(Vec<Id>) -> Option<usize>,
     ) -> Option<(usize, Vec<Id>)> {
         let (cx, fx) = parts[i].clone();
+        if fx.len() > MAX_TRIG_FACTORS {
+            return None;
+        }
         // cos a cos b ± sin a sin b = cos(a ∓ b); sin a cos b ± cos a sin b = sin(a ± b).
         for (k, &p) in fx.iter().enumerate() {
             for (l, &q) in fx.iter().enumerate() {
@@ -632,6 +702,22 @@ impl Factored {
 mod tests {
     use crate::expr::node::Node;
     use crate::expr::{Context, Factored, Pool, Style, read_expr};
+
+    #[test]
+    fn an_expansion_past_the_limit_is_not_started() {
+        // 2^60 terms: known to be too many before any is built, so the product is kept.
+        let ctx = Context::open().with_coordinates(["x"]);
+        let mut pool = Pool::new();
+        let factors: Vec<String> = (1..=60).map(|k| format!("(1 + cos({k}x))")).collect();
+        let e = read_expr(&factors.join("*"), &ctx, &mut pool).unwrap();
+        let before = pool.len();
+        assert_eq!(pool.expand(e), e);
+        assert!(
+            pool.len() - before < 10,
+            "{} nodes built",
+            pool.len() - before
+        );
+    }
 
     #[test]
     fn factored_forms_print_as_their_product_node_did() {

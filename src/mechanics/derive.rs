@@ -50,11 +50,11 @@ impl System {
         for (i, c) in self.coordinates.clone().iter().enumerate() {
             // Each step is built from the simplified previous one, so the simplifier's memo
             // tables carry over and nothing is expanded twice.
-            let p = self.pool.diff(l, c.sym, 1);
+            let p = self.pool.try_diff(l, c.sym, 1)?;
             let p = self.simplify(p);
-            let dp = self.pool.dt(p, &coords);
+            let dp = self.pool.try_dt(p, &coords)?;
             let dp = self.simplify(dp);
-            let dl = self.pool.diff(l, c.sym, 0);
+            let dl = self.pool.try_diff(l, c.sym, 0)?;
             let dl = self.simplify(dl);
             let q = self.forces[i];
             let e1 = self.pool.sub(dp, dl);

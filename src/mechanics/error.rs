@@ -78,6 +78,9 @@ pub enum MechError {
     /// it can be evaluated anywhere.
     #[error("`{expr}` is undefined")]
     UndefinedConstant { expr: String },
+    /// A derivative grew past the size limit.
+    #[error(transparent)]
+    TooLarge(#[from] crate::expr::pool::TooLarge),
 }
 
 impl MechError {
@@ -104,6 +107,7 @@ impl MechError {
             MechError::DependentConstraints => "dependent-constraints",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
+            MechError::TooLarge(_) => "too-large",
         }
     }
 
@@ -152,6 +156,7 @@ impl MechError {
                 "choose units in which the quantities are moderate numbers".into()
             }
             MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
+            MechError::TooLarge(e) => e.help(),
         }
     }
 }

@@ -11,6 +11,7 @@ mod helpers;
 mod hostile;
 mod mechanics;
 mod props;
+mod resources;
 mod scale;
 mod soundness;
 mod symbolic;
