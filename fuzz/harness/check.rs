@@ -298,6 +298,10 @@ fn wrong_system(r: &mut Rng, p: &Problem, eqs: &[String]) -> Option<(String, Str
 /// A wrong expression or Lagrangian.
 fn wrong_expression(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, String)> {
     let reference = &part.answers[0];
+    // Any multiple of a reference of 0 is the reference.
+    if reference.trim() == "0" {
+        return None;
+    }
     let lagrangian = part.kind == PartKind::Lagrangian;
     let has_coordinate = p
         .system

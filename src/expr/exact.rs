@@ -56,10 +56,16 @@ impl Pool {
             None => return self.intern(Node::Pow(b, e)),
         };
         let (root, rest) = extract_perfect_power(&n, &q);
-        let root_part = exact_int_pow(
-            &BigRational::from_integer(root),
-            &(&r * BigRational::from_integer(q.clone())),
-        );
+        // A root of 1 is 1 whatever the exponent (which may be too large to raise anything
+        // else to: 100000^(−10000001/10000000) has r·q = 9999999).
+        let root_part = if root.is_one() {
+            Some(BigRational::one())
+        } else {
+            exact_int_pow(
+                &BigRational::from_integer(root),
+                &(&r * BigRational::from_integer(q.clone())),
+            )
+        };
         let Some(root_part) = root_part else {
             return self.intern(Node::Pow(b, e));
         };
