@@ -74,9 +74,11 @@ impl Pool {
         self.intern(Node::Pow(z, m))
     }
 
-    /// Whether `id` is the undefined value `1/0`.
+    /// Whether `id` is the undefined value `1/0` (0^k for a symbolic k is not: it is 0 where
+    /// k > 0).
     pub(crate) fn is_undefined(&self, id: Id) -> bool {
-        matches!(self.node(id), Node::Pow(b, _) if self.is_zero(*b))
+        matches!(self.node(id), Node::Pow(b, e)
+            if self.is_zero(*b) && self.as_num(*e).is_some_and(|v| *v == -BigRational::one()))
     }
 
     /// The canonical sum of `terms`.

@@ -13,8 +13,10 @@ use super::pool::Pool;
 /// Largest integer exponent folded exactly; larger powers stay symbolic (and evaluate to
 /// "undefined" if they overflow), so `2^2^2^2^2^2` cannot exhaust memory.
 const MAX_EXACT_EXPONENT: i64 = 4096;
-/// Largest result, in bits, of an exact power.
-const MAX_EXACT_BITS: u64 = 65_536;
+/// Largest result, in bits, of an exact power: about 900 digits, so every number the printer
+/// writes stays within the reader's 1000-digit limit (10^1000 stays `10^1000`, and reads
+/// back), and huge exact numbers do not slow every later operation on them.
+const MAX_EXACT_BITS: u64 = 3_000;
 
 impl Pool {
     /// `bv ^ ev` for exact numbers; `b` and `e` are their ids (used when the power stays

@@ -327,3 +327,33 @@ fn a_problem_files_title_and_prompt_are_shown_escaped() {
         "{show}"
     );
 }
+
+/// Found by the fuzzer: each reads, prints as shown, and the printed form reads back as the
+/// same node (0^k is not undefined; 10^1000 stays a power the reader accepts; a numeric power
+/// with a negative exponent is canonical after one reading).
+#[test]
+fn fuzz_found_readings_print_and_read_back() {
+    use lagrange::expr::{Context, Pool, read_expr};
+    let cases = [
+        ("0^k", "0^k"),
+        ("0/0", "0/0"),
+        ("10^1000", "10^1000"),
+        ("2^5000*x", "2^5000*x"),
+        (
+            "100000^(-10000001/10000000)",
+            "100000^(9999999/10000000)/10000000000",
+        ),
+        (
+            "3.14159^1.0000001",
+            "314159*100000^(9999999/10000000)*314159^(1/10000000)/10000000000",
+        ),
+    ];
+    for (input, printed) in cases {
+        let mut pool = Pool::new();
+        let ctx = Context::open();
+        let id = read_expr(input, &ctx, &mut pool).unwrap_or_else(|e| panic!("{input}: {e}"));
+        assert_eq!(pool.plain(id), printed, "{input}");
+        let back = read_expr(printed, &ctx, &mut pool).unwrap_or_else(|e| panic!("{printed}: {e}"));
+        assert_eq!(back, id, "{input} → {printed} read back differently");
+    }
+}
