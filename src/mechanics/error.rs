@@ -78,6 +78,9 @@ pub enum MechError {
     /// it can be evaluated anywhere.
     #[error("`{expr}` is undefined")]
     UndefinedConstant { expr: String },
+    /// A name given as a coordinate cannot be one (time, π, a function, listed twice).
+    #[error(transparent)]
+    Name(#[from] super::naming::NameError),
     /// A derivative grew past the size limit.
     #[error(transparent)]
     TooLarge(#[from] crate::expr::pool::TooLarge),
@@ -108,6 +111,7 @@ impl MechError {
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
             MechError::TooLarge(_) => "too-large",
+            MechError::Name(e) => e.code(),
         }
     }
 
@@ -157,6 +161,7 @@ impl MechError {
             }
             MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
             MechError::TooLarge(e) => e.help(),
+            MechError::Name(e) => e.help(),
         }
     }
 }

@@ -15,6 +15,7 @@ pub mod fixtures;
 pub(crate) mod linalg;
 pub(crate) mod magnitude;
 pub mod modes;
+pub mod naming;
 pub(crate) mod sample;
 pub mod state;
 pub mod system;

@@ -357,3 +357,21 @@ fn fuzz_found_readings_print_and_read_back() {
         assert_eq!(back, id, "{input} → {printed} read back differently");
     }
 }
+
+/// The library itself refuses names that cannot be coordinates, not only the CLI.
+#[test]
+fn the_library_refuses_repeated_and_reserved_coordinates() {
+    use lagrange::mechanics::naming::NameError;
+    use lagrange::{MechError, System};
+    let l = "1/2*m*x'^2 - 1/2*k*x^2";
+    for (coords, want) in [
+        (&["x", "x"][..], NameError::Repeated("x".into())),
+        (&["t"][..], NameError::Time),
+        (&["sin"][..], NameError::Function("sin".into())),
+    ] {
+        match System::from_lagrangian(l, coords) {
+            Err(MechError::Name(e)) => assert_eq!(e, want, "{coords:?}"),
+            other => panic!("{coords:?}: {other:?}"),
+        }
+    }
+}
