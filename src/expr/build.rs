@@ -449,8 +449,10 @@ impl Pool {
             return self.undefined();
         }
         if (f.is_odd() || f.is_even()) && self.is_negative_form(a) {
+            // f(−a) = ±f(a), built through `func` so that f(a) gets every simplification
+            // a direct reading would (abs(−π) is π, as abs(π) is).
             let na = self.neg(a);
-            let inner = self.intern(Node::Func(f, na));
+            let inner = self.func(f, na);
             return if f.is_odd() { self.neg(inner) } else { inner };
         }
         self.intern(Node::Func(f, a))
