@@ -51,3 +51,17 @@ pub fn eval(pool: &Pool, e: Id, values: &[(&str, f64)]) -> Option<f64> {
     let p = Program::compile(pool, &[e], &vars).ok()?;
     p.eval(&inputs).ok().map(|v| v[0])
 }
+
+/// Runs the `lagrange` binary without colour: (exit code, stdout, stderr).
+pub fn lagrange(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}

@@ -2,26 +2,13 @@
 //! fixtures, and messages that echo hostile text (escape sequences, invisible characters,
 //! over-long inputs) or misname a situation. Each test runs the exact input of the issue.
 
-use std::process::Command;
+use crate::helpers::lagrange;
 
 use lagrange::diagnostic::render_parse_error;
 use lagrange::expr::error::MAX_INPUT_BYTES;
 use lagrange::expr::{Context, Pool, read_expr};
 
 use crate::helpers::eval;
-
-fn lagrange(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 fn root() -> std::path::PathBuf {
     std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))

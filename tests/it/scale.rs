@@ -3,25 +3,12 @@
 //! 1e-12 and parameters at 1e12 give the physically right answers (scaled frequencies, the
 //! same equilibria), and a value that overflows is reported as an overflow.
 
-use std::process::Command;
+use crate::helpers::lagrange;
 
 use lagrange::check::Checker;
 use lagrange::check::verdict::Status;
 use lagrange::mechanics::equilibria::Stability;
 use lagrange::mechanics::{MechError, System};
-
-fn lagrange(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// Relative closeness (the values here range from 1e-15 to 1e15).
 fn rel_close(got: f64, want: f64) -> bool {
