@@ -2,7 +2,8 @@
 //! - median in-process check of the simple-pendulum `eom` and of the double-pendulum `eom`
 //!   system, with the part prepared once (as a grader or a tutoring session does);
 //! - the same including preparation (derivation and sampling), i.e. a first check;
-//! - a wrong answer, which also runs the diagnosis searches.
+//! - a wrong answer, which also runs the diagnosis searches;
+//! - hostile answers: a vanishing factor (the determinant test), a 20 KB answer.
 //!
 //! `lagrange check` as a whole process is timed from the shell (see the closing note).
 
@@ -55,4 +56,28 @@ fn first_check_including_preparation(b: Bencher, id: &str) {
         DP_EOM.to_string()
     };
     b.bench_local(|| black_box(check(problem, part, black_box(&answer)).expect("checks")));
+}
+
+/// Soundness (issue 9): the determinant test on a vanishing factor (the energy law, named as
+/// such), and a hostile 20 KB answer of ~1,700 terms (the bounded diagnosis search).
+#[divan::bench(args = ["energy-law", "sin-factor", "answer-20kb"])]
+fn hostile_answers(b: Bencher, which: &str) {
+    let bank = embedded::bank();
+    let problem = bank.problem("simple-pendulum").expect("in the bank");
+    let mut checker = Checker::new(problem);
+    let (part, answer) = match which {
+        "energy-law" => ("eom", "theta'*(theta'' + g/l*sin(theta)) = 0".to_string()),
+        "sin-factor" => ("eom", "sin(theta)*(theta'' + g/l*sin(theta)) = 0".to_string()),
+        _ => {
+            let mut a = "1/2*m*l^2*theta'^2".to_string();
+            let mut k = 1;
+            while a.len() < 19_900 {
+                a.push_str(&format!(" + m*l^2*theta'^2*theta^{k}/{k}"));
+                k += 1;
+            }
+            ("kinetic", a)
+        }
+    };
+    checker.check(part, &answer).expect("checks");
+    b.bench_local(|| black_box(checker.check(part, black_box(&answer)).expect("checks")));
 }
