@@ -67,7 +67,10 @@ fn hostile_answers(b: Bencher, which: &str) {
     let mut checker = Checker::new(problem);
     let (part, answer) = match which {
         "energy-law" => ("eom", "theta'*(theta'' + g/l*sin(theta)) = 0".to_string()),
-        "sin-factor" => ("eom", "sin(theta)*(theta'' + g/l*sin(theta)) = 0".to_string()),
+        "sin-factor" => (
+            "eom",
+            "sin(theta)*(theta'' + g/l*sin(theta)) = 0".to_string(),
+        ),
         _ => {
             let mut a = "1/2*m*l^2*theta'^2".to_string();
             let mut k = 1;

@@ -22,11 +22,13 @@ use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Program, Style};
 
 /// Grid points on each line scanned through a sample point.
-const GRID: usize = 32;
+const GRID: usize = 24;
 /// Golden-section steps refining a local minimum of |det C| found on a line.
 const REFINE: usize = 48;
 /// A factor this small relative to its typical size is zero up to rounding.
 const NUMERICAL_ZERO: f64 = 1e-12;
+/// A value of det C above this fraction of its typical size is not a candidate zero.
+const SCREEN: f64 = 1e-3;
 /// How many sample points serve as bases for special points and line scans.
 const BASES: usize = 2;
 
@@ -124,13 +126,13 @@ enum Det {
     Value(f64),
 }
 
-/// det C at any point, from one compiled program (A's entries, then M's).
+/// det C at any point: the answer's acceleration coefficients A and the mass matrix M, each
+/// compiled once and evaluated into reused buffers (this runs a few hundred times a check).
 struct DetC {
-    prog: Program,
-    rows: usize,
+    a: Program,
+    m: Option<Program>,
     n: usize,
-    /// Divide by det M (without constraints); with constraints A alone is judged.
-    with_mass: bool,
+    scratch: std::cell::RefCell<(Vec<f64>, Vec<f64>)>,
 }
 
 impl DetC {
@@ -143,41 +145,68 @@ impl DetC {
                 roots.push(p.system.pool.diff(r, c, 2));
             }
         }
-        let with_mass = p.system.constraints.is_empty();
-        if with_mass {
-            roots.extend(p.derivation.mass.iter().flatten().copied());
-        }
-        let prog = p.system.compile(&roots).ok()?;
+        let a = p.system.compile(&roots).ok()?;
+        // Divide by det M (without constraints); with constraints A alone is judged.
+        let m = if p.system.constraints.is_empty() {
+            let entries: Vec<Id> = p.derivation.mass.iter().flatten().copied().collect();
+            Some(p.system.compile(&entries).ok()?)
+        } else {
+            None
+        };
+        let scratch = (
+            a.scratch(),
+            m.as_ref().map_or_else(Vec::new, Program::scratch),
+        );
         Some(DetC {
-            prog,
-            rows: res.len(),
+            a,
+            m,
             n,
-            with_mass,
+            scratch: std::cell::RefCell::new(scratch),
         })
     }
 
     fn at(&self, x: &[f64]) -> Det {
-        let (rows, n) = (self.rows, self.n);
-        // The answer's entries come first: evaluate M alone to tell whose fault an error is.
-        let Ok(v) = self.prog.eval(x) else {
-            return Det::Undefined;
-        };
-        let det_m = if self.with_mass {
-            let m = nalgebra::DMatrix::from_fn(n, n, |i, j| v[rows * n + i * n + j]);
-            m.determinant()
-        } else {
-            1.0
+        let n = self.n;
+        let mut guard = self.scratch.borrow_mut();
+        let (sa, sm) = &mut *guard;
+        // The reference first: where M is undefined or singular it does not determine the
+        // accelerations either, and there is nothing to judge.
+        let det_m = match &self.m {
+            Some(m) => {
+                if m.run(x, sm).is_err() {
+                    return Det::Skip;
+                }
+                det(n, |i, j| m.output(i * n + j, sm))
+            }
+            None => 1.0,
         };
         if !det_m.is_finite() || det_m == 0.0 {
             return Det::Skip;
         }
-        let a = nalgebra::DMatrix::from_fn(rows, n, |i, j| v[i * n + j]);
-        let d = a.determinant() / det_m;
+        if self.a.run(x, sa).is_err() {
+            return Det::Undefined;
+        }
+        let d = det(n, |i, j| self.a.output(i * n + j, sa)) / det_m;
         if d.is_finite() {
             Det::Value(d)
         } else {
             Det::Undefined
         }
+    }
+}
+
+/// The determinant of the n×n matrix with entries `e(i, j)`: by formula up to 3×3 (no
+/// allocation), by LU beyond.
+fn det(n: usize, e: impl Fn(usize, usize) -> f64) -> f64 {
+    match n {
+        1 => e(0, 0),
+        2 => e(0, 0) * e(1, 1) - e(0, 1) * e(1, 0),
+        3 => {
+            e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
+                - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
+                + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
+        }
+        _ => nalgebra::DMatrix::from_fn(n, n, e).determinant(),
     }
 }
 
@@ -232,12 +261,29 @@ fn probe(p: &Prepared, det: &DetC) -> Option<Found> {
                 .filter(|x| filter.accepts(x)),
         );
     }
+    // Only a value far below the typical one is worth the comparison at its own parameters.
+    let typical = median(
+        p.points
+            .points
+            .iter()
+            .filter_map(|x| match det.at(x) {
+                Det::Value(d) => Some(d.abs()),
+                _ => None,
+            })
+            .collect(),
+    )
+    .unwrap_or(0.0);
+    let vanishes = |x: &[f64], d: f64| {
+        d == 0.0
+            || (d.abs() <= SCREEN * typical
+                && d.abs() <= tolerance::SAME * local_scale(p, det, x).max(d.abs()))
+    };
     let mut signed: Option<(f64, Vec<f64>)> = None;
     for x in candidates {
         match det.at(&x) {
             Det::Skip => {}
             Det::Undefined => return Some(Found::At { x, undefined: true }),
-            Det::Value(d) if d.abs() <= tolerance::SAME * local_scale(p, det, &x).max(d.abs()) => {
+            Det::Value(d) if vanishes(&x, d) => {
                 return Some(Found::At {
                     x,
                     undefined: false,
@@ -345,7 +391,8 @@ fn scan_line(
         .collect();
     let vs: Vec<Option<f64>> = ts.iter().map(|&t| value(t)).collect();
     // Zero relative to the largest value on this line.
-    let zero = tolerance::SAME * vs.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
+    let line_max = vs.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
+    let zero = tolerance::SAME * line_max;
     for g in 1..GRID {
         let (Some(a), Some(b)) = (vs[g - 1], vs[g]) else {
             continue;
@@ -358,7 +405,8 @@ fn scan_line(
         let (Some(a), Some(b), Some(c)) = (vs[g - 1], vs[g], vs[g + 1]) else {
             continue;
         };
-        if b.abs() <= a.abs() && b.abs() <= c.abs() {
+        // A strict local minimum well below the line's largest value (a plateau is not one).
+        if b.abs() < a.abs() && b.abs() <= c.abs() && b.abs() < 0.5 * line_max {
             let t = golden_min(
                 &|t| value(t).map_or(f64::INFINITY, f64::abs),
                 ts[g - 1],
