@@ -10,6 +10,7 @@
 //! - [`bank`]: the problem format, loading, verification and the embedded bank;
 //! - [`report`]: what each command shows, as data built here and rendered once, for every
 //!   face;
+//! - [`tutor`]: practice sessions — the derivation ladder, follow-through, progress;
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face.
 //!
 //! `src/main.rs` is a thin command-line face over this library.
@@ -26,6 +27,7 @@ const LAYERS: &[&str] = &[
     "check",
     "bank",
     "report",
+    "tutor",
 ];
 
 #[cfg(test)]
@@ -38,6 +40,7 @@ pub mod expr;
 pub mod mechanics;
 pub mod problem;
 pub mod report;
+pub mod tutor;
 
 // What a library user needs, in one place (the modules hold the rest).
 pub use bank::{Bank, Finding, embedded, load_dir, load_str};

@@ -1,0 +1,5 @@
+//! The tutor: what a practice session knows and does, as data — the derivation ladder
+//! generated from a problem's physics, follow-through from a student's own earlier answers,
+//! the session state (current problem and part, attempts, hints, revealed answers) and the
+//! student's progress. It returns data and never prints; the REPL, the grader and a future
+//! browser face share it.
