@@ -1,0 +1,188 @@
+//! The derivation ladder (issue 10, item 4): built from the engine for every bank problem,
+//! each step's own reference accepted by the checker, typical wrong steps diagnosed, and the
+//! step ids and prompts of two pendulums pinned.
+
+use lagrange::bank::embedded;
+use lagrange::check::{Code, Status};
+use lagrange::problem::{PartKind, Problem};
+use lagrange::tutor::ladder::{Step, check_step, ladder};
+
+fn problem(id: &str) -> Problem {
+    embedded::problem(id).unwrap()
+}
+
+fn ids(steps: &[Step]) -> Vec<&str> {
+    steps.iter().map(|s| s.id.as_str()).collect()
+}
+
+#[test]
+fn every_steps_reference_is_accepted() {
+    let mut failures = Vec::new();
+    for p in &embedded::bank().problems {
+        let steps = ladder(p).unwrap_or_else(|e| panic!("{}: {e}", p.id));
+        for s in &steps {
+            let answer = s.reference_text(p.system.coordinates.len());
+            let v = check_step(p, s, &answer).unwrap();
+            if v.status != Status::Correct {
+                failures.push(format!("{} {} `{answer}`: {:?}", p.id, s.id, v.diagnoses));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}
+
+/// The ids a problem's ladder should have, built from its shape.
+fn expected_ids(p: &Problem, bodies: usize, energies: bool) -> Vec<String> {
+    let mut out = Vec::new();
+    for b in 1..=bodies {
+        out.push(format!("position:{b}"));
+        out.push(format!("speed-squared:{b}"));
+    }
+    if energies {
+        out.extend(["kinetic".to_string(), "potential".to_string()]);
+    }
+    out.push("lagrangian".into());
+    for c in &p.system.coordinates {
+        for s in ["momentum", "momentum-rate", "generalized-force", "eom"] {
+            out.push(format!("{s}:{}", c.name));
+        }
+    }
+    let has = |k: PartKind| p.parts.iter().any(|x| x.kind == k);
+    if has(PartKind::Equilibria) {
+        out.push("equilibria".into());
+    }
+    if has(PartKind::Frequencies) {
+        out.extend(["linearized", "characteristic", "frequencies"].map(String::from));
+    }
+    out
+}
+
+#[test]
+fn every_bank_problem_has_its_steps_in_order() {
+    for p in &embedded::bank().problems {
+        let steps = ladder(p).unwrap();
+        // Point masses have a position; the rolling disk's rotor (body 2) only a speed.
+        let bodies = p.system.bodies.len();
+        let mut want = expected_ids(p, bodies, bodies > 0);
+        if p.id == "rolling-disk" {
+            want.retain(|s| s != "position:2");
+        }
+        assert_eq!(ids(&steps), want, "{}", p.id);
+    }
+}
+
+/// The diagnosis codes of a step's verdict on `input`, which must be incorrect.
+fn wrong(p: &Problem, steps: &[Step], id: &str, input: &str) -> Vec<Code> {
+    let s = steps.iter().find(|s| s.id == id).unwrap();
+    let v = check_step(p, s, input).unwrap();
+    assert_eq!(
+        v.status,
+        Status::Incorrect,
+        "{id} `{input}`: {:?}",
+        v.diagnoses
+    );
+    v.diagnoses.iter().map(|d| d.code).collect()
+}
+
+#[test]
+fn the_simple_pendulums_steps_carry_the_physics() {
+    let p = problem("simple-pendulum");
+    let steps = ladder(&p).unwrap();
+    let answer = |id: &str| {
+        steps
+            .iter()
+            .find(|s| s.id == id)
+            .unwrap()
+            .part
+            .answers
+            .clone()
+    };
+    assert_eq!(answer("momentum:theta"), ["m*l^2*theta'"]);
+    assert_eq!(
+        answer("eom:theta"),
+        ["m*l^2*theta'' + m*g*l*sin(theta) = 0"]
+    );
+    let ok = |id: &str, input: &str| {
+        let s = steps.iter().find(|s| s.id == id).unwrap();
+        check_step(&p, s, input).unwrap().status
+    };
+    // Equivalent forms are accepted: p = m l² θ', the EOM divided by m l.
+    assert_eq!(ok("momentum:theta", "m*l^2*theta'"), Status::Correct);
+    assert_eq!(
+        ok("eom:theta", "l*theta'' + g*sin(theta) = 0"),
+        Status::Correct
+    );
+    assert_eq!(ok("potential", "m*g*l*(1 - cos(theta))"), Status::Correct);
+    assert_eq!(
+        ok("position:1", "l*sin(theta), -l*cos(theta)"),
+        Status::Correct
+    );
+}
+
+#[test]
+fn typical_wrong_steps_of_the_simple_pendulum_are_diagnosed() {
+    let p = problem("simple-pendulum");
+    let s = ladder(&p).unwrap();
+    let w = |id: &str, input: &str| wrong(&p, &s, id, input);
+    assert!(w("position:1", "-l*cos(theta), l*sin(theta)").contains(&Code::SwappedSymbols));
+    assert!(w("speed-squared:1", "l*theta'^2").contains(&Code::Dimension));
+    assert!(w("kinetic", "m*l^2*theta'^2").contains(&Code::ConstantFactor));
+    assert!(w("potential", "m*g*l*cos(theta)").contains(&Code::SignError));
+    assert!(w("lagrangian", "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)").contains(&Code::SignError));
+    assert!(w("momentum:theta", "m*l*theta'").contains(&Code::Dimension));
+    assert!(w("momentum-rate:theta", "-m*l^2*theta''").contains(&Code::SignError));
+    assert!(w("generalized-force:theta", "m*g*l*sin(theta)").contains(&Code::SignError));
+    assert!(w("eom:theta", "l*theta'' + g*theta = 0").contains(&Code::SmallAngle));
+    assert!(!w("linearized", "l*theta'' - g*theta = 0").is_empty());
+    assert!(w("frequencies", "g/l").contains(&Code::OmegaSquared));
+}
+
+#[test]
+fn typical_wrong_steps_of_the_double_pendulum_are_diagnosed() {
+    let p = problem("double-pendulum");
+    let s = ladder(&p).unwrap();
+    let w = |id: &str, input: &str| wrong(&p, &s, id, input);
+    let no_cross = "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2";
+    let codes = w("kinetic", no_cross);
+    assert!(
+        codes.contains(&Code::VelocityTerm) || codes.contains(&Code::NotEqual),
+        "{codes:?}"
+    );
+    let v2 = w("speed-squared:2", "l1^2*theta1'^2 + l2^2*theta2'^2");
+    assert!(
+        v2.contains(&Code::VelocityTerm) || v2.contains(&Code::NotEqual),
+        "{v2:?}"
+    );
+    assert!(
+        w(
+            "potential",
+            "(m1+m2)*g*l1*cos(theta1) + m2*g*l2*cos(theta2)"
+        )
+        .contains(&Code::SignError)
+    );
+    assert!(!w("eom:theta2", "l2*theta2'' + g*sin(theta2) = 0").is_empty());
+    assert!(
+        w(
+            "characteristic",
+            "sqrt((2 - sqrt(2))*g/l), sqrt((2 + sqrt(2))*g/l)"
+        )
+        .contains(&Code::OmegaRoot)
+    );
+}
+
+/// Ids and prompts, one step a line.
+fn listing(id: &str) -> String {
+    let p = problem(id);
+    ladder(&p)
+        .unwrap()
+        .iter()
+        .map(|s| format!("{}: {}", s.id, s.prompt))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn ladder_snapshots() {
+    insta::assert_snapshot!("ladder_simple_pendulum", listing("simple-pendulum"));
+    insta::assert_snapshot!("ladder_double_pendulum", listing("double-pendulum"));
+}
