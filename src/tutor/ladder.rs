@@ -24,7 +24,7 @@
 use rustc_hash::FxHashMap;
 
 use crate::check::{self, CheckError, Code, Diagnosis, Status, Verdict};
-use crate::expr::{Id, Sym, read_expr};
+use crate::expr::{Id, Style, Sym, read_expr};
 use crate::mechanics::{Body, MechError, System};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
@@ -197,14 +197,16 @@ impl Builder<'_> {
         self.sys.pool.plain(e)
     }
 
+    /// The coordinates as a person reads them: `θ₁, θ₂`.
     fn coordinate_list(&self) -> String {
-        let names: Vec<&str> = self
-            .sys
-            .coordinates
-            .iter()
-            .map(|c| c.name.as_str())
-            .collect();
+        let names: Vec<String> = (0..self.sys.n()).map(|i| self.name(i, 0)).collect();
         names.join(", ")
+    }
+
+    /// Coordinate `i` (or its `order`-th derivative) in Unicode: `θ`, `θ̇`.
+    fn name(&self, i: usize, order: u8) -> String {
+        let sym = self.sys.coordinates[i].sym;
+        self.sys.pool.var_name(sym, order, Style::Unicode)
     }
 
     /// Positions and speeds of the bodies, T, V and L.
@@ -316,10 +318,11 @@ impl Builder<'_> {
             .enumerate()
         {
             let q = &c.name;
+            let (u, v) = (self.name(i, 0), self.name(i, 1));
             let answer = self.plain(s.momentum);
             let p = self.push(
                 format!("momentum:{q}"),
-                format!("Write the momentum conjugate to {q}, p = ∂L/∂{q}'."),
+                format!("Write the momentum conjugate to {u}, p = ∂L/∂{v}."),
                 PartKind::Expression,
                 vec![answer],
             );
@@ -327,14 +330,14 @@ impl Builder<'_> {
             let answer = self.plain(s.momentum_dt);
             self.push(
                 format!("momentum-rate:{q}"),
-                format!("Differentiate in time: write d/dt (∂L/∂{q}')."),
+                format!("Differentiate in time: write d/dt (∂L/∂{v})."),
                 PartKind::Expression,
                 vec![answer],
             );
             let answer = self.plain(s.force);
             self.push(
                 format!("generalized-force:{q}"),
-                format!("Write the generalized force ∂L/∂{q}."),
+                format!("Write the generalized force ∂L/∂{u}."),
                 PartKind::Expression,
                 vec![answer],
             );
@@ -342,14 +345,14 @@ impl Builder<'_> {
             let forced = !self.sys.is_zero(s.generalized_force);
             let prompt = if !self.sys.constraints.is_empty() {
                 format!(
-                    "Put them together: write d/dt (∂L/∂{q}') − ∂L/∂{q} = 0 for {q}, leaving out the constraint force for now."
+                    "Put them together: write d/dt (∂L/∂{v}) − ∂L/∂{u} = 0, leaving out the constraint force for now."
                 )
             } else if forced {
                 format!(
-                    "Put them together with the non-conservative force: the equation of motion for {q}."
+                    "Put them together with the non-conservative force: write the equation of motion for {u}."
                 )
             } else {
-                format!("Put them together: write the equation of motion for {q}.")
+                format!("Put them together: write the equation of motion for {u}.")
             };
             self.push(format!("eom:{q}"), prompt, PartKind::Equation, vec![answer]);
             if !self.sys.constraints.is_empty() {
@@ -371,16 +374,17 @@ impl Builder<'_> {
             .iter()
             .find(|p| p.kind == PartKind::Equilibria)
         {
-            let mut part = eq.clone();
-            part.id = "equilibria".into();
-            // The checker reads the points only; stability is not typed by the student yet.
-            part.prompt = "Find every equilibrium, where all the generalized forces vanish at rest (e.g. `theta = 0, theta = pi`).".into();
-            self.steps.push(Step {
-                id: part.id.clone(),
-                prompt: part.prompt.clone(),
-                part,
-                against: None,
-            });
+            // The checker reads the points only; stability is not typed by the student (yet).
+            let q = &self.sys.coordinates[0].name;
+            let form = if self.sys.n() > 1 {
+                format!("`{q} = …, …`, the points separated by `;`")
+            } else {
+                format!("`{q} = …`, separated by commas")
+            };
+            let prompt = format!(
+                "Find every equilibrium, where all the generalized forces vanish at rest; write each as {form}."
+            );
+            self.adopt(eq, "equilibria", prompt);
         }
         let Some(freq) = problem
             .parts
@@ -390,6 +394,7 @@ impl Builder<'_> {
             return Ok(());
         };
         self.linearized(freq)?;
+        let with = conditions(freq);
         let squared = problem
             .parts
             .iter()
@@ -399,33 +404,40 @@ impl Builder<'_> {
             None => {
                 let mut s = freq.clone();
                 s.squared = true;
-                s.answers = s.answers.iter().map(|a| format!("({a})^2")).collect();
+                s.answers = squares(problem, freq);
                 s
             }
         };
-        part.id = "characteristic".into();
-        part.prompt =
-            "Solve the characteristic equation det(K − ω² M) = 0: give its roots ω².".into();
-        part.wrong.clear();
-        part.hints.clear();
-        self.steps.push(Step {
-            id: part.id.clone(),
-            prompt: part.prompt.clone(),
-            part,
-            against: None,
-        });
-        let mut part = freq.clone();
-        part.id = "frequencies".into();
-        part.prompt = "Give the angular frequencies ω of the small oscillations.".into();
-        part.wrong.clear();
-        part.hints.clear();
-        self.steps.push(Step {
-            id: part.id.clone(),
-            prompt: part.prompt.clone(),
-            part,
-            against: None,
-        });
+        part.stability.clear();
+        self.adopt(
+            &part,
+            "characteristic",
+            format!(
+                "Solve the characteristic equation det(K − ω² M) = 0{with}: give its roots ω²."
+            ),
+        );
+        self.adopt(
+            freq,
+            "frequencies",
+            format!("Give the angular frequencies ω of the small oscillations{with}."),
+        );
         Ok(())
+    }
+
+    /// A step that asks a problem part's question in the ladder's words (its hints and
+    /// `wrong` examples belong to the part, not to the step).
+    fn adopt(&mut self, part: &Part, id: &str, prompt: String) {
+        let mut part = part.clone();
+        part.id = id.to_string();
+        part.prompt = prompt.clone();
+        part.wrong.clear();
+        part.hints.clear();
+        self.steps.push(Step {
+            id: id.to_string(),
+            prompt,
+            part,
+            against: None,
+        });
     }
 
     /// The linearized equations M (q − q₀)'' + K (q − q₀) = 0 at the point of `freq`, with
@@ -470,8 +482,9 @@ impl Builder<'_> {
             PartKind::Equations
         };
         let prompt = format!(
-            "Linearize about the stable equilibrium {}: write M q'' + K (q − q₀) = 0 for {}{}.",
+            "Linearize about the stable equilibrium {}{}: write M q'' + K (q − q₀) = 0 for {}{}.",
             at_text(freq),
+            conditions(freq),
             self.coordinate_list(),
             if n > 1 {
                 " (separate the equations with `;`)"
@@ -550,6 +563,38 @@ fn point_of(sys: &mut System, part: &Part) -> Result<Vec<Id>, LadderError> {
     Ok(point)
 }
 
+/// ` (with m1 = m, l1 = l)` when a part substitutes parameters, else nothing.
+fn conditions(part: &Part) -> String {
+    if part.substitute.is_empty() {
+        return String::new();
+    }
+    let each: Vec<String> = part
+        .substitute
+        .iter()
+        .map(|(n, v)| format!("{n} = {v}"))
+        .collect();
+    format!(" (with {})", each.join(", "))
+}
+
+/// The squares ω² of a frequencies part's answers, simplified (`(sqrt(g/l))^2` is `g/l`).
+fn squares(problem: &Problem, part: &Part) -> Vec<String> {
+    let mut sys = problem.system.clone();
+    let substituted = sys.substitute_parameters(&part.substitute).is_ok();
+    let ctx = sys.context();
+    let positive = sys.parameter_syms();
+    part.answers
+        .iter()
+        .map(|a| match read_expr(a, &ctx, &mut sys.pool) {
+            Ok(w) if substituted => {
+                let w2 = sys.pool.powi(w, 2);
+                let w2 = sys.pool.simplify(w2, &positive);
+                sys.pool.plain(w2)
+            }
+            _ => format!("({a})^2"),
+        })
+        .collect()
+}
+
 /// `θ = 0`-style text of a part's point.
 fn at_text(part: &Part) -> String {
     if part.at.is_empty() {
@@ -565,6 +610,53 @@ fn at_text(part: &Part) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bank::load_str;
+
+    const ONLY_L: &str = r#"
+id = "oscillator"
+title = "Harmonic oscillator"
+coordinates = [{ name = "x" }]
+lagrangian = "1/2*m*x'^2 - 1/2*k*x^2"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+k = { dimension = "M T^-2", range = [0.5, 2.0] }
+
+[[parts]]
+id = "eom"
+kind = "equation"
+prompt = "EOM?"
+answer = "m*x'' + k*x = 0"
+"#;
+
+    #[test]
+    fn a_problem_with_only_l_starts_at_l() {
+        let p = load_str("oscillator.toml", ONLY_L).unwrap();
+        let steps = ladder(&p).unwrap();
+        let ids: Vec<&str> = steps.iter().map(|s| s.id.as_str()).collect();
+        assert_eq!(
+            ids,
+            [
+                "lagrangian",
+                "momentum:x",
+                "momentum-rate:x",
+                "generalized-force:x",
+                "eom:x"
+            ]
+        );
+        assert_eq!(steps[1].part.answers, ["m*x'"]);
+        assert_eq!(steps[3].part.answers, ["-k*x"]);
+        let v = check_step(&p, &steps[4], "x'' = -k/m*x").unwrap();
+        assert_eq!(v.status, Status::Correct);
+    }
+
+    #[test]
+    fn a_degenerate_system_is_an_error_not_a_panic() {
+        let text = ONLY_L.replace("1/2*m*x'^2 - 1/2*k*x^2", "m*x'*x - 1/2*k*x^2");
+        // The bank loads it (verification, not loading, would reject it).
+        let p = load_str("degenerate.toml", &text).unwrap();
+        assert!(matches!(ladder(&p), Err(LadderError::Mechanics(_))));
+    }
 
     #[test]
     fn splits_at_top_level_commas() {

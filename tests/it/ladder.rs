@@ -186,3 +186,55 @@ fn ladder_snapshots() {
     insta::assert_snapshot!("ladder_simple_pendulum", listing("simple-pendulum"));
     insta::assert_snapshot!("ladder_double_pendulum", listing("double-pendulum"));
 }
+
+#[test]
+fn small_oscillation_steps_carry_m_and_k() {
+    // Double pendulum, m1 = m2 = m, l1 = l2 = l: M = m l² [[2, 1], [1, 1]], K = m g l diag(2, 1).
+    let p = problem("double-pendulum");
+    let steps = ladder(&p).unwrap();
+    let step = |id: &str| steps.iter().find(|s| s.id == id).unwrap();
+    assert_eq!(
+        step("linearized").part.answers,
+        [
+            "2*m*l^2*theta1'' + m*l^2*theta2'' + 2*m*g*l*theta1 = 0",
+            "m*l^2*theta1'' + m*l^2*theta2'' + m*g*l*theta2 = 0"
+        ]
+    );
+    let v = check_step(
+        &p,
+        step("linearized"),
+        "2*theta1'' + theta2'' + 2*g/l*theta1 = 0; theta1'' + theta2'' + g/l*theta2 = 0",
+    )
+    .unwrap();
+    assert_eq!(v.status, Status::Correct, "{:?}", v.diagnoses);
+    // The simple pendulum's ω² is g/l, simplified from ω = √(g/l).
+    let p = problem("simple-pendulum");
+    let steps = ladder(&p).unwrap();
+    let c = steps.iter().find(|s| s.id == "characteristic").unwrap();
+    assert_eq!(c.part.answers, ["g/l"]);
+    // The hoop about cos θ₀ = g/(R ω²): ε'' + ω² sin²θ₀ ε = 0.
+    let p = problem("rotating-hoop");
+    let steps = ladder(&p).unwrap();
+    let lin = steps.iter().find(|s| s.id == "linearized").unwrap();
+    let good = "theta'' + (omega^2 - g^2/(R^2*omega^2))*(theta - acos(g/(R*omega^2))) = 0";
+    assert_eq!(check_step(&p, lin, good).unwrap().status, Status::Correct);
+    let bad = "theta'' + omega^2*(theta - acos(g/(R*omega^2))) = 0";
+    assert_eq!(check_step(&p, lin, bad).unwrap().status, Status::Incorrect);
+}
+
+#[test]
+fn a_constrained_problems_eom_steps_leave_out_the_multiplier() {
+    // Atwood with y1 + y2 = c: d/dt ∂L/∂y1' − ∂L/∂y1 = m1 y1'' + m1 g (the tension comes later).
+    let p = problem("atwood-tension");
+    let steps = ladder(&p).unwrap();
+    let eom = steps.iter().find(|s| s.id == "eom:y1").unwrap();
+    assert_eq!(eom.part.answers, ["m1*y1'' + m1*g = 0"]);
+    assert_eq!(
+        check_step(&p, eom, "y1'' = -g").unwrap().status,
+        Status::Correct
+    );
+    assert_eq!(
+        check_step(&p, eom, "y1'' = g").unwrap().status,
+        Status::Incorrect
+    );
+}
