@@ -265,7 +265,7 @@ impl Builder<'_> {
                 let names = axes[..position.len().min(3)].join(", ");
                 let answers = position.iter().map(|&x| self.plain(x)).collect();
                 let prompt = format!(
-                    "Write the {names} coordinates of body {n} in terms of {}, separated by commas.",
+                    "Write the Cartesian position of body {n} (its {names} components, in that order) in terms of {}, separated by commas.",
                     self.coordinate_list()
                 );
                 self.push(format!("position:{n}"), prompt, PartKind::Values, answers);
@@ -278,8 +278,7 @@ impl Builder<'_> {
                 let v2 = self.sys.pool.simplify(v2, &positive);
                 let answer = self.plain(v2);
                 let prompt = format!(
-                    "Differentiate: write the square of body {n}'s speed, |v|² = ẋ² + ẏ²{}.",
-                    if position.len() > 2 { " + ż²" } else { "" }
+                    "Differentiate the position in time: write the square of body {n}'s speed (the sum of the squares of its velocity components)."
                 );
                 self.push(
                     format!("speed-squared:{n}"),
