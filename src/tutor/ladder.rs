@@ -657,6 +657,70 @@ answer = "m*x'' + k*x = 0"
         assert!(matches!(ladder(&p), Err(LadderError::Mechanics(_))));
     }
 
+    /// The roots ω² of det(K − ω² M) = 0 in closed form, for one or two coordinates.
+    fn roots(sys: &mut System, m: &[Vec<Id>], k: &[Vec<Id>]) -> Vec<Id> {
+        let p = &mut sys.pool;
+        // k holds ∂²L/∂q∂q = −K.
+        let kk: Vec<Vec<Id>> = k
+            .iter()
+            .map(|r| r.iter().map(|&x| p.neg(x)).collect())
+            .collect();
+        if m.len() == 1 {
+            return vec![p.div(kk[0][0], m[0][0])];
+        }
+        let det = |p: &mut crate::expr::Pool, a: &[Vec<Id>]| {
+            let d1 = p.mul(a[0][0], a[1][1]);
+            let d2 = p.mul(a[0][1], a[1][0]);
+            p.sub(d1, d2)
+        };
+        let a = det(p, m);
+        let c = det(p, &kk);
+        let terms = [
+            p.mul(kk[0][0], m[1][1]),
+            p.mul(kk[1][1], m[0][0]),
+            p.mul(kk[0][1], m[1][0]),
+            p.mul(kk[1][0], m[0][1]),
+        ];
+        let (t0, t1) = (p.add(terms[0], terms[1]), p.add(terms[2], terms[3]));
+        let b = p.sub(t0, t1);
+        let b2 = p.powi(b, 2);
+        let four = p.ratio(4, 1);
+        let ac = p.product([four, a, c]);
+        let disc = p.sub(b2, ac);
+        let root = p.sqrt(disc);
+        let two_a = p.add(a, a);
+        let lo = p.sub(b, root);
+        let hi = p.add(b, root);
+        vec![p.div(lo, two_a), p.div(hi, two_a)]
+    }
+
+    /// The engine's M and K give the ω² the problem states (a check that the linearized step
+    /// and the characteristic step agree).
+    #[test]
+    fn m_and_k_give_the_problems_frequencies() {
+        for p in &crate::bank::embedded::bank().problems {
+            let steps = ladder(p).unwrap();
+            let Some(freq) = p.parts.iter().find(|x| x.kind == PartKind::Frequencies) else {
+                continue;
+            };
+            let mut sys = p.system.clone();
+            sys.substitute_parameters(&freq.substitute).unwrap();
+            let point = point_of(&mut sys, freq).unwrap();
+            let (m, k) = mass_and_stiffness(&mut sys, &point);
+            let w2 = roots(&mut sys, &m, &k);
+            let text: Vec<String> = w2.iter().map(|&w| sys.pool.plain(w)).collect();
+            let step = steps.iter().find(|s| s.id == "characteristic").unwrap();
+            let v = check_step(p, step, &text.join(", ")).unwrap();
+            assert_eq!(
+                v.status,
+                Status::Correct,
+                "{}: {text:?} {:?}",
+                p.id,
+                v.diagnoses
+            );
+        }
+    }
+
     #[test]
     fn splits_at_top_level_commas() {
         assert_eq!(split_top_level("(a, f(b, c))"), vec!["a", "f(b, c)"]);
