@@ -482,7 +482,7 @@ impl Builder<'_> {
         };
         let prompt = format!(
             "Linearize about the stable equilibrium {}{}: write M q'' + K (q − q₀) = 0 for {}{}.",
-            at_text(freq),
+            at_text(&sys, &point),
             conditions(freq),
             self.coordinate_list(),
             if n > 1 {
@@ -594,14 +594,15 @@ fn squares(problem: &Problem, part: &Part) -> Vec<String> {
         .collect()
 }
 
-/// `θ = 0`-style text of a part's point.
-fn at_text(part: &Part) -> String {
-    if part.at.is_empty() {
-        return "at the origin".into();
-    }
-    part.at
+/// The point `θ₁ = 0, θ₂ = 0` in Unicode.
+fn at_text(sys: &System, point: &[Id]) -> String {
+    sys.coordinates
         .iter()
-        .map(|(n, v)| format!("{n} = {v}"))
+        .zip(point)
+        .map(|(c, &v)| {
+            let name = sys.pool.var_name(c.sym, 0, Style::Unicode);
+            format!("{name} = {}", sys.pool.unicode(v))
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
