@@ -21,8 +21,12 @@
 //!   verify` proves them against the engine's search and eigen-solver). The `characteristic`
 //!   step asks for the roots ω² of det(K − ω² M) = 0 (a `frequencies` part with `squared`).
 
+use std::collections::hash_map::Entry;
+
 use rustc_hash::FxHashMap;
 
+use crate::check::answer::check_prepared;
+use crate::check::prepare::{Prepared, prepare};
 use crate::check::{self, CheckError, Code, Diagnosis, Status, Verdict};
 use crate::expr::{Id, Style, Sym, read_expr};
 use crate::mechanics::{Body, MechError, System};
@@ -78,18 +82,51 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
 /// Checks `input` against one step. A position is also checked component by component, in
 /// order (the list checker alone would accept x and y exchanged).
 pub fn check_step(problem: &Problem, step: &Step, input: &str) -> Result<Verdict, CheckError> {
-    let mut v = match &step.against {
-        None => check::check(problem, &step.part, input)?,
-        Some(sys) => {
-            let mut own = problem.clone();
-            own.system = (**sys).clone();
-            check::check(&own, &step.part, input)?
+    StepChecker::new(problem).check(step, input)
+}
+
+/// Checks answers to the steps of one problem's ladder, preparing each step once (the first
+/// answer to a step samples its points and derives what it needs; later answers reuse that).
+/// This is what a session keeps while a student climbs the ladder.
+pub struct StepChecker<'a> {
+    problem: &'a Problem,
+    /// Per step id: the problem as the step sees it (when it is judged against its own
+    /// system) and the prepared part.
+    prepared: FxHashMap<String, (Option<Problem>, Prepared)>,
+}
+
+impl<'a> StepChecker<'a> {
+    /// A checker for the steps of `problem`'s ladder.
+    pub fn new(problem: &'a Problem) -> Self {
+        StepChecker {
+            problem,
+            prepared: FxHashMap::default(),
         }
-    };
-    if step.id.starts_with("position:") && v.status == Status::Correct {
-        order_of_components(problem, step, input, &mut v)?;
     }
-    Ok(v)
+
+    /// Checks `input` against `step` (a step of this problem's ladder). Errors are usage
+    /// errors (a part that cannot be prepared), never a judgement of the input.
+    pub fn check(&mut self, step: &Step, input: &str) -> Result<Verdict, CheckError> {
+        let problem = self.problem;
+        let (own, prepared) = match self.prepared.entry(step.id.clone()) {
+            Entry::Occupied(o) => o.into_mut(),
+            Entry::Vacant(v) => {
+                let own = step.against.as_ref().map(|sys| {
+                    let mut own = problem.clone();
+                    own.system = (**sys).clone();
+                    own
+                });
+                let prepared = prepare(own.as_ref().unwrap_or(problem), &step.part)?;
+                v.insert((own, prepared))
+            }
+        };
+        let judged = own.as_ref().unwrap_or(problem);
+        let mut v = check_prepared(judged, &step.part, prepared, input);
+        if step.id.starts_with("position:") && v.status == Status::Correct {
+            order_of_components(problem, step, input, &mut v)?;
+        }
+        Ok(v)
+    }
 }
 
 /// Turns a correct but reordered position into an incorrect one.

@@ -5,7 +5,7 @@
 use lagrange::bank::embedded;
 use lagrange::check::{Code, Status};
 use lagrange::problem::{PartKind, Problem};
-use lagrange::tutor::ladder::{Step, check_step, ladder};
+use lagrange::tutor::ladder::{Step, StepChecker, check_step, ladder};
 
 fn problem(id: &str) -> Problem {
     embedded::problem(id).unwrap()
@@ -237,4 +237,22 @@ fn a_constrained_problems_eom_steps_leave_out_the_multiplier() {
         check_step(&p, eom, "y1'' = g").unwrap().status,
         Status::Incorrect
     );
+}
+
+#[test]
+fn a_step_checker_prepares_once_and_judges_alike() {
+    for p in &embedded::bank().problems {
+        let steps = ladder(p).unwrap();
+        let mut checker = StepChecker::new(p);
+        let n = p.system.coordinates.len();
+        for s in &steps {
+            let answer = s.reference_text(n);
+            for _ in 0..2 {
+                let v = checker.check(s, &answer).unwrap();
+                assert_eq!(v.status, Status::Correct, "{} {}", p.id, s.id);
+            }
+            let v = checker.check(s, "t").unwrap();
+            assert_ne!(v.status, Status::Correct, "{} {}: t", p.id, s.id);
+        }
+    }
 }
