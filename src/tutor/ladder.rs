@@ -9,17 +9,23 @@
 //! linearized equations at the stable equilibrium its `frequencies` part names, the roots ω² of
 //! det(K − ω² M) = 0 and the frequencies.
 //!
+//! [`check_step`] checks one answer; a session keeps a [`StepChecker`], which prepares each
+//! step once. A step judged against another system than the problem's (the linearized one, or
+//! the unconstrained one for a constrained problem's `eom:Q`) carries it in [`Step::against`].
+//!
 //! Choices:
 //! - A position is a `values` part, one item per Cartesian component. The list checker matches
 //!   items unordered, so [`check_step`] also checks the components in order (an exchanged x
-//!   and y is `swapped-symbols`).
+//!   and y is `swapped-symbols`). The student types `x, y` (no brackets).
 //! - The momentum-rate and generalized-force (∂L/∂q) steps are `expression` parts containing
-//!   accelerations / velocities; the checker samples those as independent variables, so the
-//!   comparison is numerical and exact.
+//!   accelerations and velocities; the checker samples those as independent variables (over
+//!   [−2, 2]) with the coordinates, so they are compared numerically like any expression, with
+//!   the usual diagnoses (`velocity-term` for a missing θ̇₁θ̇₂ term, `sign-error`, …).
 //! - Equilibria, ω² and ω are not solved symbolically by the engine (it finds them
 //!   numerically); their steps take the problem's own verified answers (`lagrange problems
 //!   verify` proves them against the engine's search and eigen-solver). The `characteristic`
 //!   step asks for the roots ω² of det(K − ω² M) = 0 (a `frequencies` part with `squared`).
+//!   The equilibria step checks the points only: the checker does not read a stability.
 
 use std::collections::hash_map::Entry;
 
@@ -411,7 +417,11 @@ impl Builder<'_> {
             .find(|p| p.kind == PartKind::Equilibria)
         {
             // The checker reads the points only; stability is not typed by the student (yet).
-            let q = &self.sys.coordinates[0].name;
+            let q = self
+                .sys
+                .coordinates
+                .first()
+                .map_or("q", |c| c.name.as_str());
             let form = if self.sys.n() > 1 {
                 format!("`{q} = …, …`, the points separated by `;`")
             } else {
