@@ -42,6 +42,9 @@ pub struct System {
     /// Generalized non-conservative forces Qᵢ, one per coordinate (0 when absent).
     pub forces: Vec<Id>,
     pub constraints: Vec<Constraint>,
+    /// The bodies T and V were built from (empty when L was given directly); the tutor's
+    /// derivation ladder starts from their positions.
+    pub bodies: Vec<Body>,
 }
 
 /// Sampling range of velocities and accelerations.
@@ -89,6 +92,7 @@ impl System {
         let mut sys = System::from_parts(pool, coordinates, l);
         sys.kinetic = Some(t);
         sys.potential = Some(v);
+        sys.bodies = bodies.to_vec();
         sys
     }
 
@@ -105,6 +109,7 @@ impl System {
             potential: None,
             forces: vec![zero; n],
             constraints: Vec::new(),
+            bodies: Vec::new(),
         };
         sys.collect_parameters();
         sys
@@ -139,6 +144,7 @@ impl System {
             potential: None,
             forces: vec![zero; n],
             constraints: Vec::new(),
+            bodies: Vec::new(),
         }
     }
 

@@ -9,6 +9,7 @@ mod dimensions;
 mod fuzz_replay;
 mod helpers;
 mod hostile;
+mod ladder;
 mod mechanics;
 mod props;
 mod resources;
