@@ -3,3 +3,4 @@
 //! the session state (current problem and part, attempts, hints, revealed answers) and the
 //! student's progress. It returns data and never prints; the REPL, the grader and a future
 //! browser face share it.
+pub mod follow;
