@@ -38,7 +38,7 @@ impl Earlier {
 }
 
 /// The follow-through diagnosis for `input` to `part`, given the student's earlier answers
-/// (oldest first; the most recent relevant one is tried first).
+/// (oldest first; the latest answer to each part counts, the most recent part first).
 ///
 /// `None` when `input` is correct or unreadable, when no earlier answer is both wrong and
 /// readable and upstream of `part`, or when `input` does not follow from any of them.
@@ -128,20 +128,27 @@ impl Stage {
     }
 
     /// Where the mistake is, as in "the mistake is in …".
-    fn place(self, part: &Part) -> &'static str {
+    fn place(self, part: &Part) -> String {
         match self {
-            Stage::Kinetic => "T",
-            Stage::Potential => "V",
-            Stage::Lagrangian => "L",
-            _ => self.noun(part),
+            Stage::Kinetic => "T".into(),
+            Stage::Potential => "V".into(),
+            Stage::Lagrangian => "L".into(),
+            _ => format!("your {}", self.noun(part)),
         }
     }
 }
 
 /// The diagnosis for an incorrect `input`, from the most recent earlier answer it follows from.
+/// Only the latest answer to each part counts (a part answered again, or put right, no longer
+/// carries its older answers), which also bounds the work by the number of parts.
 fn follows(problem: &Problem, part: &Part, input: &str, earlier: &[Earlier]) -> Option<Diagnosis> {
     let to = Stage::of(part)?;
-    for e in earlier.iter().rev().filter(|e| e.part != part.id) {
+    let mut seen: Vec<&str> = vec![part.id.as_str()];
+    for e in earlier.iter().rev() {
+        if seen.contains(&e.part.as_str()) {
+            continue;
+        }
+        seen.push(&e.part);
         let Some(ep) = problem.part(&e.part) else {
             continue;
         };

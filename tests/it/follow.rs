@@ -253,7 +253,7 @@ fn a_wrong_eom_carries_into_the_equilibria() {
         "equilibria",
         "pi/2, -pi/2",
         &earlier,
-        "equation of motion",
+        "your equation of motion",
     );
     assert!(!follows(&verdict(&p, "equilibria", "pi/3", &earlier)));
 }
@@ -300,4 +300,73 @@ fn the_most_recent_relevant_earlier_answer_is_blamed() {
         &earlier,
         "T",
     );
+}
+
+#[test]
+fn only_the_latest_answer_to_a_part_counts() {
+    let p = problem("simple-pendulum");
+    let wrong_l = "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)";
+    let its_eom = "m*l^2*theta'' - m*g*l*sin(theta) = 0";
+    // L put right since: the old wrong L no longer explains the EOM.
+    let fixed = [
+        Earlier::new("lagrangian", wrong_l),
+        Earlier::new("lagrangian", "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)"),
+    ];
+    assert!(!follows(&verdict(&p, "eom", its_eom, &fixed)));
+    // L got wrong since: the latest answer is the one blamed.
+    let broke = [
+        Earlier::new("lagrangian", "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)"),
+        Earlier::new("lagrangian", wrong_l),
+    ];
+    assert_follows(&p, "eom", its_eom, &broke, "L");
+    // Earlier answers to the same part never explain it.
+    let same = [Earlier::new("eom", its_eom)];
+    assert!(!follows(&verdict(&p, "eom", its_eom, &same)));
+}
+
+#[test]
+fn verdict_with_follow_through_snapshot() {
+    let mut shown = String::new();
+    let cases: [(&str, &str, &str, &str, &str); 4] = [
+        (
+            "simple-pendulum",
+            "lagrangian",
+            "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)",
+            "eom",
+            "m*l^2*theta'' - m*g*l*sin(theta) = 0",
+        ),
+        (
+            "simple-pendulum",
+            "kinetic",
+            "m*l^2*theta'^2",
+            "lagrangian",
+            "m*l^2*theta'^2 + m*g*l*cos(theta)",
+        ),
+        (
+            "simple-pendulum",
+            "eom",
+            "m*l^2*theta'' + m*g*l*cos(theta) = 0",
+            "equilibria",
+            "pi/2, -pi/2",
+        ),
+        (
+            "double-pendulum",
+            "lagrangian",
+            WRONG_L[3].1,
+            "eom",
+            WRONG_L[3].2,
+        ),
+    ];
+    for (id, before, wrong, part, input) in cases {
+        let p = problem(id);
+        let v = verdict(&p, part, input, &[Earlier::new(before, wrong)]);
+        shown.push_str(&format!(
+            "{id}/{part} after a wrong {before}: {}\n",
+            v.status.name()
+        ));
+        for d in &v.diagnoses {
+            shown.push_str(&format!("  {}: {}\n", d.code, d.message));
+        }
+    }
+    insta::assert_snapshot!("follow_through_verdicts", shown);
 }
