@@ -1,11 +1,12 @@
 //! Follow-through: an answer that is wrong for the reference but exactly what follows from the
 //! student's own earlier wrong answer (their T or V → L; their L → the equations of motion →
-//! the equilibria → the frequencies; their equations of motion → the equilibria) stays
+//! the equilibria → the frequencies; their equations of motion → the equilibria and the
+//! frequencies) stays
 //! incorrect, and gets the diagnosis `follows-from-earlier`, which names where the real
 //! mistake is.
 //!
 //! Mechanism: a variant of the problem whose system is built from the earlier answer (the
-//! student's L, or T − V with their T or V, or a system whose equilibria are those of their
+//! student's L, or T − V with their T or V, or a system with the rest dynamics of their
 //! equations of motion); the current answer is checked against that variant with the existing
 //! checker (expressions and equations) or verified against it as the bank verifies a reference
 //! (equilibria and frequencies, which the engine finds numerically).
@@ -108,8 +109,8 @@ impl Stage {
         use Stage::*;
         match to {
             Lagrangian => matches!(self, Kinetic | Potential),
-            Motion | Frequencies => matches!(self, Kinetic | Potential | Lagrangian),
-            Equilibria => matches!(self, Kinetic | Potential | Lagrangian | Motion),
+            Motion => matches!(self, Kinetic | Potential | Lagrangian),
+            Equilibria | Frequencies => matches!(self, Kinetic | Potential | Lagrangian | Motion),
             _ => false,
         }
     }
@@ -162,9 +163,12 @@ fn follows(problem: &Problem, part: &Part, input: &str, earlier: &[Earlier]) -> 
         if before.status != Status::Incorrect {
             continue;
         }
-        let Some(system) = variant_system(problem, from, &e.answer) else {
+        let Some((system, dynamics)) = variant_system(problem, from, &e.answer) else {
             continue;
         };
+        if to == Stage::Frequencies && !dynamics {
+            continue;
+        }
         if holds_in(problem, system, part, to, input) {
             return Some(diagnosis(part, to, ep, from, &before));
         }
@@ -193,8 +197,9 @@ fn diagnosis(part: &Part, to: Stage, ep: &Part, from: Stage, before: &Verdict) -
     Diagnosis::new(Code::FollowsFromEarlier, message)
 }
 
-/// The problem's system rebuilt on the student's answer `answer` at stage `from`.
-fn variant_system(problem: &Problem, from: Stage, answer: &str) -> Option<System> {
+/// The problem's system rebuilt on the student's answer `answer` at stage `from`, and whether
+/// its small oscillations are the student's too (not only its equilibria).
+fn variant_system(problem: &Problem, from: Stage, answer: &str) -> Option<(System, bool)> {
     let mut sys = problem.system.clone();
     let ctx = problem.context();
     match from {
@@ -225,34 +230,57 @@ fn variant_system(problem: &Problem, from: Stage, answer: &str) -> Option<System
             sys.kinetic = None;
             sys.potential = None;
         }
-        Stage::Motion => resting_like(&mut sys, answer)?,
+        Stage::Motion => {
+            let dynamics = resting_like(&mut sys, answer)?;
+            return Some((sys, dynamics));
+        }
         Stage::Equilibria | Stage::Frequencies => return None,
     }
-    Some(sys)
+    Some((sys, true))
 }
 
-/// Makes `sys` a system whose equilibria are the rest points of the student's equations
-/// `answer` (`;`-separated, one per coordinate): L = Σ ½ q̇ᵢ² with generalized forces
-/// Qᵢ = (the i-th equation's residual at rest), so the forces vanish exactly where the
-/// student's equations hold at rest. Only its equilibria mean anything.
-fn resting_like(sys: &mut System, answer: &str) -> Option<()> {
+/// Makes `sys` a system with the rest dynamics of the student's equations `answer`
+/// (`;`-separated, one per coordinate) written A(q)·q̈ + r(q) = 0 at rest: L = Σ ½ q̇ᵢ² with
+/// generalized forces Q, so q̈ = Q has the student's equilibria (where r = 0). Returns whether
+/// its frequencies are the student's too: for one coordinate with an acceleration term
+/// (Q = −r/a); not for an equation without accelerations or for several coordinates.
+fn resting_like(sys: &mut System, answer: &str) -> Option<bool> {
     let ctx = sys.context();
     let pieces: Vec<&str> = answer.split(';').filter(|s| !s.trim().is_empty()).collect();
-    if pieces.len() != sys.n() {
+    let n = sys.n();
+    if pieces.len() != n {
         return None;
     }
     let zero = sys.pool.zero();
-    let rest: FxHashMap<_, Id> = sys
-        .coordinates
+    let syms: Vec<_> = sys.coordinates.iter().map(|c| c.sym).collect();
+    let rest: FxHashMap<_, Id> = syms
         .iter()
-        .flat_map(|c| [((c.sym, 1), zero), ((c.sym, 2), zero)])
+        .flat_map(|&c| [((c, 1), zero), ((c, 2), zero)])
         .collect();
-    let mut forces = Vec::with_capacity(pieces.len());
+    let (mut r, mut a) = (Vec::with_capacity(n), Vec::with_capacity(n));
     for piece in pieces {
-        let (l, r) = read_equation(piece, &ctx, &mut sys.pool).ok()?;
-        let residual = sys.pool.sub(l, r);
-        forces.push(sys.pool.substitute(residual, &rest));
+        let (lhs, rhs) = read_equation(piece, &ctx, &mut sys.pool).ok()?;
+        let residual = sys.pool.sub(lhs, rhs);
+        r.push(sys.pool.substitute(residual, &rest));
+        let row: Vec<Id> = syms
+            .iter()
+            .map(|&c| {
+                let d = sys.pool.diff(residual, c, 2);
+                sys.pool.substitute(d, &rest)
+            })
+            .collect();
+        a.push(row);
     }
+    // One coordinate with an acceleration: Q = −r/a. Otherwise Q = −r, right for the
+    // equilibria only: the engine's modes assume a symmetric stiffness, which −A⁻¹·r need
+    // not have for several coordinates.
+    let (forces, dynamics) = match (&a[..], &r[..]) {
+        ([row], [r0]) if !sys.is_zero(row[0]) => {
+            let q = sys.pool.div(*r0, row[0]);
+            (vec![sys.pool.neg(q)], true)
+        }
+        _ => (r.iter().map(|&x| sys.pool.neg(x)).collect(), false),
+    };
     let kinetic: Vec<String> = sys
         .coordinates
         .iter()
@@ -262,7 +290,7 @@ fn resting_like(sys: &mut System, answer: &str) -> Option<()> {
     sys.kinetic = None;
     sys.potential = None;
     sys.forces = forces;
-    Some(())
+    Some(dynamics)
 }
 
 /// Whether `input` is the right answer to `part` in the problem whose system is `system`.

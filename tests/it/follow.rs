@@ -370,3 +370,51 @@ fn verdict_with_follow_through_snapshot() {
     }
     insta::assert_snapshot!("follow_through_verdicts", shown);
 }
+
+#[test]
+fn a_wrong_eom_carries_into_the_frequencies() {
+    // Twice the gravity term: ω = √(2g/l).
+    let p = problem("simple-pendulum");
+    let earlier = [Earlier::new(
+        "eom",
+        "m*l^2*theta'' + 2*m*g*l*sin(theta) = 0",
+    )];
+    assert_follows(
+        &p,
+        "frequencies",
+        "sqrt(2*g/l)",
+        &earlier,
+        "your equation of motion",
+    );
+    assert!(!follows(&verdict(
+        &p,
+        "frequencies",
+        "sqrt(3*g/l)",
+        &earlier
+    )));
+    // The double pendulum (equal masses and lengths) with g doubled in both equations: both
+    // frequencies grow by √2, but follow-through from equations of several coordinates to
+    // frequencies is not attempted (the engine's modes want a symmetric stiffness): no claim.
+    let p = problem("double-pendulum");
+    let eom = "(m1+m2)*l1*theta1'' + m2*l2*theta2''*cos(theta1-theta2) + m2*l2*theta2'^2*sin(theta1-theta2) + 2*(m1+m2)*g*sin(theta1) = 0; \
+               l2*theta2'' + l1*theta1''*cos(theta1-theta2) - l1*theta1'^2*sin(theta1-theta2) + 2*g*sin(theta2) = 0";
+    let earlier = [Earlier::new("eom", eom)];
+    let doubled = "sqrt(2*(2 - sqrt(2))*g/l), sqrt(2*(2 + sqrt(2))*g/l)";
+    let v = verdict(&p, "frequencies", doubled, &earlier);
+    assert_eq!(v.status, Status::Incorrect);
+    assert!(!follows(&v), "{v:?}");
+}
+
+#[test]
+fn an_equation_without_accelerations_explains_equilibria_only() {
+    // The bead on the parabola's equilibrium condition, with the wrong sign of g: its rest
+    // points are the equilibria; it says nothing about frequencies.
+    let p = problem("bead-parabola");
+    let earlier = [Earlier::new(
+        "equilibrium-condition",
+        "r*(2*g*a + omega^2) = 0",
+    )];
+    let v = verdict(&p, "frequencies", "sqrt(2*g*a + omega^2)", &earlier);
+    assert_eq!(v.status, Status::Incorrect);
+    assert!(!follows(&v), "{v:?}");
+}
