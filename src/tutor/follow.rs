@@ -146,13 +146,14 @@ fn follows(problem: &Problem, part: &Part, input: &str, earlier: &[Earlier]) -> 
     let to = Stage::of(part)?;
     let mut seen: Vec<&str> = vec![part.id.as_str()];
     for e in earlier.iter().rev() {
-        if seen.contains(&e.part.as_str()) {
-            continue;
-        }
-        seen.push(&e.part);
+        // Only the problem's own parts are remembered, so `seen` stays as short as its parts.
         let Some(ep) = problem.part(&e.part) else {
             continue;
         };
+        if seen.contains(&ep.id.as_str()) {
+            continue;
+        }
+        seen.push(&ep.id);
         let Some(from) = Stage::of(ep) else { continue };
         if !from.feeds(to) || !ep.substitute.iter().all(|s| part.substitute.contains(s)) {
             continue;

@@ -418,3 +418,35 @@ fn an_equation_without_accelerations_explains_equilibria_only() {
     assert_eq!(v.status, Status::Incorrect);
     assert!(!follows(&v), "{v:?}");
 }
+
+#[test]
+fn hostile_histories_neither_panic_nor_claim() {
+    let p = problem("simple-pendulum");
+    let wrong_l = "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)";
+    let its_eom = "m*l^2*theta'' - m*g*l*sin(theta) = 0";
+    // Many answers to parts that do not exist, and garbage, around the real wrong L.
+    let mut earlier: Vec<Earlier> = (0..20_000)
+        .map(|i| Earlier::new(format!("no-part-{i}"), "x"))
+        .collect();
+    earlier.push(Earlier::new("lagrangian", wrong_l));
+    for junk in [
+        "",
+        ";;;",
+        "((((",
+        "theta'' = ",
+        "1/0",
+        "{",
+        "}",
+        "[]",
+        "θ̈ = sin(θ",
+    ] {
+        earlier.push(Earlier::new("kinetic", junk));
+        earlier.push(Earlier::new("eom", junk));
+        for part in ["lagrangian", "eom", "equilibria", "frequencies"] {
+            let v = verdict(&p, part, junk, &earlier);
+            assert!(!follows(&v), "{part} `{junk}`: {v:?}");
+        }
+    }
+    // The wrong L is still the latest answer to `lagrangian`.
+    assert_follows(&p, "eom", its_eom, &earlier, "L");
+}
