@@ -121,6 +121,8 @@ impl Stage {
             Stage::Kinetic => "kinetic energy",
             Stage::Potential => "potential energy",
             Stage::Lagrangian => "Lagrangian",
+            // A condition such as an equilibrium condition has no accelerations.
+            Stage::Motion if !part.answers.iter().any(|a| a.contains("''")) => "equation",
             Stage::Motion if part.kind == PartKind::Equations => "equations of motion",
             Stage::Motion => "equation of motion",
             Stage::Equilibria => "equilibria",

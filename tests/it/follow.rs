@@ -450,3 +450,24 @@ fn hostile_histories_neither_panic_nor_claim() {
     // The wrong L is still the latest answer to `lagrangian`.
     assert_follows(&p, "eom", its_eom, &earlier, "L");
 }
+
+#[test]
+fn a_wrong_equilibrium_condition_carries_into_the_equilibria() {
+    // The bead on the parabola: a condition with a spurious root r = g/ω².
+    let p = problem("bead-parabola");
+    let earlier = [Earlier::new(
+        "equilibrium-condition",
+        "(r - g/omega^2)*(2*g*a - omega^2) = 0",
+    )];
+    assert_follows(
+        &p,
+        "equilibria",
+        "r = g/omega^2",
+        &earlier,
+        "your equation (part `equilibrium-condition`)",
+    );
+    // The true equilibrium is just correct.
+    let v = verdict(&p, "equilibria", "r = 0", &earlier);
+    assert_eq!(v.status, Status::Correct);
+    assert!(!follows(&v));
+}
