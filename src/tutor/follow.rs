@@ -1,9 +1,9 @@
 //! Follow-through: an answer that is wrong for the reference but exactly what follows from the
-//! student's own earlier wrong answer (their T or V → L; their L → the equations of motion →
-//! the equilibria → the frequencies; their equations of motion → the equilibria and the
-//! frequencies) stays
-//! incorrect, and gets the diagnosis `follows-from-earlier`, which names where the real
-//! mistake is.
+//! student's own earlier wrong answer stays incorrect, and gets the diagnosis
+//! `follows-from-earlier`, which names where the real mistake is. Chains: their T or V → L;
+//! their T, V or L → the momenta, the energy function, the equations of motion, the
+//! equilibria and the frequencies; their equations of motion → the equilibria and (one
+//! coordinate) the frequencies.
 //!
 //! Mechanism: a variant of the problem whose system is built from the earlier answer (the
 //! student's L, or T − V with their T or V, or a system with the rest dynamics of their
@@ -81,6 +81,10 @@ enum Stage {
     Kinetic,
     Potential,
     Lagrangian,
+    /// The momentum conjugate to coordinate i.
+    Momentum(usize),
+    /// The energy function h.
+    Energy,
     Motion,
     Equilibria,
     Frequencies,
@@ -98,6 +102,8 @@ impl Stage {
                 Quantity::Kinetic => Some(Stage::Kinetic),
                 Quantity::Potential => Some(Stage::Potential),
                 Quantity::Lagrangian => Some(Stage::Lagrangian),
+                Quantity::Momentum(i) => Some(Stage::Momentum(i)),
+                Quantity::EnergyFunction => Some(Stage::Energy),
                 _ => None,
             },
             _ => None,
@@ -109,6 +115,7 @@ impl Stage {
         use Stage::*;
         match to {
             Lagrangian => matches!(self, Kinetic | Potential),
+            Momentum(_) | Energy => matches!(self, Kinetic | Potential | Lagrangian),
             Motion => matches!(self, Kinetic | Potential | Lagrangian),
             Equilibria | Frequencies => matches!(self, Kinetic | Potential | Lagrangian | Motion),
             _ => false,
@@ -121,6 +128,8 @@ impl Stage {
             Stage::Kinetic => "kinetic energy",
             Stage::Potential => "potential energy",
             Stage::Lagrangian => "Lagrangian",
+            Stage::Momentum(_) => "momentum",
+            Stage::Energy => "energy function",
             // A condition such as an equilibrium condition has no accelerations.
             Stage::Motion if !part.answers.iter().any(|a| a.contains("''")) => "equation",
             Stage::Motion if part.kind == PartKind::Equations => "equations of motion",
@@ -237,7 +246,9 @@ fn variant_system(problem: &Problem, from: Stage, answer: &str) -> Option<(Syste
             let dynamics = resting_like(&mut sys, answer)?;
             return Some((sys, dynamics));
         }
-        Stage::Equilibria | Stage::Frequencies => return None,
+        Stage::Momentum(_) | Stage::Energy | Stage::Equilibria | Stage::Frequencies => {
+            return None;
+        }
     }
     Some((sys, true))
 }
@@ -305,6 +316,21 @@ fn holds_in(problem: &Problem, system: System, part: &Part, to: Stage, input: &s
         Stage::Lagrangian => {
             let mut vp = part.clone();
             vp.answers = vec![variant.system.pool.plain(variant.system.lagrangian)];
+            correct_in(&variant, &vp, input)
+        }
+        Stage::Momentum(_) | Stage::Energy => {
+            let Ok(d) = variant.system.derive() else {
+                return false;
+            };
+            let derived = match to {
+                Stage::Momentum(i) => match d.steps.get(i) {
+                    Some(s) => s.momentum,
+                    None => return false,
+                },
+                _ => variant.system.energy(&d).function,
+            };
+            let mut vp = part.clone();
+            vp.answers = vec![variant.system.pool.plain(derived)];
             correct_in(&variant, &vp, input)
         }
         Stage::Motion => correct_in(&variant, part, input),

@@ -471,3 +471,32 @@ fn a_wrong_equilibrium_condition_carries_into_the_equilibria() {
     assert_eq!(v.status, Status::Correct);
     assert!(!follows(&v));
 }
+
+#[test]
+fn a_wrong_t_or_l_carries_into_the_momentum_and_the_energy_function() {
+    let p = problem("simple-pendulum");
+    // T without the ½: p = 2·m·l²·θ̇, h = m·l²·θ̇² − m·g·l·cos θ.
+    let t = [Earlier::new("kinetic", "m*l^2*theta'^2")];
+    assert_follows(&p, "momentum", "2*m*l^2*theta'", &t, "T");
+    assert_follows(
+        &p,
+        "energy-function",
+        "m*l^2*theta'^2 - m*g*l*cos(theta)",
+        &t,
+        "T",
+    );
+    // The right momentum p = m·l²·θ̇ after it is correct.
+    let v = verdict(&p, "momentum", "m*l^2*theta'", &t);
+    assert_eq!(v.status, Status::Correct);
+    assert!(!follows(&v));
+    // A flipped V leaves p alone but flips the potential part of h.
+    let l = [Earlier::new("lagrangian", WRONG_L[4].1)];
+    assert_follows(
+        &p,
+        "energy-function",
+        "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)",
+        &l,
+        "L",
+    );
+    assert!(!follows(&verdict(&p, "momentum", "2*m*l^2*theta'", &l)));
+}
