@@ -500,3 +500,31 @@ fn a_wrong_t_or_l_carries_into_the_momentum_and_the_energy_function() {
     );
     assert!(!follows(&verdict(&p, "momentum", "2*m*l^2*theta'", &l)));
 }
+
+#[test]
+fn a_wrong_lagrangian_carries_into_substituted_frequencies() {
+    // The double pendulum's frequencies part sets m1 = m2 = m, l1 = l2 = l; an L with g
+    // doubled gives frequencies √2 times the true √((2 ∓ √2)·g/l).
+    let p = problem("double-pendulum");
+    let l = "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + m2*l1*l2*theta1'*theta2'*cos(theta1-theta2) + 2*(m1+m2)*g*l1*cos(theta1) + 2*m2*g*l2*cos(theta2)";
+    let earlier = [Earlier::new("lagrangian", l)];
+    assert_follows(
+        &p,
+        "frequencies",
+        "sqrt(2*(2 - sqrt(2))*g/l), sqrt(2*(2 + sqrt(2))*g/l)",
+        &earlier,
+        "L",
+    );
+    assert_follows(
+        &p,
+        "omega-squared",
+        "2*(2 - sqrt(2))*g/l, 2*(2 + sqrt(2))*g/l",
+        &earlier,
+        "L",
+    );
+    let v = verdict(&p, "frequencies", "sqrt(2*(2 - sqrt(2))*g/l)", &earlier);
+    assert!(
+        !follows(&v),
+        "one of two frequencies does not follow: {v:?}"
+    );
+}
