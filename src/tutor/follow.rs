@@ -20,7 +20,8 @@ use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 /// An earlier answer of the same student to part `part` (its id) of the same problem.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// Serialisable, so a session's progress can keep the answers follow-through needs.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Earlier {
     /// The id of the part the answer was given to.
     pub part: String,
@@ -411,6 +412,17 @@ mod tests {
             ["x = 0, y = 1", "x = 1, y = atan2(1, 2)"]
         );
         assert!(list_items("  ", false).is_empty());
+    }
+
+    #[test]
+    fn earlier_answers_round_trip_through_json() {
+        let e = Earlier::new("lagrangian", "1/2*m*l^2*theta'^2");
+        let json = serde_json::to_string(&e).unwrap();
+        assert_eq!(
+            json,
+            r#"{"part":"lagrangian","answer":"1/2*m*l^2*theta'^2"}"#
+        );
+        assert_eq!(serde_json::from_str::<Earlier>(&json).unwrap(), e);
     }
 
     #[test]
