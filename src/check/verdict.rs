@@ -49,6 +49,9 @@ pub enum Code {
     Dimension,
     /// The answer is undefined where the right one is defined.
     Undefined,
+    /// Wrong, but exactly what follows from the student's own earlier wrong answer (their L →
+    /// the equation of motion of that L…): the real mistake is in the earlier part.
+    FollowsFromEarlier,
     /// T + V written where L = T − V (or h) is asked.
     TPlusV,
     /// The Lagrangian given where T, V, h or a momentum is asked.
@@ -94,13 +97,14 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 26] = [
+    pub const ALL: [Code; 27] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
         Code::WrongKind,
         Code::Dimension,
         Code::Undefined,
+        Code::FollowsFromEarlier,
         Code::TPlusV,
         Code::GaveLagrangian,
         Code::OmegaSquared,
@@ -132,6 +136,7 @@ impl Code {
             Code::WrongKind => "wrong-kind",
             Code::Dimension => "dimension",
             Code::Undefined => "undefined",
+            Code::FollowsFromEarlier => "follows-from-earlier",
             Code::TPlusV => "t-plus-v",
             Code::GaveLagrangian => "gave-lagrangian",
             Code::OmegaSquared => "omega-squared",
@@ -217,13 +222,14 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 26] = [
+        const DOCUMENTED: [&str; 27] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
             "wrong-kind",
             "dimension",
             "undefined",
+            "follows-from-earlier",
             "t-plus-v",
             "gave-lagrangian",
             "omega-squared",
