@@ -3,3 +3,9 @@
 //! the session state (current problem and part, attempts, hints, revealed answers) and the
 //! student's progress. It returns data and never prints; the REPL, the grader and a future
 //! browser face share it.
+
+pub mod command;
+pub mod progress;
+
+pub use command::{Command, CommandError, parse};
+pub use progress::{PartProgress, Progress, ProgressError};
