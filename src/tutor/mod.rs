@@ -6,6 +6,10 @@
 
 pub mod command;
 pub mod progress;
+pub mod response;
+pub mod session;
 
 pub use command::{Command, CommandError, parse};
 pub use progress::{PartProgress, Progress, ProgressError};
+pub use response::Response;
+pub use session::Session;

@@ -13,6 +13,7 @@ mod mechanics;
 mod props;
 mod resources;
 mod scale;
+mod session;
 mod soundness;
 mod symbolic;
 mod syntax;
