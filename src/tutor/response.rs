@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::check::Verdict;
 use crate::report::problems::ProblemSheet;
+use crate::report::{DerivationReport, ModesReport, Reading};
 
 /// One thing a session answers with.
 #[derive(Clone, Debug, Serialize)]
@@ -31,6 +32,8 @@ pub enum Response {
     Progress(ProgressReply),
     /// The commands, or one command's usage.
     Help(HelpReply),
+    /// An analysis (`:read`, `:derive`, `:modes`): the same report the CLI command gives.
+    Analysis(AnalysisReply),
     /// A command or answer that could not be carried out (never counts as an attempt).
     Error(ErrorReply),
     /// The session ends.
@@ -195,6 +198,30 @@ pub struct HelpReply {
     pub commands: Vec<HelpEntry>,
 }
 
+/// An analysis and its report.
+#[derive(Clone, Debug, Serialize)]
+pub struct AnalysisReply {
+    /// Which: `read`, `derive` or `modes`.
+    pub of: String,
+    /// The report (rendered by the face with the report's own `render`).
+    pub report: AnalysisReport,
+    /// What the analysis assumed, e.g. the parameter values `:modes` used.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+/// The report of an analysis, serialised as the report itself.
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum AnalysisReport {
+    /// How an expression is read (`:read`).
+    Read(Box<Reading>),
+    /// The derivation of the open problem (`:derive`).
+    Derive(Box<DerivationReport>),
+    /// The equilibria and normal modes of the open problem (`:modes`).
+    Modes(Box<ModesReport>),
+}
+
 /// Something that could not be done.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct ErrorReply {
@@ -230,6 +257,7 @@ impl Response {
             Response::Parts(_) => "parts",
             Response::Progress(_) => "progress",
             Response::Help(_) => "help",
+            Response::Analysis(_) => "analysis",
             Response::Error(_) => "error",
             Response::Quit => "quit",
         }

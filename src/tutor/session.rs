@@ -8,8 +8,9 @@ use rustc_hash::FxHashMap;
 use super::command::{COMMANDS, Command, command_info, did_you_mean, parse};
 use super::progress::Progress;
 use super::response::{
-    DoneReply, HelpEntry, HelpReply, HintReply, PartEntry, PartPrompt, PartsReply, ProblemEntry,
-    ProblemsReply, ProgressReply, Response, SolutionReply, StatementReply, VerdictReply,
+    AnalysisReply, AnalysisReport, DoneReply, HelpEntry, HelpReply, HintReply, PartEntry,
+    PartPrompt, PartsReply, ProblemEntry, ProblemsReply, ProgressReply, Response, SolutionReply,
+    StatementReply, VerdictReply,
 };
 use crate::bank::Bank;
 use crate::check::answer::check_prepared;
@@ -17,6 +18,7 @@ use crate::check::prepare::{Prepared, prepare};
 use crate::check::{CheckError, Status, Verdict};
 use crate::problem::{Part, Problem};
 use crate::report::problems::{problem_sheet, terminal_math};
+use crate::report::{self, ModesOptions, ReadOptions, reading};
 
 /// The open problem: its index in the bank, its current part and its prepared parts.
 struct Open {
@@ -76,10 +78,12 @@ impl Session {
             Command::Progress => vec![self.progress_reply()],
             Command::Help(topic) => vec![help(topic.as_deref())],
             Command::Quit => vec![Response::Quit],
+            Command::Read(expr) => vec![self.read(&expr)],
+            Command::Derive(l) if l.is_empty() => vec![self.analyse(false)],
+            Command::Modes(l) if l.is_empty() => vec![self.analyse(true)],
             Command::Tutor
             | Command::Show
             | Command::Back
-            | Command::Read(_)
             | Command::Derive(_)
             | Command::Modes(_) => vec![not_available(&cmd)],
         }
@@ -423,6 +427,76 @@ impl Session {
         })
     }
 
+    /// `:read EXPR`: read with the open problem's coordinates and parameter dimensions (or
+    /// with every name open when no problem is).
+    fn read(&self, expr: &str) -> Response {
+        let mut opts = ReadOptions::default();
+        if let Some(p) = self.problem() {
+            opts.coords = p
+                .system
+                .coordinates
+                .iter()
+                .map(|c| c.name.clone())
+                .collect();
+            // Every symbol's dimension as the problem declares it (angles: none).
+            let names = p.system.coordinates.iter().map(|c| &c.name);
+            let names = names.chain(p.system.parameters.iter().map(|q| &q.name));
+            opts.dims = names
+                .filter_map(|n| Some((n.clone(), p.dims.get(n)?)))
+                .collect();
+        }
+        match reading(expr, &opts) {
+            Ok(r) => Response::Analysis(AnalysisReply {
+                of: "read".to_string(),
+                report: AnalysisReport::Read(Box::new(r)),
+                note: None,
+            }),
+            Err(e) => Response::error("syntax", format!("`{}`: {e}", visible(expr)), None),
+        }
+    }
+
+    /// `:derive` or `:modes` on the open problem's system.
+    fn analyse(&self, modes: bool) -> Response {
+        let Some(p) = self.problem() else {
+            return no_problem();
+        };
+        // Numeric modes need numbers: each parameter at the middle of its sampling range.
+        let params: Vec<(String, String)> = p
+            .system
+            .parameters
+            .iter()
+            .map(|q| (q.name.clone(), format!("{}", (q.range.0 + q.range.1) / 2.0)))
+            .collect();
+        let note = (modes && !params.is_empty()).then(|| {
+            let shown: Vec<String> = params.iter().map(|(n, v)| format!("{n} = {v}")).collect();
+            format!(
+                "parameters at the middle of their ranges: {}",
+                shown.join(", ")
+            )
+        });
+        let report = if modes {
+            let opts = ModesOptions {
+                params,
+                ..ModesOptions::default()
+            };
+            report::modes(&p.system, &opts)
+                .map(|r| AnalysisReport::Modes(Box::new(r)))
+                .map_err(|e| e.to_string())
+        } else {
+            report::derivation(&p.system)
+                .map(|r| AnalysisReport::Derive(Box::new(r)))
+                .map_err(|e| e.to_string())
+        };
+        match report {
+            Ok(report) => Response::Analysis(AnalysisReply {
+                of: if modes { "modes" } else { "derive" }.to_string(),
+                report,
+                note,
+            }),
+            Err(e) => Response::error("analysis", e, None),
+        }
+    }
+
     fn no_part(&self) -> Response {
         if self.open.is_none() {
             no_problem()
@@ -445,19 +519,16 @@ fn no_problem() -> Response {
 }
 
 fn not_available(cmd: &Command) -> Response {
-    let name = match cmd {
-        Command::Tutor => "tutor",
-        Command::Show => "show",
-        Command::Back => "back",
-        Command::Read(_) => "read",
-        Command::Derive(_) => "derive",
-        _ => "modes",
+    let message = match cmd {
+        Command::Tutor => "`:tutor` is not available yet in this version",
+        Command::Show => "`:show` is not available yet in this version",
+        Command::Back => "`:back` is not available yet in this version",
+        Command::Derive(_) => {
+            "`:derive L` is not available yet: `:derive` analyses the open problem"
+        }
+        _ => "`:modes L` is not available yet: `:modes` analyses the open problem",
     };
-    Response::error(
-        "not-available",
-        format!("`:{name}` is not available yet in this version"),
-        None,
-    )
+    Response::error("not-available", message, None)
 }
 
 /// Help on every command, or on one (an unknown one gets did-you-mean).

@@ -245,3 +245,48 @@ fn short_session_json() {
     }
     insta::assert_snapshot!("session_short_json", lines.join("\n"));
 }
+
+#[test]
+fn analyses_of_the_open_problem() {
+    let mut s = session();
+    // Nothing open: `:read` still reads (every name open); `:derive` asks for a problem.
+    assert!(matches!(one(&mut s, ":read m*g*l"), Response::Analysis(a) if a.of == "read"));
+    assert!(matches!(one(&mut s, ":derive"), Response::Error(e) if e.code == "no-problem-open"));
+    s.handle(":open simple-pendulum");
+    let json = |r: &Response| serde_json::to_value(r).unwrap_or_default();
+    let read = json(&one(&mut s, ":read 1/2*m*l^2*thetadot^2"));
+    assert_eq!(read["kind"], "analysis");
+    assert_eq!(read["report"]["forms"], "m*l^2*theta'^2/2");
+    assert_eq!(read["report"]["dimension"]["known"], "M L² T⁻²");
+    let derive = json(&one(&mut s, ":derive"));
+    assert_eq!(derive["of"], "derive");
+    // p = m·l²·θ̇ and the full EOM.
+    assert_eq!(derive["report"]["momenta"][0], "m*l^2*theta'");
+    assert_eq!(
+        derive["report"]["equations"][0],
+        "m*l^2*theta'' + m*g*l*sin(theta)"
+    );
+    let modes = json(&one(&mut s, ":modes"));
+    // ω = √(g/l) at the stated midpoints g = 10, l = 1.25: √8.
+    assert!(modes["note"].as_str().is_some_and(|n| n.contains("g = 10")));
+    let omega = modes["report"]["equilibria"][0]["frequencies"][0].as_f64();
+    assert!(
+        omega.is_some_and(|w| (w - 8f64.sqrt()).abs() < 1e-9),
+        "{omega:?}"
+    );
+    assert_eq!(
+        modes["report"]["equilibria"].as_array().map(Vec::len),
+        Some(2)
+    );
+    // ω = √(g/l) at the stated midpoints g = 10, l = 1.25: √8.
+    assert!(modes["note"].as_str().is_some_and(|n| n.contains("g = 10")));
+    let omega = modes["report"]["equilibria"][0]["frequencies"][0].as_f64();
+    assert!(
+        omega.is_some_and(|w| (w - 8f64.sqrt()).abs() < 1e-9),
+        "{omega:?}"
+    );
+    assert!(matches!(one(&mut s, ":read 1/(m"), Response::Error(e) if e.code == "syntax"));
+    assert!(
+        matches!(one(&mut s, ":modes 1/2*x'^2"), Response::Error(e) if e.code == "not-available")
+    );
+}
