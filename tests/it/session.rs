@@ -290,3 +290,76 @@ fn analyses_of_the_open_problem() {
         matches!(one(&mut s, ":modes 1/2*x'^2"), Response::Error(e) if e.code == "not-available")
     );
 }
+
+#[test]
+fn every_bank_problem_can_be_solved_through_the_session() {
+    let bank = embedded::bank();
+    let ids: Vec<String> = bank.problems.iter().map(|p| p.id.clone()).collect();
+    let mut s = Session::new(bank, Progress::new());
+    for id in &ids {
+        s.handle(&format!(":open {id}"));
+        let problem = s
+            .problem()
+            .cloned()
+            .unwrap_or_else(|| panic!("{id} did not open"));
+        let n = problem.system.n();
+        let mut last = Vec::new();
+        for part in &problem.parts {
+            assert_eq!(s.current_part(), Some(part.id.as_str()), "{id}");
+            last = s.handle(&part.reference_text(n));
+            let v = verdict(&last[0]);
+            assert_eq!(v.verdict.status, Status::Correct, "{id}/{}: {v:?}", part.id);
+        }
+        assert!(matches!(last.last(), Some(Response::Done(d)) if d.parts == problem.parts.len()));
+    }
+    match one(&mut s, ":progress") {
+        Response::Progress(p) => assert_eq!(p.solved, p.parts),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn hostile_lines_never_panic() {
+    let mut s = session();
+    let lines = [
+        ":",
+        "::",
+        ": open",
+        ":open",
+        ":open \u{1b}[31mred",
+        ":part 0",
+        ":part 99",
+        ":part -1",
+        ":hint",
+        ":solution",
+        ":next",
+        ":parts",
+        "\u{0}",
+        "((((((((((",
+        "=",
+        ";;;",
+        "1/0",
+        ":help :nope",
+        ":help",
+        ":read",
+        ":read )",
+        ":derive",
+        ":modes",
+        ":tutor",
+        ":show",
+        ":back",
+    ];
+    for round in 0..2 {
+        for line in lines {
+            let out = s.handle(line);
+            // Every response serialises.
+            for r in &out {
+                assert!(serde_json::to_string(r).is_ok(), "{line}");
+            }
+        }
+        if round == 0 {
+            s.handle(":open double-pendulum");
+        }
+    }
+    assert_eq!(s.current_problem(), Some("double-pendulum"));
+}
