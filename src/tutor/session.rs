@@ -29,6 +29,17 @@ struct Open {
 }
 
 /// A student's practice session over a bank.
+///
+/// ```
+/// use lagrange::tutor::{Progress, Response, Session};
+///
+/// let mut s = Session::new(lagrange::embedded::bank(), Progress::new());
+/// s.handle(":open simple-pendulum");
+/// assert_eq!(s.current_part(), Some("kinetic"));
+/// let r = s.handle("1/2*m*l^2*theta'^2");
+/// assert!(matches!(&r[0], Response::Verdict(v) if v.verdict.score == 1.0));
+/// assert_eq!(s.current_part(), Some("potential"));
+/// ```
 pub struct Session {
     bank: Bank,
     progress: Progress,
@@ -558,4 +569,60 @@ fn help(topic: Option<&str>) -> Response {
 /// User text as shown in a message: control characters made visible.
 fn visible(s: &str) -> String {
     crate::expr::error::visible(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bank::embedded;
+
+    fn pendulum() -> Session {
+        let mut bank = Bank::default();
+        bank.problems.extend(embedded::problem("simple-pendulum"));
+        Session::new(bank, Progress::new())
+    }
+
+    #[test]
+    fn first_unsolved_wraps_round() {
+        let mut s = pendulum();
+        let Some(p) = s.bank.problems.first().cloned() else {
+            panic!("no pendulum");
+        };
+        assert_eq!(s.first_unsolved(&p, 3), Some(3));
+        s.progress.record_attempt(&p.id, "momentum", "x", true);
+        assert_eq!(s.first_unsolved(&p, 3), Some(4));
+        for q in &p.parts[4..] {
+            s.progress.record_attempt(&p.id, &q.id, "x", true);
+        }
+        assert_eq!(s.first_unsolved(&p, 5), Some(0));
+    }
+
+    #[test]
+    fn help_on_one_command_and_an_unknown_one() {
+        assert!(matches!(help(Some(":open")), Response::Help(h) if h.commands.len() == 1));
+        assert!(matches!(help(None), Response::Help(h) if h.commands.len() == COMMANDS.len()));
+        let r = help(Some("hitn"));
+        assert!(matches!(r, Response::Error(e) if e.suggestion.as_deref() == Some(":hint")));
+    }
+
+    #[test]
+    fn a_hint_counts_once_and_none_remaining_is_said() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        s.handle(":part lagrangian");
+        let hints: Vec<_> = (0..3).flat_map(|_| s.hint()).collect();
+        let remaining: Vec<_> = hints
+            .iter()
+            .filter_map(|r| match r {
+                Response::Hint(h) => Some((h.hint.is_some(), h.remaining)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(remaining, [(true, 1), (true, 0), (false, 0)]);
+        let used = s
+            .progress
+            .part("simple-pendulum", "lagrangian")
+            .map(|p| p.hints_used);
+        assert_eq!(used, Some(2));
+    }
 }
