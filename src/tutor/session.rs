@@ -166,6 +166,41 @@ impl Session {
         coords.chain(params).collect()
     }
 
+    /// Completion of the word that ends `line` (the text before the cursor): command names
+    /// after a leading `:`, problem ids after `:open `, part ids after `:part `, command names
+    /// after `:help `, and otherwise the open problem's coordinates and parameters. Returns
+    /// the byte offset where the word starts and the candidates it begins, sorted.
+    pub fn complete(&self, line: &str) -> (usize, Vec<String>) {
+        let start = line
+            .char_indices()
+            .rev()
+            .find(|(_, c)| !(c.is_alphanumeric() || matches!(c, '_' | '-' | ':')))
+            .map_or(0, |(i, c)| i + c.len_utf8());
+        let word = &line[start..];
+        let head = line[..start].trim_start();
+        let candidates: Vec<String> = if head.is_empty() && word.starts_with(':') {
+            self.command_names()
+        } else if head == ":open " {
+            self.problem_ids().into_iter().map(str::to_string).collect()
+        } else if head == ":part " {
+            self.part_ids().into_iter().map(str::to_string).collect()
+        } else if head == ":help " || head == "help " {
+            COMMANDS.iter().map(|c| c.name.to_string()).collect()
+        } else {
+            self.symbol_names()
+                .into_iter()
+                .map(str::to_string)
+                .collect()
+        };
+        let mut found: Vec<String> = candidates
+            .into_iter()
+            .filter(|c| c.starts_with(word))
+            .collect();
+        found.sort();
+        found.dedup();
+        (start, found)
+    }
+
     fn open(&mut self, id: &str) -> Vec<Response> {
         let Some(index) = self.bank.problems.iter().position(|p| p.id == id) else {
             let suggestion = did_you_mean(id, self.bank.problems.iter().map(|p| p.id.as_str()));
@@ -595,6 +630,26 @@ mod tests {
             s.progress.record_attempt(&p.id, &q.id, "x", true);
         }
         assert_eq!(s.first_unsolved(&p, 5), Some(0));
+    }
+
+    #[test]
+    fn completion_by_position() {
+        let mut s = pendulum();
+        assert_eq!(s.complete(":op"), (0, vec![":open".to_string()]));
+        assert_eq!(
+            s.complete(":open simple"),
+            (6, vec!["simple-pendulum".to_string()])
+        );
+        assert_eq!(
+            s.complete("th").1,
+            Vec::<String>::new(),
+            "nothing open: no symbols"
+        );
+        s.handle(":open simple-pendulum");
+        assert_eq!(s.complete("1/2*m*th"), (6, vec!["theta".to_string()]));
+        assert_eq!(s.complete(":part mo").1, ["momentum"]);
+        assert_eq!(s.complete(":help hi").1, ["hint"]);
+        assert_eq!(s.complete("θ + l").1, ["l"]);
     }
 
     #[test]
