@@ -186,7 +186,7 @@ pub fn command_info(name: &str) -> Option<&'static CommandInfo> {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum CommandError {
     /// No command has this name.
-    #[error("there is no command `:{name}`{}", suggestion_text(.suggestion))]
+    #[error("there is no command `:{}`{}", crate::expr::error::visible(.name), suggestion_text(.suggestion))]
     Unknown {
         name: String,
         suggestion: Option<String>,
