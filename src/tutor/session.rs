@@ -16,7 +16,7 @@ use crate::bank::Bank;
 use crate::check::answer::check_prepared;
 use crate::check::prepare::{Prepared, prepare};
 use crate::check::{CheckError, Status, Verdict};
-use crate::problem::{Part, Problem};
+use crate::problem::{Part, PartKind, Problem, Quantity};
 use crate::report::problems::{problem_sheet, terminal_math};
 use crate::report::{self, ModesOptions, ReadOptions, reading};
 
@@ -359,27 +359,32 @@ impl Session {
             return vec![self.no_part()];
         };
         let (pid, qid) = (problem.id.clone(), part.id.clone());
-        let hints: Vec<String> = part.hints.iter().map(|h| terminal_math(h)).collect();
-        let rec = self.progress.part_mut(&pid, &qid);
-        let given = usize::try_from(rec.hints_used).unwrap_or(usize::MAX);
-        let reply = match hints.get(given) {
-            Some(h) => {
-                rec.hints_used = rec.hints_used.saturating_add(1);
-                HintReply {
-                    problem: pid,
-                    part: qid,
-                    hint: Some(h.clone()),
-                    number: given + 1,
-                    remaining: hints.len() - given - 1,
-                }
-            }
-            None => HintReply {
-                problem: pid,
-                part: qid,
-                hint: None,
-                number: hints.len(),
-                remaining: 0,
+        // The file's hints in order, then the physics' (derived only once they are reached).
+        let from_file = part.hints.len();
+        let total = from_file + physics_hint_count(problem, part);
+        let given = self.progress.part(&pid, &qid).map_or(0, |r| r.hints_used);
+        let given = usize::try_from(given).unwrap_or(usize::MAX);
+        let hint = match part.hints.get(given) {
+            Some(h) => Some(terminal_math(h)),
+            None if given < total => physics_hints(problem, part).get(given - from_file).cloned(),
+            None => None,
+        };
+        if hint.is_some() {
+            let rec = self.progress.part_mut(&pid, &qid);
+            rec.hints_used = rec.hints_used.saturating_add(1);
+        }
+        let reply = HintReply {
+            problem: pid,
+            part: qid,
+            number: if hint.is_some() {
+                given + 1
+            } else {
+                given.min(total)
             },
+            remaining: total
+                .saturating_sub(given + 1)
+                .min(if hint.is_some() { total } else { 0 }),
+            hint,
         };
         vec![Response::Hint(reply)]
     }
@@ -554,6 +559,54 @@ impl Session {
             )
         }
     }
+}
+
+/// How many hints [`physics_hints`] gives for `part`, without deriving anything.
+fn physics_hint_count(problem: &Problem, part: &Part) -> usize {
+    if !part.substitute.is_empty() {
+        return 0;
+    }
+    match (part.kind, part.quantity) {
+        (_, Quantity::Momentum(_)) => 1,
+        (PartKind::Equation | PartKind::Equations, _) => 3 * problem.system.n(),
+        _ => 0,
+    }
+}
+
+/// Hints generated from the physics, after the problem file's: for a momentum part, L and
+/// what to differentiate it by; for an equation part, each coordinate's ∂L/∂q̇, its time
+/// derivative and ∂L/∂q. None for a part that substitutes parameters (its system differs).
+fn physics_hints(problem: &Problem, part: &Part) -> Vec<String> {
+    if physics_hint_count(problem, part) == 0 {
+        return vec![];
+    }
+    let Ok(d) = report::derivation(&problem.system) else {
+        return vec![];
+    };
+    if let Quantity::Momentum(i) = part.quantity {
+        return d
+            .coordinate_labels
+            .get(i)
+            .map(|(_, v)| {
+                let l = &d.lagrangian.unicode;
+                format!("L = {l}; differentiate it with respect to {}.", v.unicode)
+            })
+            .into_iter()
+            .collect();
+    }
+    let mut out = Vec::new();
+    for (i, (q, v)) in d.coordinate_labels.iter().enumerate() {
+        let (q, v) = (&q.unicode, &v.unicode);
+        let at =
+            |f: &[crate::report::Formula]| f.get(i).map_or(String::new(), |f| f.unicode.clone());
+        out.push(format!("∂L/∂{v} = {}", at(&d.momenta)));
+        out.push(format!("d/dt ∂L/∂{v} = {}", at(&d.momenta_dt)));
+        out.push(format!(
+            "∂L/∂{q} = {}; the equation is d/dt ∂L/∂{v} − ∂L/∂{q} = 0.",
+            at(&d.generalized_forces)
+        ));
+    }
+    out
 }
 
 fn no_problem() -> Response {

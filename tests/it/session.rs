@@ -363,3 +363,30 @@ fn hostile_lines_never_panic() {
     }
     assert_eq!(s.current_problem(), Some("double-pendulum"));
 }
+
+#[test]
+fn physics_hints_follow_the_files() {
+    let mut s = session();
+    s.handle(":open simple-pendulum");
+    s.handle(":part eom");
+    let hints: Vec<(Option<String>, usize)> = (0..7)
+        .flat_map(|_| s.handle(":hint"))
+        .filter_map(|r| match r {
+            Response::Hint(h) => Some((h.hint, h.remaining)),
+            _ => None,
+        })
+        .collect();
+    // Three from the file, then p = ∂L/∂θ̇ = m·l²·θ̇, its rate and ∂L/∂θ, then none.
+    assert_eq!(hints[0].1, 5);
+    assert_eq!(hints[3], (Some("∂L/∂θ̇ = m·l²·θ̇".to_string()), 2));
+    assert_eq!(hints[4].0.as_deref(), Some("d/dt ∂L/∂θ̇ = m·l²·θ̈"));
+    let force = hints[5].0.clone().unwrap_or_default();
+    assert!(force.starts_with("∂L/∂θ = −m·g·l·sin(θ)"), "{force}");
+    assert_eq!(hints[6], (None, 0));
+    // A momentum part gets L to differentiate.
+    s.handle(":part momentum");
+    let last = (0..3).flat_map(|_| s.handle(":hint")).last();
+    assert!(
+        matches!(last, Some(Response::Hint(h)) if h.hint.as_deref().is_some_and(|t| t.contains("with respect to θ̇")))
+    );
+}
