@@ -381,9 +381,10 @@ impl Session {
             } else {
                 given.min(total)
             },
-            remaining: total
-                .saturating_sub(given + 1)
-                .min(if hint.is_some() { total } else { 0 }),
+            remaining: match hint {
+                Some(_) => total.saturating_sub(given + 1),
+                None => 0,
+            },
             hint,
         };
         vec![Response::Hint(reply)]
