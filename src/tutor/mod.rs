@@ -4,5 +4,14 @@
 //! student's progress. It returns data and never prints; the REPL, the grader and a future
 //! browser face share it.
 
+pub mod command;
 pub mod follow;
 pub mod ladder;
+pub mod progress;
+pub mod response;
+pub mod session;
+
+pub use command::{Command, CommandError, parse};
+pub use progress::{PartProgress, Progress, ProgressError};
+pub use response::Response;
+pub use session::Session;

@@ -15,6 +15,7 @@ mod mechanics;
 mod props;
 mod resources;
 mod scale;
+mod session;
 mod soundness;
 mod symbolic;
 mod syntax;

@@ -1,0 +1,209 @@
+//! A student's progress as data: per problem and part, the attempts, whether it is solved,
+//! the hints used, whether the answer was revealed, and the last answers given (which the
+//! follow-through reads). Versioned JSON through serde; no file access here — the face reads
+//! and writes the file and decides what to do with one that does not parse.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::problem::Problem;
+
+/// The format version written by [`Progress::to_json`] and the only one read back.
+pub const PROGRESS_VERSION: u32 = 1;
+
+/// How many of a part's latest answers are kept (oldest dropped first).
+pub const KEPT_ANSWERS: usize = 8;
+
+/// Why a progress file's text could not be read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ProgressError {
+    /// The text is not JSON of the progress shape.
+    #[error("the progress file is not valid (line {line}, column {column}): {message}")]
+    Malformed {
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    /// The file was written by another version of the format.
+    #[error(
+        "the progress file has version {found}; this version of lagrange reads version {PROGRESS_VERSION}"
+    )]
+    Version { found: u32 },
+}
+
+/// One part's record.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct PartProgress {
+    /// Checked answers (correct or not; unreadable input never counts).
+    pub attempts: u32,
+    /// Answered correctly at least once.
+    pub solved: bool,
+    /// Hints shown.
+    pub hints_used: u32,
+    /// The reference answer was shown (`:solution`).
+    pub revealed: bool,
+    /// The latest checked answers as typed, oldest first (at most [`KEPT_ANSWERS`]).
+    pub answers: Vec<String>,
+}
+
+impl PartProgress {
+    /// The latest checked answer, if any.
+    pub fn last_answer(&self) -> Option<&str> {
+        self.answers.last().map(String::as_str)
+    }
+}
+
+/// One problem's record: its parts by id.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ProblemProgress {
+    /// The parts attempted, hinted or revealed, by id.
+    pub parts: BTreeMap<String, PartProgress>,
+}
+
+/// A student's progress over every problem, by problem id (ordered, so the JSON is stable).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Progress {
+    /// The format version ([`PROGRESS_VERSION`]).
+    pub version: u32,
+    /// The problems touched, by id.
+    #[serde(default)]
+    pub problems: BTreeMap<String, ProblemProgress>,
+}
+
+impl Default for Progress {
+    fn default() -> Self {
+        Progress {
+            version: PROGRESS_VERSION,
+            problems: BTreeMap::new(),
+        }
+    }
+}
+
+impl Progress {
+    /// A fresh, empty progress.
+    pub fn new() -> Self {
+        Progress::default()
+    }
+
+    /// The record of a part, if it was ever touched.
+    pub fn part(&self, problem: &str, part: &str) -> Option<&PartProgress> {
+        self.problems.get(problem)?.parts.get(part)
+    }
+
+    /// The record of a part, created empty when missing.
+    pub fn part_mut(&mut self, problem: &str, part: &str) -> &mut PartProgress {
+        self.problems
+            .entry(problem.to_string())
+            .or_default()
+            .parts
+            .entry(part.to_string())
+            .or_default()
+    }
+
+    /// Whether the part is solved.
+    pub fn is_solved(&self, problem: &str, part: &str) -> bool {
+        self.part(problem, part).is_some_and(|p| p.solved)
+    }
+
+    /// Records a checked answer: one more attempt, the answer kept, solved when `correct`.
+    pub fn record_attempt(&mut self, problem: &str, part: &str, answer: &str, correct: bool) {
+        let rec = self.part_mut(problem, part);
+        rec.attempts = rec.attempts.saturating_add(1);
+        rec.solved |= correct;
+        rec.answers.push(answer.to_string());
+        if rec.answers.len() > KEPT_ANSWERS {
+            let extra = rec.answers.len() - KEPT_ANSWERS;
+            rec.answers.drain(..extra);
+        }
+    }
+
+    /// How many of `problem`'s parts are solved (parts no longer in the problem are ignored).
+    pub fn solved_parts(&self, problem: &Problem) -> usize {
+        problem
+            .parts
+            .iter()
+            .filter(|p| self.is_solved(&problem.id, &p.id))
+            .count()
+    }
+
+    /// The progress as pretty JSON (`"version": 1` first).
+    pub fn to_json(&self) -> String {
+        // Maps with string keys, strings, numbers and booleans: serialising cannot fail.
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// Reads progress written by [`to_json`](Progress::to_json); a malformed text or another
+    /// version is a typed error (the face moves such a file aside and starts afresh).
+    pub fn from_json(text: &str) -> Result<Progress, ProgressError> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(malformed)?;
+        match value.get("version").and_then(serde_json::Value::as_u64) {
+            Some(v) if v == u64::from(PROGRESS_VERSION) => {}
+            Some(v) => {
+                return Err(ProgressError::Version {
+                    found: u32::try_from(v).unwrap_or(u32::MAX),
+                });
+            }
+            None => {
+                return Err(ProgressError::Malformed {
+                    line: 1,
+                    column: 1,
+                    message: "no \"version\" number".to_string(),
+                });
+            }
+        }
+        serde_json::from_value(value).map_err(malformed)
+    }
+}
+
+fn malformed(e: serde_json::Error) -> ProgressError {
+    ProgressError::Malformed {
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn attempts_keep_the_latest_answers() {
+        let mut p = Progress::new();
+        for i in 0..10 {
+            p.record_attempt("a", "b", &format!("x{i}"), i == 3);
+        }
+        let rec = p.part("a", "b").cloned().unwrap_or_default();
+        assert_eq!(rec.attempts, 10);
+        assert!(rec.solved, "solved stays solved after later wrong answers");
+        assert_eq!(rec.answers.len(), KEPT_ANSWERS);
+        assert_eq!(rec.last_answer(), Some("x9"));
+        assert_eq!(rec.answers.first().map(String::as_str), Some("x2"));
+    }
+
+    #[test]
+    fn round_trip_and_errors() {
+        let mut p = Progress::new();
+        p.record_attempt("simple-pendulum", "kinetic", "1/2*m*l^2*theta'^2", true);
+        p.part_mut("simple-pendulum", "eom").hints_used = 2;
+        let json = p.to_json();
+        assert!(json.contains("\"version\": 1"));
+        assert_eq!(Progress::from_json(&json), Ok(p));
+        assert!(matches!(
+            Progress::from_json("{\"version\": 1, \"problems\": 3"),
+            Err(ProgressError::Malformed { .. })
+        ));
+        assert_eq!(
+            Progress::from_json("{\"version\": 7}"),
+            Err(ProgressError::Version { found: 7 })
+        );
+        assert!(matches!(
+            Progress::from_json("[]"),
+            Err(ProgressError::Malformed { .. })
+        ));
+        assert_eq!(Progress::from_json("{\"version\": 1}"), Ok(Progress::new()));
+    }
+}

@@ -1,0 +1,280 @@
+//! What a practice session answers, as data: one [`Response`] per thing to show, serialised
+//! with a `"kind"` tag (`verdict`, `statement`, `part`, `hint`, …) so the REPL renders it,
+//! the JSON-lines protocol prints it and a browser face reads it, all from one type.
+
+use serde::Serialize;
+
+use crate::check::Verdict;
+use crate::report::problems::ProblemSheet;
+use crate::report::{DerivationReport, ModesReport, Reading};
+
+/// One thing a session answers with.
+#[derive(Clone, Debug, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Response {
+    /// The verdict on an answer to the current part.
+    Verdict(VerdictReply),
+    /// An opened problem's statement and parts.
+    Statement(StatementReply),
+    /// The part now current and its question.
+    Part(PartPrompt),
+    /// Every part of the open problem is solved.
+    Done(DoneReply),
+    /// A hint for the current part.
+    Hint(HintReply),
+    /// The reference answer of the current part.
+    Solution(SolutionReply),
+    /// The bank, with the student's progress on each problem.
+    Problems(ProblemsReply),
+    /// The open problem's parts and their state.
+    Parts(PartsReply),
+    /// The student's progress over the bank, with totals.
+    Progress(ProgressReply),
+    /// The commands, or one command's usage.
+    Help(HelpReply),
+    /// An analysis (`:read`, `:derive`, `:modes`): the same report the CLI command gives.
+    Analysis(AnalysisReply),
+    /// A command or answer that could not be carried out (never counts as an attempt).
+    Error(ErrorReply),
+    /// The session ends.
+    Quit,
+}
+
+/// A verdict: the fields of `lagrange check --json` (its `problem` and `part` included), plus
+/// the part's attempts so far.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct VerdictReply {
+    /// The checker's verdict.
+    #[serde(flatten)]
+    pub verdict: Verdict,
+    /// Checked attempts at this part, this one included (an invalid answer is not one).
+    pub attempts: u32,
+}
+
+/// An opened problem.
+#[derive(Clone, Debug, Serialize)]
+pub struct StatementReply {
+    /// The statement, symbols and parts (no reference answers).
+    #[serde(flatten)]
+    pub sheet: ProblemSheet,
+    /// The part made current (the first unsolved one).
+    pub current: Option<String>,
+}
+
+/// A part's question.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PartPrompt {
+    /// The problem id.
+    pub problem: String,
+    /// The part id.
+    pub part: String,
+    /// Its 1-based number.
+    pub number: usize,
+    /// What kind of answer it asks for (`expression`, `equation`, …).
+    pub part_kind: String,
+    /// The question, with inline math made readable on a terminal.
+    pub prompt: String,
+    /// Whether it is already solved.
+    pub solved: bool,
+}
+
+/// Every part of the open problem is solved.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DoneReply {
+    /// The problem id.
+    pub problem: String,
+    /// How many parts it has (all solved).
+    pub parts: usize,
+}
+
+/// A hint, or the news that none remain.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HintReply {
+    /// The problem id.
+    pub problem: String,
+    /// The part id.
+    pub part: String,
+    /// The hint; `None` when every hint has been given.
+    pub hint: Option<String>,
+    /// Its 1-based number among the part's hints (the count given, when none remain).
+    pub number: usize,
+    /// Hints still to come.
+    pub remaining: usize,
+}
+
+/// A part's reference answer.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolutionReply {
+    /// The problem id.
+    pub problem: String,
+    /// The part id.
+    pub part: String,
+    /// The answer as a student would type it.
+    pub answer: String,
+    /// The answer as read, in Unicode (empty if it cannot be read).
+    pub unicode: String,
+}
+
+/// One problem of the bank with the student's progress on it.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ProblemEntry {
+    /// Its id.
+    pub id: String,
+    /// Its title.
+    pub title: String,
+    /// Parts solved.
+    pub solved: usize,
+    /// Parts in all.
+    pub parts: usize,
+    /// Checked attempts over its parts.
+    pub attempts: u32,
+    /// Hints used over its parts.
+    pub hints_used: u32,
+    /// Parts whose answer was revealed.
+    pub revealed: usize,
+}
+
+/// The bank.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ProblemsReply {
+    /// Every problem, in bank order.
+    pub problems: Vec<ProblemEntry>,
+}
+
+/// One part of the open problem and its state.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct PartEntry {
+    /// Its 1-based number.
+    pub number: usize,
+    /// Its id.
+    pub id: String,
+    /// Its kind.
+    pub part_kind: String,
+    /// Whether it is the current part.
+    pub current: bool,
+    /// Solved.
+    pub solved: bool,
+    /// Checked attempts.
+    pub attempts: u32,
+    /// Hints used.
+    pub hints_used: u32,
+    /// Answer revealed.
+    pub revealed: bool,
+}
+
+/// The open problem's parts.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct PartsReply {
+    /// The problem id.
+    pub problem: String,
+    /// Its parts, in order.
+    pub parts: Vec<PartEntry>,
+}
+
+/// Progress over the bank.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ProgressReply {
+    /// Every problem, in bank order.
+    pub problems: Vec<ProblemEntry>,
+    /// Parts solved over the bank.
+    pub solved: usize,
+    /// Parts in the bank.
+    pub parts: usize,
+}
+
+/// One command's help.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct HelpEntry {
+    /// Its usage, e.g. `:open ID`.
+    pub usage: String,
+    /// What it does.
+    pub summary: String,
+}
+
+/// The commands' help.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct HelpReply {
+    /// The commands asked about (all of them for a bare `:help`).
+    pub commands: Vec<HelpEntry>,
+}
+
+/// An analysis and its report.
+#[derive(Clone, Debug, Serialize)]
+pub struct AnalysisReply {
+    /// Which: `read`, `derive` or `modes`.
+    pub of: String,
+    /// The report (rendered by the face with the report's own `render`).
+    pub report: AnalysisReport,
+    /// What the analysis assumed, e.g. the parameter values `:modes` used.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+/// The report of an analysis, serialised as the report itself.
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum AnalysisReport {
+    /// How an expression is read (`:read`).
+    Read(Box<Reading>),
+    /// The derivation of the open problem (`:derive`).
+    Derive(Box<DerivationReport>),
+    /// The equilibria and normal modes of the open problem (`:modes`).
+    Modes(Box<ModesReport>),
+}
+
+/// Something that could not be done.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ErrorReply {
+    /// A stable kebab-case code (`unknown-command`, `unknown-problem`, `no-problem-open`, …).
+    pub code: String,
+    /// What went wrong, for the student.
+    pub message: String,
+    /// The likeliest meant name, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub suggestion: Option<String>,
+}
+
+impl Response {
+    /// An error response.
+    pub fn error(code: &str, message: impl Into<String>, suggestion: Option<String>) -> Response {
+        Response::Error(ErrorReply {
+            code: code.to_string(),
+            message: message.into(),
+            suggestion,
+        })
+    }
+
+    /// The `"kind"` tag of this response.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Response::Verdict(_) => "verdict",
+            Response::Statement(_) => "statement",
+            Response::Part(_) => "part",
+            Response::Done(_) => "done",
+            Response::Hint(_) => "hint",
+            Response::Solution(_) => "solution",
+            Response::Problems(_) => "problems",
+            Response::Parts(_) => "parts",
+            Response::Progress(_) => "progress",
+            Response::Help(_) => "help",
+            Response::Analysis(_) => "analysis",
+            Response::Error(_) => "error",
+            Response::Quit => "quit",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tagged_by_kind() {
+        let r = Response::error("unknown-command", "no", Some("hint".into()));
+        let json = serde_json::to_value(&r).unwrap_or_default();
+        assert_eq!(json["kind"], r.kind());
+        assert_eq!(json["suggestion"], "hint");
+        let q = serde_json::to_value(Response::Quit).unwrap_or_default();
+        assert_eq!(q, serde_json::json!({"kind": "quit"}));
+    }
+}
