@@ -126,7 +126,7 @@ fn target(
     Some(Unit { module, file })
 }
 
-/// The library's files: (unit, code). Faces (`main.rs`, `cli/`) are the binary's, not the
+/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`) are the binary's, not the
 /// library's, and are left out.
 fn library_files(src: &Path) -> Vec<(Unit, String)> {
     let mut out = Vec::new();
@@ -142,7 +142,7 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
             .unwrap_or("")
             .to_string();
         if path.is_dir() {
-            if name == "cli" {
+            if name == "cli" || name == "repl" {
                 continue;
             }
             for (file, text) in rs_files(&path) {
