@@ -48,7 +48,9 @@ pub fn hint_for(session: &Session, line: &str) -> Option<String> {
     if let Some(cmd) = t.strip_prefix(':') {
         let name = cmd.split_whitespace().next().unwrap_or("");
         let info = command_info(name)?;
-        return (!cmd.contains(' ')).then(|| format!("   {}", info.usage));
+        // While the name is typed: what follows it in the usage, and what it does.
+        let args = info.usage.split_once(' ').map_or("", |(_, a)| a);
+        return (!cmd.contains(' ')).then(|| format!(" {args}   — {}", info.summary));
     }
     let problem = session.problem()?;
     let ctx = problem.context();
@@ -132,7 +134,8 @@ mod tests {
     #[test]
     fn hints_usage_and_reading() {
         let mut s = Session::new(lagrange::embedded::bank(), Progress::new());
-        assert_eq!(hint_for(&s, ":open").as_deref(), Some("   :open ID"));
+        let open = hint_for(&s, ":open").unwrap_or_default();
+        assert!(open.starts_with(" ID   — "), "{open}");
         assert_eq!(hint_for(&s, "theta'"), None);
         s.handle(":open simple-pendulum");
         let h = hint_for(&s, "1/2 m l^2 theta'^2").unwrap_or_default();

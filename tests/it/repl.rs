@@ -141,3 +141,22 @@ fn without_a_terminal_lagrange_prints_help() {
     assert!(err.contains("repl"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_global_problems_folder_is_the_bank() {
+    let dir = home("folder");
+    let bank = dir.join("bank");
+    std::fs::create_dir_all(&bank).expect("a folder");
+    let src = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/atwood.toml");
+    std::fs::copy(src, bank.join("atwood.toml")).expect("copied");
+    let folder = bank.to_string_lossy().into_owned();
+    let (code, out, err) = repl(
+        &dir,
+        &["--problems", &folder, "repl", "--no-save"],
+        ":problems\n",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("atwood"), "{out}");
+    assert!(!out.contains("simple-pendulum"), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
