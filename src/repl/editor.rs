@@ -46,17 +46,26 @@ pub fn hint_for(session: &Session, line: &str) -> Option<String> {
         return None;
     }
     if let Some(cmd) = t.strip_prefix(':') {
-        let name = cmd.split_whitespace().next().unwrap_or("");
+        let (name, arg) = cmd.split_once(' ').unwrap_or((cmd, ""));
+        if name == "read" && !arg.trim().is_empty() {
+            return reading_hint(session, arg.trim());
+        }
         let info = command_info(name)?;
         // While the name is typed: what follows it in the usage, and what it does.
         let args = info.usage.split_once(' ').map_or("", |(_, a)| a);
         return (!cmd.contains(' ')).then(|| format!(" {args}   — {}", info.summary));
     }
+    reading_hint(session, t)
+}
+
+/// How `text` is read in the open problem's context, unless that is just `text` again.
+fn reading_hint(session: &Session, text: &str) -> Option<String> {
     let problem = session.problem()?;
     let ctx = problem.context();
     let mut pool = problem.system.pool.clone();
-    let reading = lagrange::read(t, &ctx, &mut pool).ok()?;
-    Some(format!("   ⇒ {}", unicode(&reading, &pool)))
+    let reading = lagrange::read(text, &ctx, &mut pool).ok()?;
+    let shown = unicode(&reading, &pool);
+    (shown != text).then(|| format!("   ⇒ {shown}"))
 }
 
 /// A reading in Unicode: an expression, an equation or a list.
@@ -140,5 +149,8 @@ mod tests {
         s.handle(":open simple-pendulum");
         let h = hint_for(&s, "1/2 m l^2 theta'^2").unwrap_or_default();
         assert!(h.contains('θ'), "{h}");
+        assert_eq!(hint_for(&s, "g"), None);
+        let r = hint_for(&s, ":read theta''").unwrap_or_default();
+        assert!(r.contains('θ'), "{r}");
     }
 }
