@@ -4,14 +4,14 @@
 mod check;
 mod derive;
 mod modes;
-mod problems;
+pub(crate) mod problems;
 mod read;
-mod system_args;
+pub(crate) mod system_args;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 
 /// Check, derive and explain analytical mechanics.
 #[derive(Parser, Debug)]
@@ -23,8 +23,9 @@ struct Cli {
     /// Load the problem bank from this folder of TOML files instead of the built-in one.
     #[arg(long, global = true, value_name = "DIR")]
     problems: Option<std::path::PathBuf>,
+    /// With no command, the REPL opens when stdin is a terminal (help is printed otherwise).
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -49,6 +50,21 @@ enum Command {
     /// List, show and verify the problems of the bank.
     #[command(subcommand)]
     Problems(problems::ProblemsCommand),
+    /// Practise the problems: answers checked as you type them, hints, progress kept.
+    Repl(ReplArgs),
+}
+
+/// `lagrange repl [PROBLEM] [--json] [--no-save]`.
+#[derive(Args, Debug, Default)]
+struct ReplArgs {
+    /// A problem id to open first.
+    problem: Option<String>,
+    /// One JSON object per input line (JSON lines; see docs/repl-protocol.md).
+    #[arg(long)]
+    json: bool,
+    /// Keep no progress file.
+    #[arg(long)]
+    no_save: bool,
 }
 
 /// Parses arguments and runs the command.
@@ -62,13 +78,30 @@ pub fn run() -> anyhow::Result<ExitCode> {
         }
     };
     colored::control::set_override(color);
+    let command = match cli.command {
+        Some(c) => c,
+        None if std::io::stdin().is_terminal() => Command::Repl(ReplArgs::default()),
+        None => {
+            eprint!("{}", Cli::command().render_help());
+            return Ok(ExitCode::from(2));
+        }
+    };
     let mut out = String::new();
-    let code = match cli.command {
+    let code = match command {
         Command::Read(args) => read::run(&args, color, &mut out),
         Command::Derive(args) => derive::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Check(args) => check::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
+        Command::Repl(args) => {
+            return crate::repl::run(&crate::repl::Options {
+                problem: args.problem,
+                json: args.json,
+                no_save: args.no_save,
+                problems: cli.problems,
+                color,
+            });
+        }
     };
     emit(&out)?;
     code

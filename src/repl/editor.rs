@@ -1,0 +1,156 @@
+//! Line editing for a terminal (rustyline): Tab completion through `Session::complete`,
+//! matching-bracket highlighting, a greyed hint after the cursor (how the line will be read,
+//! or the usage of the command being typed) and a validator that keeps a line with
+//! unbalanced brackets open.
+
+use std::borrow::Cow;
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use rustyline::completion::Completer;
+use rustyline::highlight::{CmdKind, Highlighter, MatchingBracketHighlighter};
+use rustyline::hint::Hinter;
+use rustyline::validate::{
+    MatchingBracketValidator, ValidationContext, ValidationResult, Validator,
+};
+use rustyline::{Context, Helper};
+
+use lagrange::tutor::Session;
+use lagrange::tutor::command::command_info;
+
+/// The REPL's rustyline helper, sharing the session with the loop.
+pub struct ReplHelper {
+    /// The session (borrowed only while a line is edited).
+    pub session: Rc<RefCell<Session>>,
+    brackets: MatchingBracketHighlighter,
+    validator: MatchingBracketValidator,
+    color: bool,
+}
+
+impl ReplHelper {
+    /// A helper over `session`; `color` greys the hint.
+    pub fn new(session: Rc<RefCell<Session>>, color: bool) -> ReplHelper {
+        ReplHelper {
+            session,
+            brackets: MatchingBracketHighlighter::new(),
+            validator: MatchingBracketValidator::new(),
+            color,
+        }
+    }
+}
+
+/// What the hint shows for `line`: a command's usage, or how an answer will be read.
+pub fn hint_for(session: &Session, line: &str) -> Option<String> {
+    let t = line.trim_start();
+    if t.is_empty() {
+        return None;
+    }
+    if let Some(cmd) = t.strip_prefix(':') {
+        let (name, arg) = cmd.split_once(' ').unwrap_or((cmd, ""));
+        if name == "read" && !arg.trim().is_empty() {
+            return reading_hint(session, arg.trim());
+        }
+        let info = command_info(name)?;
+        // While the name is typed: what follows it in the usage, and what it does.
+        let args = info.usage.split_once(' ').map_or("", |(_, a)| a);
+        return (!cmd.contains(' ')).then(|| format!(" {args}   — {}", info.summary));
+    }
+    reading_hint(session, t)
+}
+
+/// How `text` is read in the open problem's context, unless that is just `text` again.
+fn reading_hint(session: &Session, text: &str) -> Option<String> {
+    let problem = session.problem()?;
+    let ctx = problem.context();
+    let mut pool = problem.system.pool.clone();
+    let reading = lagrange::read(text, &ctx, &mut pool).ok()?;
+    let shown = unicode(&reading, &pool);
+    (shown != text).then(|| format!("   ⇒ {shown}"))
+}
+
+/// A reading in Unicode: an expression, an equation or a list.
+fn unicode(r: &lagrange::expr::Reading, pool: &lagrange::Pool) -> String {
+    use lagrange::expr::Reading;
+    match r {
+        Reading::Expr(id, _) => pool.unicode(*id),
+        Reading::Equation { lhs, rhs, .. } => {
+            format!("{} = {}", pool.unicode(*lhs), pool.unicode(*rhs))
+        }
+        Reading::List(items, _) | Reading::System(items, _) => items
+            .iter()
+            .map(|i| unicode(i, pool))
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+impl Completer for ReplHelper {
+    type Candidate = String;
+    fn complete(
+        &self,
+        line: &str,
+        pos: usize,
+        _ctx: &Context<'_>,
+    ) -> rustyline::Result<(usize, Vec<String>)> {
+        let before = line.get(..pos).unwrap_or(line);
+        Ok(self.session.borrow().complete(before))
+    }
+}
+
+impl Hinter for ReplHelper {
+    type Hint = String;
+    fn hint(&self, line: &str, pos: usize, _ctx: &Context<'_>) -> Option<String> {
+        if pos < line.len() {
+            return None;
+        }
+        hint_for(&self.session.borrow(), line)
+    }
+}
+
+impl Highlighter for ReplHelper {
+    fn highlight<'l>(&self, line: &'l str, pos: usize) -> Cow<'l, str> {
+        if self.color {
+            self.brackets.highlight(line, pos)
+        } else {
+            Cow::Borrowed(line)
+        }
+    }
+    fn highlight_hint<'h>(&self, hint: &'h str) -> Cow<'h, str> {
+        if self.color {
+            Cow::Owned(format!("\x1b[2m{hint}\x1b[0m"))
+        } else {
+            Cow::Borrowed(hint)
+        }
+    }
+    fn highlight_char(&self, line: &str, pos: usize, kind: CmdKind) -> bool {
+        self.color && self.brackets.highlight_char(line, pos, kind)
+    }
+}
+
+impl Validator for ReplHelper {
+    fn validate(&self, ctx: &mut ValidationContext) -> rustyline::Result<ValidationResult> {
+        self.validator.validate(ctx)
+    }
+}
+
+impl Helper for ReplHelper {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lagrange::tutor::Progress;
+
+    #[test]
+    fn hints_usage_and_reading() {
+        let mut s = Session::new(lagrange::embedded::bank(), Progress::new());
+        let open = hint_for(&s, ":open").unwrap_or_default();
+        assert!(open.starts_with(" ID   — "), "{open}");
+        assert_eq!(hint_for(&s, "theta'"), None);
+        s.handle(":open simple-pendulum");
+        let h = hint_for(&s, "1/2 m l^2 theta'^2").unwrap_or_default();
+        assert!(h.contains('θ'), "{h}");
+        assert_eq!(hint_for(&s, "g"), None);
+        let r = hint_for(&s, ":read theta''").unwrap_or_default();
+        assert!(r.contains('θ'), "{r}");
+    }
+}

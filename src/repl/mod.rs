@@ -1,0 +1,193 @@
+//! The student's REPL (`lagrange`, `lagrange repl`): a face over `lagrange::tutor::Session`.
+//! On a terminal it edits lines with rustyline (see [`editor`]); piped, it reads lines plainly,
+//! prints no prompt and no colour, and ends with exit 0 at end of input. With `--json` every
+//! input line gets exactly one JSON object (see `docs/repl-protocol.md`). Progress is kept in
+//! the data directory (see [`store`]). No mathematics here.
+
+mod editor;
+mod render;
+mod store;
+
+use std::cell::RefCell;
+use std::io::{BufRead, IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::rc::Rc;
+
+use lagrange::report::{Paint, Plain};
+use lagrange::tutor::{Progress, Response, Session};
+
+use crate::cli::system_args::Terminal;
+
+/// How the REPL was asked to run.
+pub struct Options {
+    /// A problem to open first.
+    pub problem: Option<String>,
+    /// JSON lines instead of text.
+    pub json: bool,
+    /// Keep no progress file.
+    pub no_save: bool,
+    /// The folder of problem files (`--problems`), else the embedded bank.
+    pub problems: Option<PathBuf>,
+    /// Colour (already resolved from `--color` and NO_COLOR).
+    pub color: bool,
+}
+
+/// Where responses go: text or JSON lines, and the progress file.
+struct Output {
+    json: bool,
+    color: bool,
+    store: Option<store::Store>,
+}
+
+impl Output {
+    /// Prints the responses to `line`, saves progress; `true` when the session ends.
+    fn emit(&mut self, line: &str, responses: &[Response], session: &Session) -> bool {
+        let text = if self.json {
+            json_line(responses).map(|j| j + "\n").unwrap_or_default()
+        } else {
+            let paint: &dyn Paint = if self.color { &Terminal } else { &Plain };
+            let texts: Vec<String> = responses
+                .iter()
+                .map(|r| render::response(r, line, paint, self.color))
+                .collect();
+            texts.concat()
+        };
+        let mut out = std::io::stdout().lock();
+        let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+        if let Some(s) = &mut self.store
+            && let Err(e) = s.save(session.progress())
+        {
+            eprintln!("warning: could not save progress: {e}");
+        }
+        responses.iter().any(|r| matches!(r, Response::Quit))
+    }
+}
+
+/// One JSON object for one input line: the first response, with any others in `"more"`.
+/// A line that gives no response (a blank line) gives `{"kind":"none"}`.
+pub fn json_line(responses: &[Response]) -> serde_json::Result<String> {
+    let Some((first, rest)) = responses.split_first() else {
+        return Ok(r#"{"kind":"none"}"#.to_string());
+    };
+    let mut value = serde_json::to_value(first)?;
+    if !rest.is_empty()
+        && let serde_json::Value::Object(map) = &mut value
+    {
+        let more = rest
+            .iter()
+            .map(serde_json::to_value)
+            .collect::<serde_json::Result<Vec<_>>>()?;
+        map.insert("more".into(), serde_json::Value::Array(more));
+    }
+    serde_json::to_string(&value)
+}
+
+/// Runs the REPL until `:quit`, Ctrl-D or the end of input.
+pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
+    let bank =
+        crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let (store, progress) = open_store(opts.no_save);
+    let session = Rc::new(RefCell::new(Session::new(bank, progress)));
+    let terminal = std::io::stdin().is_terminal();
+    let mut out = Output {
+        json: opts.json,
+        color: opts.color && terminal && !opts.json,
+        store,
+    };
+    if let Some(id) = &opts.problem {
+        let line = format!(":open {id}");
+        let r = session.borrow_mut().handle(&line);
+        out.emit(&line, &r, &session.borrow());
+    }
+    if terminal {
+        interactive(&session, &mut out)?;
+    } else {
+        piped(&session, &mut out)?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The progress file (none with `--no-save` or without a data directory) and its progress.
+fn open_store(no_save: bool) -> (Option<store::Store>, Progress) {
+    if no_save {
+        return (None, Progress::new());
+    }
+    let Some(dir) = store::data_dir() else {
+        eprintln!("warning: no data directory; progress will not be saved");
+        return (None, Progress::new());
+    };
+    let (s, progress, warning) = store::Store::open(&dir);
+    if let Some(w) = warning {
+        eprintln!("{w}");
+    }
+    (Some(s), progress)
+}
+
+/// Lines from a pipe: no prompt, no editing.
+fn piped(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Result<()> {
+    for line in std::io::stdin().lock().lines() {
+        let line = line?;
+        let r = session.borrow_mut().handle(&line);
+        if out.emit(&line, &r, &session.borrow()) {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// Lines from a terminal, with rustyline: history, completion, hints, validation.
+fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Result<()> {
+    use rustyline::error::ReadlineError;
+    let mut rl =
+        rustyline::Editor::<editor::ReplHelper, rustyline::history::DefaultHistory>::new()?;
+    rl.set_helper(Some(editor::ReplHelper::new(session.clone(), out.color)));
+    let history = store::data_dir().map(|d| d.join("history.txt"));
+    if let Some(h) = &history {
+        let _ = rl.load_history(h);
+    }
+    if !out.json {
+        println!("lagrange — `:problems` lists the problems, `:help` the commands, Ctrl-D quits.");
+    }
+    loop {
+        let prompt = match session.borrow().current_part() {
+            Some(part) => format!("{part}> "),
+            None => "> ".to_string(),
+        };
+        match rl.readline(&prompt) {
+            Ok(line) => {
+                let _ = rl.add_history_entry(line.as_str());
+                let r = session.borrow_mut().handle(&line);
+                if out.emit(&line, &r, &session.borrow()) {
+                    break;
+                }
+            }
+            Err(ReadlineError::Interrupted) => continue,
+            Err(ReadlineError::Eof) => break,
+            Err(e) => return Err(e.into()),
+        }
+    }
+    if let Some(h) = &history {
+        if let Some(dir) = h.parent() {
+            let _ = std::fs::create_dir_all(dir);
+        }
+        let _ = rl.save_history(h);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn several_responses_make_one_object() {
+        let rs = [Response::error("a", "first", None), Response::Quit];
+        let j = json_line(&rs).unwrap_or_default();
+        assert_eq!(
+            j,
+            r#"{"code":"a","kind":"error","message":"first","more":[{"kind":"quit"}]}"#
+        );
+        assert_eq!(json_line(&[]).unwrap_or_default(), r#"{"kind":"none"}"#);
+    }
+}

@@ -1,0 +1,228 @@
+//! Text for every [`Response`] of a tutor session: the verdict with its reading, diagnoses
+//! and score, statements, hints, lists, help, analyses and errors. Colour comes through a
+//! [`Paint`] (the terminal's, or none); no mathematics here.
+
+use std::fmt::Write as _;
+
+use lagrange::check::Status;
+use lagrange::diagnostic::render_parse_error;
+use lagrange::expr::Style;
+use lagrange::report::Paint;
+use lagrange::tutor::Response;
+use lagrange::tutor::response::{
+    AnalysisReply, AnalysisReport, ErrorReply, HintReply, PartsReply, ProblemEntry, VerdictReply,
+};
+
+/// How `:read` asks for dimensions in the REPL (the CLI says `--dims`).
+const GIVE_DIMENSIONS: &str = "dimensions come from the open problem";
+
+/// The text of one response to `line`, ending in a newline (empty for `Quit`).
+pub fn response(r: &Response, line: &str, paint: &dyn Paint, color: bool) -> String {
+    let mut o = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_response(&mut o, r, line, paint, color);
+    o
+}
+
+fn write_response(
+    o: &mut String,
+    r: &Response,
+    line: &str,
+    paint: &dyn Paint,
+    color: bool,
+) -> std::fmt::Result {
+    match r {
+        Response::Verdict(v) => verdict(o, v, line, paint, color),
+        Response::Statement(s) => {
+            let text = s.sheet.render(paint);
+            // The sheet ends with how to answer on the command line; in the REPL one types.
+            let text = text
+                .rsplit_once("\nAnswer with `lagrange check")
+                .map_or(text.as_str(), |(head, _)| head);
+            writeln!(o, "{}", text.trim_end())
+        }
+        Response::Part(p) => {
+            let state = if p.solved { " (solved)" } else { "" };
+            writeln!(
+                o,
+                "{} {}{state}\n   {}",
+                paint.heading(&format!("part {}: {}", p.number, p.part)),
+                paint.dim(&format!("({})", p.part_kind)),
+                p.prompt
+            )
+        }
+        Response::Done(d) => writeln!(
+            o,
+            "{} every part of {} is solved ({} of {}). `:problems` for the next one.",
+            paint.good("done:"),
+            d.problem,
+            d.parts,
+            d.parts
+        ),
+        Response::Hint(h) => hint(o, h, paint),
+        Response::Solution(s) => {
+            writeln!(o, "{} {}", paint.heading("answer:"), s.answer)?;
+            if !s.unicode.is_empty() {
+                writeln!(o, "{} {}", paint.dim("read as:"), s.unicode)?;
+            }
+            Ok(())
+        }
+        Response::Problems(p) => problems(o, &p.problems, paint),
+        Response::Progress(p) => {
+            problems(o, &p.problems, paint)?;
+            writeln!(
+                o,
+                "{} {} of {} parts solved",
+                paint.heading("total:"),
+                p.solved,
+                p.parts
+            )
+        }
+        Response::Parts(p) => parts(o, p, paint),
+        Response::Help(h) => {
+            for c in &h.commands {
+                writeln!(o, "  {:<18} {}", paint.heading(&c.usage), c.summary)?;
+            }
+            Ok(())
+        }
+        Response::Analysis(a) => analysis(o, a, paint),
+        Response::Error(e) => error(o, e, paint),
+        Response::Quit => Ok(()),
+    }
+}
+
+fn verdict(
+    o: &mut String,
+    r: &VerdictReply,
+    line: &str,
+    paint: &dyn Paint,
+    color: bool,
+) -> std::fmt::Result {
+    let v = &r.verdict;
+    if !v.reading.unicode.is_empty() {
+        writeln!(o, "{} {}", paint.heading("read as:"), v.reading.unicode)?;
+        if let Some(n) = &v.reading.note {
+            writeln!(o, "         ({n})")?;
+        }
+    }
+    if let Some(e) = &v.parse_error {
+        o.push_str(&render_parse_error("answer", line.trim(), e, color));
+    }
+    let status = match v.status {
+        Status::Correct => paint.good("correct"),
+        Status::Incorrect => paint.bad("incorrect"),
+        Status::Invalid => paint.warn("cannot check this answer (not counted as an attempt)"),
+    };
+    match v.status {
+        Status::Invalid => writeln!(o, "{status}")?,
+        _ => writeln!(
+            o,
+            "{status}  score {:.0}%  {}",
+            v.score * 100.0,
+            paint.dim(&format!("(attempt {})", r.attempts))
+        )?,
+    }
+    for d in &v.diagnoses {
+        writeln!(o, "  {} {}", paint.dim(&format!("[{}]", d.code)), d.message)?;
+    }
+    Ok(())
+}
+
+fn hint(o: &mut String, h: &HintReply, paint: &dyn Paint) -> std::fmt::Result {
+    let total = h.number + h.remaining;
+    match &h.hint {
+        Some(text) => writeln!(
+            o,
+            "{} {text}",
+            paint.heading(&format!("hint ({} of {total}):", h.number))
+        ),
+        None => writeln!(
+            o,
+            "{} all {} hints given; `:solution` shows the answer",
+            paint.heading("hint:"),
+            h.number
+        ),
+    }
+}
+
+fn problems(o: &mut String, list: &[ProblemEntry], paint: &dyn Paint) -> std::fmt::Result {
+    for p in list {
+        let mark = if p.parts > 0 && p.solved == p.parts {
+            paint.good("✓")
+        } else {
+            " ".to_string()
+        };
+        writeln!(
+            o,
+            "{mark} {:<28} {}/{}  {}",
+            p.id, p.solved, p.parts, p.title
+        )?;
+    }
+    Ok(())
+}
+
+fn parts(o: &mut String, p: &PartsReply, paint: &dyn Paint) -> std::fmt::Result {
+    writeln!(o, "{}", paint.heading(&p.problem))?;
+    for e in &p.parts {
+        let cur = if e.current { ">" } else { " " };
+        let state = if e.solved {
+            paint.good("solved")
+        } else if e.revealed {
+            paint.warn("revealed")
+        } else {
+            paint.dim("open")
+        };
+        writeln!(
+            o,
+            "{cur} {}. {:<20} {:<10} {state}  attempts {}  hints {}",
+            e.number, e.id, e.part_kind, e.attempts, e.hints_used
+        )?;
+    }
+    Ok(())
+}
+
+fn analysis(o: &mut String, a: &AnalysisReply, paint: &dyn Paint) -> std::fmt::Result {
+    if let Some(n) = &a.note {
+        writeln!(o, "{}", paint.dim(n))?;
+    }
+    let text = match &a.report {
+        AnalysisReport::Read(r) => r.render(paint, GIVE_DIMENSIONS),
+        AnalysisReport::Derive(r) => r.render(Style::Unicode, paint),
+        AnalysisReport::Modes(r) => r.render(Style::Unicode, paint),
+    };
+    o.push_str(&text);
+    if !text.ends_with('\n') {
+        o.push('\n');
+    }
+    Ok(())
+}
+
+fn error(o: &mut String, e: &ErrorReply, paint: &dyn Paint) -> std::fmt::Result {
+    writeln!(
+        o,
+        "{} {}",
+        paint.bad(&format!("error[{}]:", e.code)),
+        e.message
+    )?;
+    if let Some(s) = &e.suggestion {
+        writeln!(o, "  {} did you mean `{s}`?", paint.dim("help:"))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lagrange::report::Plain;
+
+    #[test]
+    fn error_with_suggestion() {
+        let r = Response::error("unknown-command", "no command `:hnt`", Some(":hint".into()));
+        let t = response(&r, ":hnt", &Plain, false);
+        assert_eq!(
+            t,
+            "error[unknown-command]: no command `:hnt`\n  help: did you mean `:hint`?\n"
+        );
+        assert_eq!(response(&Response::Quit, "", &Plain, false), "");
+    }
+}

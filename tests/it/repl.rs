@@ -1,0 +1,162 @@
+//! The REPL's face, driven through a pipe (no terminal): transcripts of a session per bank
+//! problem pinned by snapshots, the JSON-lines protocol, the progress file (saved, reloaded,
+//! a corrupt one moved aside) and `lagrange` with no command and no terminal.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// A fresh `LAGRANGE_HOME` for one test.
+fn home(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lagrange-it-repl-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a temp dir");
+    dir
+}
+
+/// Runs `lagrange ARGS` with `input` piped in; (exit code, stdout, stderr).
+fn repl(home: &Path, args: &[&str], input: &str) -> (i32, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(args)
+        .env("LAGRANGE_HOME", home)
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin piped")
+        .write_all(input.as_bytes())
+        .expect("input written");
+    let out = child.wait_with_output().expect("the binary ends");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A wrong answer built from a right one: a doubled expression, a shifted equation, the
+/// first item of a list.
+fn wrong(answer: &str) -> String {
+    if let Some((lhs, rhs)) = answer.split_once('=') {
+        format!("{lhs} + 1 = {rhs}")
+    } else if answer.contains(',') || answer.contains(';') {
+        "0".to_string()
+    } else {
+        format!("2*({answer})")
+    }
+}
+
+#[test]
+fn a_session_per_bank_problem() {
+    let dir = home("transcripts");
+    for p in &lagrange::embedded::bank().problems {
+        let part = &p.parts[0];
+        let right = &part.answers[0];
+        let script = format!(":open {}\n{}\nhint\n{right}\n:next\n", p.id, wrong(right));
+        let (code, out, err) = repl(&dir, &["repl", "--no-save"], &script);
+        assert_eq!(code, 0, "{}: {err}", p.id);
+        assert!(out.contains("incorrect"), "{}: {out}", p.id);
+        assert!(out.contains("\ncorrect"), "{}: {out}", p.id);
+        insta::assert_snapshot!(format!("repl_{}", p.id), format!("{script}---\n{out}"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn json_gives_one_object_per_line() {
+    let dir = home("json");
+    let script = ":problems\n:open simple-pendulum\n1/2 m l^2 theta'^2\n\nhint\n:oppen x\n";
+    let (code, out, _) = repl(&dir, &["repl", "--json", "--no-save"], script);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), script.lines().count(), "{out}");
+    let objects: Vec<serde_json::Value> = lines
+        .iter()
+        .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
+        .collect();
+    let kinds: Vec<&str> = objects
+        .iter()
+        .map(|o| o["kind"].as_str().unwrap_or(""))
+        .collect();
+    assert_eq!(
+        kinds,
+        ["problems", "statement", "verdict", "none", "hint", "error"]
+    );
+    // The opened problem's current part comes along in "more".
+    assert_eq!(objects[1]["more"][0]["kind"], "part");
+    // The verdict has the fields of `lagrange check --json`: T = ½·m·l²·θ̇² is correct.
+    assert_eq!(objects[2]["status"], "correct");
+    assert_eq!(objects[2]["part"], "kinetic");
+    assert_eq!(objects[2]["score"], 1.0);
+    assert_eq!(objects[5]["suggestion"], ":open");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn progress_is_saved_and_reloaded() {
+    let dir = home("progress");
+    let (code, _, err) = repl(&dir, &["repl", "simple-pendulum"], "1/2 m l^2 theta'^2\n");
+    assert_eq!(code, 0, "{err}");
+    let saved = std::fs::read_to_string(dir.join("progress.json")).expect("progress written");
+    assert!(saved.contains("simple-pendulum"), "{saved}");
+    // Reopened, the solved part (T = ½·m·l²·θ̇²) is skipped.
+    let (_, out, _) = repl(&dir, &["repl"], ":open simple-pendulum\n:progress\n");
+    assert!(out.contains("part 2: potential"), "{out}");
+    assert!(out.contains("1 of"), "{out}");
+    // --no-save leaves the file as it was.
+    let (_, _, _) = repl(&dir, &["repl", "--no-save", "simple-pendulum"], "0\n");
+    let after = std::fs::read_to_string(dir.join("progress.json")).expect("still there");
+    assert_eq!(saved, after);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_corrupt_progress_file_is_moved_aside() {
+    let dir = home("corrupt");
+    std::fs::write(dir.join("progress.json"), "{\"version\": tru").expect("written");
+    let (code, out, err) = repl(&dir, &["repl"], ":progress\n");
+    assert_eq!(code, 0);
+    assert!(
+        err.contains("warning") && err.contains("corrupt-1"),
+        "{err}"
+    );
+    assert!(out.contains("total: 0 of"), "{out}");
+    let aside = std::fs::read_to_string(dir.join("progress.json.corrupt-1")).expect("kept");
+    assert_eq!(aside, "{\"version\": tru");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn without_a_terminal_lagrange_prints_help() {
+    let dir = home("help");
+    let (code, out, err) = repl(&dir, &[], "");
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(err.contains("Usage: lagrange"), "{err}");
+    assert!(err.contains("repl"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_global_problems_folder_is_the_bank() {
+    let dir = home("folder");
+    let bank = dir.join("bank");
+    std::fs::create_dir_all(&bank).expect("a folder");
+    let src = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/atwood.toml");
+    std::fs::copy(src, bank.join("atwood.toml")).expect("copied");
+    let folder = bank.to_string_lossy().into_owned();
+    let (code, out, err) = repl(
+        &dir,
+        &["--problems", &folder, "repl", "--no-save"],
+        ":problems\n",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("atwood"), "{out}");
+    assert!(!out.contains("simple-pendulum"), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
