@@ -57,6 +57,19 @@ pub fn follow_through(
     follows(problem, part, input, earlier)
 }
 
+/// The `follows-from-earlier` diagnosis for an answer already judged incorrect (by [`check`] or
+/// a prepared check of the same part), given the student's earlier answers as for
+/// [`follow_through`]. For a caller that has the verdict already, so the answer is not checked
+/// twice; `None` when it does not follow from any earlier wrong answer.
+pub fn follows_from_earlier(
+    problem: &Problem,
+    part: &Part,
+    input: &str,
+    earlier: &[Earlier],
+) -> Option<Diagnosis> {
+    follows(problem, part, input, earlier)
+}
+
 /// Checks `input` against `part` (as [`check`]) and, when the answer is incorrect but follows
 /// from one of the student's earlier wrong answers, adds the `follows-from-earlier` diagnosis.
 /// The status and score are never changed.

@@ -19,3 +19,4 @@ mod session;
 mod soundness;
 mod symbolic;
 mod syntax;
+mod tutor_session;
