@@ -2,6 +2,17 @@
 //! student's [`Progress`], the open problem and its current part, and answers each input line
 //! with [`Response`]s — data only, never printed. Answers are checked against the open
 //! problem with each part prepared once; unreadable input never counts as an attempt.
+//!
+//! An incorrect answer to a part gets follow-through: the student's latest answers to the
+//! open problem's other parts (from the progress) are passed to the follow-through check, so
+//! a wrong EOM that follows from their own wrong L is diagnosed `follows-from-earlier`. The
+//! verdicts on those earlier answers given in this session are kept and not checked again.
+//!
+//! `:tutor` walks the open problem's derivation ladder (one [`StepChecker`] per open problem,
+//! kept across `:back`/`:tutor`): answers go to the current step, a correct one (or `:show`)
+//! moves on and names the next step, and the tutor is left after the last step or on `:back`,
+//! `:part`, `:next` or `:skip`. In the tutor `:hint` reveals nothing (it asks the step again
+//! with a pointer to `:show`) and `:solution` is refused in favour of `:show`.
 
 use rustc_hash::FxHashMap;
 
@@ -31,6 +42,9 @@ struct Open {
     /// The guided derivation, built on the first `:tutor` and kept while the problem is open
     /// (so its checker prepares each step once, however often the student comes back).
     tutor: Option<Tutor>,
+    /// Per part index, the student's latest checked answer there and its verdict (before
+    /// follow-through), so follow-through does not check an earlier answer again.
+    judged: FxHashMap<usize, (String, Verdict)>,
 }
 
 /// The guided derivation of the open problem: its ladder, one [`StepChecker`] and where the
@@ -243,6 +257,7 @@ impl Session {
             current,
             prepared: FxHashMap::default(),
             tutor: None,
+            judged: FxHashMap::default(),
         });
         let mut out = vec![Response::Statement(StatementReply {
             sheet,
@@ -330,6 +345,12 @@ impl Session {
             Ok(v) => v,
             Err(r) => return vec![*r],
         };
+        if verdict.status != Status::Invalid
+            && let Some(o) = self.open.as_mut()
+            && let Some(index) = o.current
+        {
+            o.judged.insert(index, (input.to_string(), verdict.clone()));
+        }
         if verdict.status == Status::Incorrect {
             self.follow_through(input, &mut verdict);
         }
@@ -371,7 +392,13 @@ impl Session {
         if earlier.is_empty() {
             return;
         }
-        if let Some(d) = follows_from_earlier(problem, part, input, &earlier) {
+        let judged = self.open.as_ref().map(|o| &o.judged);
+        let known = |e: &Earlier| {
+            let index = problem.parts.iter().position(|q| q.id == e.part)?;
+            let (answer, v) = judged?.get(&index)?;
+            (*answer == e.answer).then(|| v.clone())
+        };
+        if let Some(d) = follows_from_earlier(problem, part, input, &earlier, &known) {
             verdict.diagnoses.push(d);
             verdict.sort();
         }
