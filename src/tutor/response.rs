@@ -369,4 +369,34 @@ mod tests {
         let q = serde_json::to_value(Response::Quit).unwrap_or_default();
         assert_eq!(q, serde_json::json!({"kind": "quit"}));
     }
+
+    #[test]
+    fn a_step_verdict_has_step_not_part_and_next_only_when_given() {
+        let verdict = Verdict {
+            problem: "p".into(),
+            part: "kinetic".into(),
+            status: crate::check::Status::Correct,
+            score: 1.0,
+            reading: Default::default(),
+            diagnoses: vec![],
+            seed: 0,
+            parse_error: None,
+        };
+        let mut reply = StepVerdictReply {
+            verdict,
+            step: "kinetic".into(),
+            number: 3,
+            total: 13,
+            attempts: 1,
+            next: Some(None),
+        };
+        let json = serde_json::to_value(Response::StepVerdict(reply.clone())).unwrap_or_default();
+        assert_eq!(json["kind"], "verdict");
+        assert_eq!(json["step"], "kinetic");
+        assert!(json.get("part").is_none(), "{json}");
+        assert_eq!(json.get("next"), Some(&serde_json::Value::Null));
+        reply.next = None;
+        let json = serde_json::to_value(Response::StepVerdict(reply)).unwrap_or_default();
+        assert!(json.get("next").is_none(), "{json}");
+    }
 }

@@ -1009,4 +1009,62 @@ mod tests {
             .map(|p| p.hints_used);
         assert_eq!(used, Some(2));
     }
+
+    #[test]
+    fn the_tutor_ends_after_its_last_step_and_starts_again() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        let total = match s.handle(":tutor").first() {
+            Some(Response::Step(p)) => p.total,
+            other => panic!("{other:?}"),
+        };
+        for _ in 1..total {
+            s.handle(":show");
+        }
+        assert!(s.in_tutor());
+        let last = s.handle(":show");
+        assert!(matches!(&last[0], Response::StepSolution(r) if r.next.is_none()));
+        assert!(!s.in_tutor() && s.current_step().is_none());
+        // Answers go to the parts again; `:tutor` starts from the first step.
+        assert!(matches!(&s.handle("x")[0], Response::Verdict(_)));
+        assert!(matches!(&s.handle(":tutor")[0], Response::Step(p) if p.number == 1));
+    }
+
+    #[test]
+    fn opening_a_problem_leaves_the_tutor_and_its_ladder() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        s.handle(":tutor");
+        s.handle(":show");
+        assert_eq!(s.current_step(), Some("speed-squared:1"));
+        s.handle(":open simple-pendulum");
+        assert!(!s.in_tutor());
+        assert!(matches!(&s.handle(":tutor")[0], Response::Step(p) if p.step == "position:1"));
+    }
+
+    #[test]
+    fn follow_through_uses_the_kept_verdict_only_for_the_same_answer() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        s.handle(":part lagrangian");
+        s.handle("1/2*m*l^2*theta'^2 - m*g*l*cos(theta)");
+        let kept = s.open.as_ref().map(|o| o.judged.len());
+        assert_eq!(kept, Some(1));
+        // Progress from elsewhere (not judged here) is checked afresh, with the same result.
+        let mut fresh = pendulum();
+        fresh.progress = s.progress.clone();
+        fresh.handle(":open simple-pendulum");
+        for t in [&mut s, &mut fresh] {
+            t.handle(":part eom");
+            let r = t.handle("m*l^2*theta'' - m*g*l*sin(theta) = 0");
+            let Some(Response::Verdict(v)) = r.first() else {
+                panic!("{r:?}");
+            };
+            let codes: Vec<_> = v.verdict.diagnoses.iter().map(|d| d.code).collect();
+            assert!(
+                codes.contains(&crate::check::Code::FollowsFromEarlier),
+                "{codes:?}"
+            );
+        }
+    }
 }

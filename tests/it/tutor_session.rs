@@ -230,6 +230,64 @@ fn follow_through_in_the_session_from_a_wrong_lagrangian_to_its_eom() {
     assert!(matches!(&r[0], Response::Verdict(v) if v.verdict.status == Status::Correct));
 }
 
+/// A wrong L and the EOM that follows from it, per bank problem with a `lagrangian` part (as
+/// in `follow.rs`), answered through the session.
+const WRONG_L: &[(&str, &str, &str)] = &[
+    (
+        "atwood",
+        "1/2*(m1+m2)*x'^2 - (m1-m2)*g*x",
+        "(m1+m2)*x'' = -(m1-m2)*g",
+    ),
+    (
+        "bead-parabola",
+        "1/2*m*(1 + 4*a^2*r^2)*r'^2 + 1/2*m*omega^2*r^2 + m*g*a*r^2",
+        "m*(1 + 4*a^2*r^2)*r'' + 4*m*a^2*r*r'^2 - m*omega^2*r - 2*m*g*a*r = 0",
+    ),
+    (
+        "bead-wire",
+        "1/2*m*(r'^2 - omega^2*r^2)",
+        "r'' = -omega^2*r",
+    ),
+    (
+        "double-pendulum",
+        "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + m2*l1*l2*theta1'*theta2'*cos(theta1-theta2) - (m1+m2)*g*l1*cos(theta1) - m2*g*l2*cos(theta2)",
+        "(m1+m2)*l1*theta1'' + m2*l2*theta2''*cos(theta1-theta2) + m2*l2*theta2'^2*sin(theta1-theta2) - (m1+m2)*g*sin(theta1) = 0; \
+         l2*theta2'' + l1*theta1''*cos(theta1-theta2) - l1*theta1'^2*sin(theta1-theta2) - g*sin(theta2) = 0",
+    ),
+    (
+        "spring-incline",
+        "1/2*m*x'^2 + 1/2*k*x^2 - m*g*x*sin(alpha)",
+        "m*x'' = k*x - m*g*sin(alpha)",
+    ),
+];
+
+#[test]
+fn follow_through_in_the_session_for_every_wrong_l_of_the_table() {
+    for &(id, wrong_l, its_eom) in WRONG_L {
+        let mut s = session();
+        s.handle(&format!(":open {id}"));
+        s.handle(":part lagrangian");
+        let l = one(&mut s, wrong_l);
+        assert!(
+            matches!(&l, Response::Verdict(v) if v.verdict.status == Status::Incorrect),
+            "{id}: {l:?}"
+        );
+        s.handle(":part eom");
+        let r = one(&mut s, its_eom);
+        let Response::Verdict(v) = &r else {
+            panic!("{id}: {r:?}")
+        };
+        assert_eq!(v.verdict.status, Status::Incorrect, "{id}");
+        assert!(
+            v.verdict
+                .diagnoses
+                .iter()
+                .any(|d| d.code == Code::FollowsFromEarlier),
+            "{id}: {v:?}"
+        );
+    }
+}
+
 #[test]
 fn json_of_a_short_tutor_session() {
     let mut s = session();
