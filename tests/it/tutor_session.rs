@@ -133,6 +133,9 @@ fn a_wrong_answer_per_step_of_the_simple_pendulum_is_diagnosed() {
             Code::SignError,
         ),
         ("eom:theta", "l*theta'' + g*theta = 0", Code::SmallAngle),
+        ("equilibria", "theta = 0", Code::MissingItem),
+        ("linearized", "l*theta'' - g*theta = 0", Code::SignError),
+        ("characteristic", "sqrt(g/l)", Code::OmegaRoot),
         ("frequencies", "g/l", Code::OmegaSquared),
     ];
     let mut s = session();
