@@ -57,6 +57,21 @@ pub fn follow_through(
     follows(problem, part, input, earlier)
 }
 
+/// The `follows-from-earlier` diagnosis for an answer already judged incorrect (by [`check`] or
+/// a prepared check of the same part), given the student's earlier answers as for
+/// [`follow_through`]. For a caller that has the verdicts already: `known` gives the verdict
+/// it holds on an earlier answer (`None`: it is checked here), so nothing is checked twice.
+/// `None` when the answer does not follow from any earlier wrong answer.
+pub fn follows_from_earlier(
+    problem: &Problem,
+    part: &Part,
+    input: &str,
+    earlier: &[Earlier],
+    known: &dyn Fn(&Earlier) -> Option<Verdict>,
+) -> Option<Diagnosis> {
+    follows_with(problem, part, input, earlier, known)
+}
+
 /// Checks `input` against `part` (as [`check`]) and, when the answer is incorrect but follows
 /// from one of the student's earlier wrong answers, adds the `follows-from-earlier` diagnosis.
 /// The status and score are never changed.
@@ -155,6 +170,17 @@ impl Stage {
 /// Only the latest answer to each part counts (a part answered again, or put right, no longer
 /// carries its older answers), which also bounds the work by the number of parts.
 fn follows(problem: &Problem, part: &Part, input: &str, earlier: &[Earlier]) -> Option<Diagnosis> {
+    follows_with(problem, part, input, earlier, &|_| None)
+}
+
+/// [`follows`], with the verdicts on earlier answers the caller already has.
+fn follows_with(
+    problem: &Problem,
+    part: &Part,
+    input: &str,
+    earlier: &[Earlier],
+    known: &dyn Fn(&Earlier) -> Option<Verdict>,
+) -> Option<Diagnosis> {
     let to = Stage::of(part)?;
     let mut seen: Vec<&str> = vec![part.id.as_str()];
     for e in earlier.iter().rev() {
@@ -170,7 +196,7 @@ fn follows(problem: &Problem, part: &Part, input: &str, earlier: &[Earlier]) -> 
         if !from.feeds(to) || !ep.substitute.iter().all(|s| part.substitute.contains(s)) {
             continue;
         }
-        let Ok(before) = check(problem, ep, &e.answer) else {
+        let Some(before) = known(e).or_else(|| check(problem, ep, &e.answer).ok()) else {
             continue;
         };
         if before.status != Status::Incorrect {

@@ -27,6 +27,7 @@
 //!   step asks for the roots ω² of det(K − ω² M) = 0 (a `frequencies` part with `squared`).
 //!   The equilibria step checks the points only: the checker does not read a stability.
 
+use std::borrow::Cow;
 use std::collections::hash_map::Entry;
 
 use rustc_hash::FxHashMap;
@@ -95,7 +96,7 @@ pub fn check_step(problem: &Problem, step: &Step, input: &str) -> Result<Verdict
 /// answer to a step samples its points and derives what it needs; later answers reuse that).
 /// This is what a session keeps while a student climbs the ladder.
 pub struct StepChecker<'a> {
-    problem: &'a Problem,
+    problem: Cow<'a, Problem>,
     /// Per step id: the problem as the step sees it (when it is judged against its own
     /// system) and the prepared part.
     prepared: FxHashMap<String, (Option<Problem>, Prepared)>,
@@ -105,15 +106,29 @@ impl<'a> StepChecker<'a> {
     /// A checker for the steps of `problem`'s ladder.
     pub fn new(problem: &'a Problem) -> Self {
         StepChecker {
-            problem,
+            problem: Cow::Borrowed(problem),
             prepared: FxHashMap::default(),
         }
+    }
+
+    /// A checker that owns its problem (what a session keeps while the bank it borrows from
+    /// is its own).
+    pub fn owned(problem: Problem) -> StepChecker<'static> {
+        StepChecker {
+            problem: Cow::Owned(problem),
+            prepared: FxHashMap::default(),
+        }
+    }
+
+    /// The problem whose ladder this checker judges.
+    pub fn problem(&self) -> &Problem {
+        &self.problem
     }
 
     /// Checks `input` against `step` (a step of this problem's ladder). Errors are usage
     /// errors (a part that cannot be prepared), never a judgement of the input.
     pub fn check(&mut self, step: &Step, input: &str) -> Result<Verdict, CheckError> {
-        let problem = self.problem;
+        let problem: &Problem = &self.problem;
         let (own, prepared) = match self.prepared.entry(step.id.clone()) {
             Entry::Occupied(o) => o.into_mut(),
             Entry::Vacant(v) => {

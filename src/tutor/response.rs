@@ -38,6 +38,14 @@ pub enum Response {
     Error(ErrorReply),
     /// The session ends.
     Quit,
+    /// A tutor step (`:tutor`, or `:hint` in the tutor): what the guided derivation asks now.
+    Step(StepPrompt),
+    /// The verdict on an answer to the current tutor step. Serialised with `"kind": "verdict"`
+    /// and the fields of a part's verdict, but `"step"` in place of `"part"`.
+    #[serde(rename = "verdict")]
+    StepVerdict(StepVerdictReply),
+    /// The current tutor step's reference answer (`:show`), after which the tutor moves on.
+    StepSolution(StepSolutionReply),
 }
 
 /// A verdict: the fields of `lagrange check --json` (its `problem` and `part` included), plus
@@ -234,6 +242,87 @@ pub struct ErrorReply {
     pub suggestion: Option<String>,
 }
 
+/// A step of the guided derivation (the ladder of `tutor::ladder`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StepPrompt {
+    /// The problem id.
+    pub problem: String,
+    /// The step id (`kinetic`, `momentum:theta`, `eom:theta`, …; stable).
+    pub step: String,
+    /// Its 1-based number in the ladder.
+    pub number: usize,
+    /// How many steps the ladder has.
+    pub total: usize,
+    /// The question, a plain sentence.
+    pub prompt: String,
+    /// A remark about the tutor (e.g. that `:hint` reveals nothing there), when there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+/// The verdict on an answer to a tutor step.
+///
+/// Serialised as the checker's verdict (the fields of `lagrange check --json`) without
+/// `"part"`, plus `"step"`, `"number"`, `"total"`, `"attempts"` and, on a correct answer,
+/// `"next"`: the next step (`null` after the last).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepVerdictReply {
+    /// The checker's verdict (its `part` is the step id; not serialised).
+    pub verdict: Verdict,
+    /// The step id.
+    pub step: String,
+    /// Its 1-based number in the ladder.
+    pub number: usize,
+    /// How many steps the ladder has.
+    pub total: usize,
+    /// Checked attempts at this step in this session, this one included.
+    pub attempts: u32,
+    /// On a correct answer, the step now asked (`Some(None)` after the last); `None` otherwise.
+    pub next: Option<Option<StepPrompt>>,
+}
+
+impl Serialize for StepVerdictReply {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::Error;
+        let value = serde_json::to_value(&self.verdict).map_err(S::Error::custom)?;
+        let serde_json::Value::Object(mut map) = value else {
+            return Err(S::Error::custom("a verdict serialises as an object"));
+        };
+        map.remove("part");
+        let mut put = |k: &str, v: serde_json::Result<serde_json::Value>| {
+            v.map(|v| map.insert(k.to_string(), v))
+                .map_err(S::Error::custom)
+        };
+        put("step", serde_json::to_value(&self.step))?;
+        put("number", serde_json::to_value(self.number))?;
+        put("total", serde_json::to_value(self.total))?;
+        put("attempts", serde_json::to_value(self.attempts))?;
+        if let Some(next) = &self.next {
+            put("next", serde_json::to_value(next))?;
+        }
+        map.serialize(serializer)
+    }
+}
+
+/// A tutor step's reference answer, revealed by `:show`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StepSolutionReply {
+    /// The problem id.
+    pub problem: String,
+    /// The step revealed.
+    pub step: String,
+    /// Its 1-based number in the ladder.
+    pub number: usize,
+    /// How many steps the ladder has.
+    pub total: usize,
+    /// The reference as a student would type it.
+    pub answer: String,
+    /// The reference as read, in Unicode (empty if it cannot be read).
+    pub unicode: String,
+    /// The step now asked (`null` after the last).
+    pub next: Option<StepPrompt>,
+}
+
 impl Response {
     /// An error response.
     pub fn error(code: &str, message: impl Into<String>, suggestion: Option<String>) -> Response {
@@ -260,6 +349,9 @@ impl Response {
             Response::Analysis(_) => "analysis",
             Response::Error(_) => "error",
             Response::Quit => "quit",
+            Response::Step(_) => "step",
+            Response::StepVerdict(_) => "verdict",
+            Response::StepSolution(_) => "step-solution",
         }
     }
 }
@@ -276,5 +368,35 @@ mod tests {
         assert_eq!(json["suggestion"], "hint");
         let q = serde_json::to_value(Response::Quit).unwrap_or_default();
         assert_eq!(q, serde_json::json!({"kind": "quit"}));
+    }
+
+    #[test]
+    fn a_step_verdict_has_step_not_part_and_next_only_when_given() {
+        let verdict = Verdict {
+            problem: "p".into(),
+            part: "kinetic".into(),
+            status: crate::check::Status::Correct,
+            score: 1.0,
+            reading: Default::default(),
+            diagnoses: vec![],
+            seed: 0,
+            parse_error: None,
+        };
+        let mut reply = StepVerdictReply {
+            verdict,
+            step: "kinetic".into(),
+            number: 3,
+            total: 13,
+            attempts: 1,
+            next: Some(None),
+        };
+        let json = serde_json::to_value(Response::StepVerdict(reply.clone())).unwrap_or_default();
+        assert_eq!(json["kind"], "verdict");
+        assert_eq!(json["step"], "kinetic");
+        assert!(json.get("part").is_none(), "{json}");
+        assert_eq!(json.get("next"), Some(&serde_json::Value::Null));
+        reply.next = None;
+        let json = serde_json::to_value(Response::StepVerdict(reply)).unwrap_or_default();
+        assert!(json.get("next").is_none(), "{json}");
     }
 }

@@ -2,15 +2,28 @@
 //! student's [`Progress`], the open problem and its current part, and answers each input line
 //! with [`Response`]s — data only, never printed. Answers are checked against the open
 //! problem with each part prepared once; unreadable input never counts as an attempt.
+//!
+//! An incorrect answer to a part gets follow-through: the student's latest answers to the
+//! open problem's other parts (from the progress) are passed to the follow-through check, so
+//! a wrong EOM that follows from their own wrong L is diagnosed `follows-from-earlier`. The
+//! verdicts on those earlier answers given in this session are kept and not checked again.
+//!
+//! `:tutor` walks the open problem's derivation ladder (one [`StepChecker`] per open problem,
+//! kept across `:back`/`:tutor`): answers go to the current step, a correct one (or `:show`)
+//! moves on and names the next step, and the tutor is left after the last step or on `:back`,
+//! `:part`, `:next` or `:skip`. In the tutor `:hint` reveals nothing (it asks the step again
+//! with a pointer to `:show`) and `:solution` is refused in favour of `:show`.
 
 use rustc_hash::FxHashMap;
 
 use super::command::{COMMANDS, Command, command_info, did_you_mean, parse};
+use super::follow::{Earlier, follows_from_earlier};
+use super::ladder::{Step, StepChecker, ladder};
 use super::progress::Progress;
 use super::response::{
     AnalysisReply, AnalysisReport, DoneReply, HelpEntry, HelpReply, HintReply, PartEntry,
     PartPrompt, PartsReply, ProblemEntry, ProblemsReply, ProgressReply, Response, SolutionReply,
-    StatementReply, VerdictReply,
+    StatementReply, StepPrompt, StepSolutionReply, StepVerdictReply, VerdictReply,
 };
 use crate::bank::Bank;
 use crate::check::answer::check_prepared;
@@ -26,6 +39,25 @@ struct Open {
     current: Option<usize>,
     /// Prepared parts by part index, built on first use (a failure is kept, not retried).
     prepared: FxHashMap<usize, Result<Prepared, CheckError>>,
+    /// The guided derivation, built on the first `:tutor` and kept while the problem is open
+    /// (so its checker prepares each step once, however often the student comes back).
+    tutor: Option<Tutor>,
+    /// Per part index, the student's latest checked answer there and its verdict (before
+    /// follow-through), so follow-through does not check an earlier answer again.
+    judged: FxHashMap<usize, (String, Verdict)>,
+}
+
+/// The guided derivation of the open problem: its ladder, one [`StepChecker`] and where the
+/// student is on it.
+struct Tutor {
+    steps: Vec<Step>,
+    checker: StepChecker<'static>,
+    /// The step asked (`steps.len()` once the last is done).
+    current: usize,
+    /// Checked attempts per step, this session.
+    attempts: Vec<u32>,
+    /// Whether answers go to the tutor (between `:tutor` and `:back` or the last step).
+    active: bool,
 }
 
 /// A student's practice session over a bank.
@@ -76,27 +108,31 @@ impl Session {
     pub fn execute(&mut self, cmd: Command) -> Vec<Response> {
         match cmd {
             Command::Empty => vec![],
+            Command::Answer(a) if self.in_tutor() => self.step_answer(&a),
             Command::Answer(a) => self.answer(&a),
             Command::Problems => vec![Response::Problems(ProblemsReply {
                 problems: self.entries(),
             })],
             Command::Open(id) => self.open(&id),
-            Command::Part(id) => self.select(&id),
             Command::Parts => self.parts(),
+            Command::Part(id) if self.in_tutor() => self.leave_tutor_then(|s| s.select(&id)),
+            Command::Part(id) => self.select(&id),
+            Command::Next | Command::Skip if self.in_tutor() => self.leave_tutor_then(Self::next),
             Command::Next | Command::Skip => self.next(),
+            Command::Hint if self.in_tutor() => self.step_hint(),
             Command::Hint => self.hint(),
+            Command::Solution if self.in_tutor() => vec![solution_in_tutor()],
             Command::Solution => self.solution(),
+            Command::Tutor => self.tutor(),
+            Command::Show => self.show(),
+            Command::Back => self.back(),
             Command::Progress => vec![self.progress_reply()],
             Command::Help(topic) => vec![help(topic.as_deref())],
             Command::Quit => vec![Response::Quit],
             Command::Read(expr) => vec![self.read(&expr)],
             Command::Derive(l) if l.is_empty() => vec![self.analyse(false)],
             Command::Modes(l) if l.is_empty() => vec![self.analyse(true)],
-            Command::Tutor
-            | Command::Show
-            | Command::Back
-            | Command::Derive(_)
-            | Command::Modes(_) => vec![not_available(&cmd)],
+            Command::Derive(_) | Command::Modes(_) => vec![not_available(&cmd)],
         }
     }
 
@@ -220,6 +256,8 @@ impl Session {
             problem: index,
             current,
             prepared: FxHashMap::default(),
+            tutor: None,
+            judged: FxHashMap::default(),
         });
         let mut out = vec![Response::Statement(StatementReply {
             sheet,
@@ -303,10 +341,19 @@ impl Session {
     }
 
     fn answer(&mut self, input: &str) -> Vec<Response> {
-        let verdict = match self.check_current(input) {
+        let mut verdict = match self.check_current(input) {
             Ok(v) => v,
             Err(r) => return vec![*r],
         };
+        if verdict.status != Status::Invalid
+            && let Some(o) = self.open.as_mut()
+            && let Some(index) = o.current
+        {
+            o.judged.insert(index, (input.to_string(), verdict.clone()));
+        }
+        if verdict.status == Status::Incorrect {
+            self.follow_through(input, &mut verdict);
+        }
         let problem_id = verdict.problem.clone();
         let part_id = verdict.part.clone();
         if verdict.status != Status::Invalid {
@@ -324,6 +371,37 @@ impl Session {
             out.extend(self.next());
         }
         out
+    }
+
+    /// Adds `follows-from-earlier` to an incorrect verdict on the current part when the answer
+    /// follows from the student's own latest wrong answer to another part of the open problem
+    /// (read from the progress, in part order: a later part counts as more recent).
+    fn follow_through(&self, input: &str, verdict: &mut Verdict) {
+        let (Some(problem), Some(part)) = (self.problem(), self.part()) else {
+            return;
+        };
+        let earlier: Vec<Earlier> = problem
+            .parts
+            .iter()
+            .filter(|q| q.id != part.id)
+            .filter_map(|q| {
+                let rec = self.progress.part(&problem.id, &q.id)?;
+                Some(Earlier::new(q.id.as_str(), rec.last_answer()?))
+            })
+            .collect();
+        if earlier.is_empty() {
+            return;
+        }
+        let judged = self.open.as_ref().map(|o| &o.judged);
+        let known = |e: &Earlier| {
+            let index = problem.parts.iter().position(|q| q.id == e.part)?;
+            let (answer, v) = judged?.get(&index)?;
+            (*answer == e.answer).then(|| v.clone())
+        };
+        if let Some(d) = follows_from_earlier(problem, part, input, &earlier, &known) {
+            verdict.diagnoses.push(d);
+            verdict.sort();
+        }
     }
 
     /// Checks `input` against the current part, preparing the part on first use.
@@ -562,6 +640,206 @@ impl Session {
     }
 }
 
+/// The tutor: `:tutor`, answers to steps, `:show`, `:back` and `:hint` there.
+impl Session {
+    /// Whether answers go to the guided derivation (after `:tutor`, until `:back` or the
+    /// last step).
+    pub fn in_tutor(&self) -> bool {
+        self.tutor_ref().is_some_and(|t| t.active)
+    }
+
+    /// The current tutor step's id, while in the tutor.
+    pub fn current_step(&self) -> Option<&str> {
+        let t = self.tutor_ref().filter(|t| t.active)?;
+        t.steps.get(t.current).map(|s| s.id.as_str())
+    }
+
+    fn tutor_ref(&self) -> Option<&Tutor> {
+        self.open.as_ref()?.tutor.as_ref()
+    }
+
+    /// `:tutor`: builds the ladder on first use, then asks the current step (from the first
+    /// step again once the ladder was climbed to the end).
+    fn tutor(&mut self) -> Vec<Response> {
+        let Some(o) = self.open.as_mut() else {
+            return vec![no_problem()];
+        };
+        let problem = &self.bank.problems[o.problem];
+        if o.tutor.is_none() {
+            match ladder(problem) {
+                Ok(steps) if !steps.is_empty() => {
+                    o.tutor = Some(Tutor {
+                        attempts: vec![0; steps.len()],
+                        steps,
+                        checker: StepChecker::owned(problem.clone()),
+                        current: 0,
+                        active: false,
+                    });
+                }
+                Ok(_) => {
+                    let msg = format!("`{}` has no derivation to walk through", problem.id);
+                    return vec![Response::error("no-ladder", msg, None)];
+                }
+                Err(e) => {
+                    let msg = format!("cannot build the derivation of `{}`: {e}", problem.id);
+                    return vec![Response::error("no-ladder", msg, None)];
+                }
+            }
+        }
+        let Some(t) = o.tutor.as_mut() else {
+            return vec![no_problem()];
+        };
+        if t.current >= t.steps.len() {
+            t.current = 0;
+        }
+        t.active = true;
+        step_prompt(&problem.id, t, t.current, None)
+            .map(Response::Step)
+            .into_iter()
+            .collect()
+    }
+
+    /// An answer to the current step: its verdict, with `next` when it is correct. After the
+    /// last step the tutor is left (answers go to the parts again).
+    fn step_answer(&mut self, input: &str) -> Vec<Response> {
+        let Some(o) = self.open.as_mut() else {
+            return vec![no_problem()];
+        };
+        let pid = self.bank.problems[o.problem].id.clone();
+        let Some(t) = o.tutor.as_mut().filter(|t| t.active) else {
+            return vec![not_in_tutor()];
+        };
+        let Some(step) = t.steps.get(t.current) else {
+            return vec![not_in_tutor()];
+        };
+        let verdict = match t.checker.check(step, input) {
+            Ok(v) => v,
+            Err(e) => {
+                let msg = format!("step `{}` cannot be checked: {e}", step.id);
+                return vec![Response::error(e.code(), msg, None)];
+            }
+        };
+        let (index, id) = (t.current, step.id.clone());
+        if verdict.status != Status::Invalid
+            && let Some(a) = t.attempts.get_mut(index)
+        {
+            *a = a.saturating_add(1);
+        }
+        let next = (verdict.status == Status::Correct).then(|| advance(&pid, t));
+        vec![Response::StepVerdict(StepVerdictReply {
+            verdict,
+            step: id,
+            number: index + 1,
+            total: t.steps.len(),
+            attempts: t.attempts.get(index).copied().unwrap_or(0),
+            next,
+        })]
+    }
+
+    /// `:show`: the current step's reference (plain and Unicode), then the next step.
+    fn show(&mut self) -> Vec<Response> {
+        let Some(o) = self.open.as_mut() else {
+            return vec![no_problem()];
+        };
+        let problem = &self.bank.problems[o.problem];
+        let Some(t) = o.tutor.as_mut().filter(|t| t.active) else {
+            return vec![not_in_tutor()];
+        };
+        let Some(step) = t.steps.get(t.current) else {
+            return vec![not_in_tutor()];
+        };
+        let answer = step.reference_text(problem.system.n());
+        let unicode = t
+            .checker
+            .check(step, &answer)
+            .map(|v| v.reading.unicode)
+            .unwrap_or_default();
+        let (index, id) = (t.current, step.id.clone());
+        let next = advance(&problem.id, t);
+        vec![Response::StepSolution(StepSolutionReply {
+            problem: problem.id.clone(),
+            step: id,
+            number: index + 1,
+            total: t.steps.len(),
+            answer,
+            unicode,
+            next,
+        })]
+    }
+
+    /// `:back`: leaves the tutor; the current part is asked again.
+    fn back(&mut self) -> Vec<Response> {
+        if !self.in_tutor() {
+            return vec![not_in_tutor()];
+        }
+        self.leave_tutor_then(|s| s.prompt().into_iter().collect())
+    }
+
+    /// Leaves the tutor (keeping its place), then carries out `then`.
+    fn leave_tutor_then(&mut self, then: impl FnOnce(&mut Self) -> Vec<Response>) -> Vec<Response> {
+        if let Some(t) = self.open.as_mut().and_then(|o| o.tutor.as_mut()) {
+            t.active = false;
+        }
+        then(self)
+    }
+
+    /// `:hint` in the tutor reveals nothing: it asks the current step again, with a pointer to
+    /// `:show` (which reveals the step) and `:back`. The ladder's steps are already the small
+    /// steps a hint would suggest.
+    fn step_hint(&self) -> Vec<Response> {
+        let Some(t) = self.tutor_ref().filter(|t| t.active) else {
+            return vec![not_in_tutor()];
+        };
+        let note = "the tutor gives no hints beyond the step itself: `:show` reveals this \
+                    step's answer and moves on, `:back` returns to the parts";
+        let pid = self.current_problem().unwrap_or_default();
+        step_prompt(pid, t, t.current, Some(note.to_string()))
+            .map(Response::Step)
+            .into_iter()
+            .collect()
+    }
+}
+
+/// Moves `t` past its current step; the step now asked (`None` after the last, when the tutor
+/// is left).
+fn advance(problem: &str, t: &mut Tutor) -> Option<StepPrompt> {
+    t.current = (t.current + 1).min(t.steps.len());
+    let next = step_prompt(problem, t, t.current, None);
+    if next.is_none() {
+        t.active = false;
+    }
+    next
+}
+
+/// Step `index` of `t` as asked.
+fn step_prompt(problem: &str, t: &Tutor, index: usize, note: Option<String>) -> Option<StepPrompt> {
+    let step = t.steps.get(index)?;
+    Some(StepPrompt {
+        problem: problem.to_string(),
+        step: step.id.clone(),
+        number: index + 1,
+        total: t.steps.len(),
+        prompt: step.prompt.clone(),
+        note,
+    })
+}
+
+fn not_in_tutor() -> Response {
+    Response::error(
+        "not-in-tutor",
+        "the tutor is not running: `:tutor` starts the guided derivation of the open problem",
+        None,
+    )
+}
+
+fn solution_in_tutor() -> Response {
+    Response::error(
+        "in-tutor",
+        "in the tutor, `:show` reveals the current step; `:back` returns to the parts",
+        None,
+    )
+}
+
 /// How many hints [`physics_hints`] gives for `part`, without deriving anything.
 fn physics_hint_count(problem: &Problem, part: &Part) -> usize {
     if !part.substitute.is_empty() {
@@ -620,9 +898,6 @@ fn no_problem() -> Response {
 
 fn not_available(cmd: &Command) -> Response {
     let message = match cmd {
-        Command::Tutor => "`:tutor` is not available yet in this version",
-        Command::Show => "`:show` is not available yet in this version",
-        Command::Back => "`:back` is not available yet in this version",
         Command::Derive(_) => {
             "`:derive L` is not available yet: `:derive` analyses the open problem"
         }
@@ -733,5 +1008,63 @@ mod tests {
             .part("simple-pendulum", "lagrangian")
             .map(|p| p.hints_used);
         assert_eq!(used, Some(2));
+    }
+
+    #[test]
+    fn the_tutor_ends_after_its_last_step_and_starts_again() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        let total = match s.handle(":tutor").first() {
+            Some(Response::Step(p)) => p.total,
+            other => panic!("{other:?}"),
+        };
+        for _ in 1..total {
+            s.handle(":show");
+        }
+        assert!(s.in_tutor());
+        let last = s.handle(":show");
+        assert!(matches!(&last[0], Response::StepSolution(r) if r.next.is_none()));
+        assert!(!s.in_tutor() && s.current_step().is_none());
+        // Answers go to the parts again; `:tutor` starts from the first step.
+        assert!(matches!(&s.handle("x")[0], Response::Verdict(_)));
+        assert!(matches!(&s.handle(":tutor")[0], Response::Step(p) if p.number == 1));
+    }
+
+    #[test]
+    fn opening_a_problem_leaves_the_tutor_and_its_ladder() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        s.handle(":tutor");
+        s.handle(":show");
+        assert_eq!(s.current_step(), Some("speed-squared:1"));
+        s.handle(":open simple-pendulum");
+        assert!(!s.in_tutor());
+        assert!(matches!(&s.handle(":tutor")[0], Response::Step(p) if p.step == "position:1"));
+    }
+
+    #[test]
+    fn follow_through_uses_the_kept_verdict_only_for_the_same_answer() {
+        let mut s = pendulum();
+        s.handle(":open simple-pendulum");
+        s.handle(":part lagrangian");
+        s.handle("1/2*m*l^2*theta'^2 - m*g*l*cos(theta)");
+        let kept = s.open.as_ref().map(|o| o.judged.len());
+        assert_eq!(kept, Some(1));
+        // Progress from elsewhere (not judged here) is checked afresh, with the same result.
+        let mut fresh = pendulum();
+        fresh.progress = s.progress.clone();
+        fresh.handle(":open simple-pendulum");
+        for t in [&mut s, &mut fresh] {
+            t.handle(":part eom");
+            let r = t.handle("m*l^2*theta'' - m*g*l*sin(theta) = 0");
+            let Some(Response::Verdict(v)) = r.first() else {
+                panic!("{r:?}");
+            };
+            let codes: Vec<_> = v.verdict.diagnoses.iter().map(|d| d.code).collect();
+            assert!(
+                codes.contains(&crate::check::Code::FollowsFromEarlier),
+                "{codes:?}"
+            );
+        }
     }
 }

@@ -20,3 +20,4 @@ mod session;
 mod soundness;
 mod symbolic;
 mod syntax;
+mod tutor_session;

@@ -170,7 +170,7 @@ fn unknown_names_get_did_you_mean() {
     assert!(
         matches!(one(&mut s, ":part kinetik"), Response::Error(e) if e.suggestion.as_deref() == Some("kinetic"))
     );
-    assert!(matches!(one(&mut s, ":tutor"), Response::Error(e) if e.code == "not-available"));
+    assert!(matches!(one(&mut s, ":show"), Response::Error(e) if e.code == "not-in-tutor"));
 }
 
 #[test]
