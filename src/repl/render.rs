@@ -4,13 +4,13 @@
 
 use std::fmt::Write as _;
 
-use lagrange::check::Status;
+use lagrange::check::{Status, Verdict};
 use lagrange::diagnostic::render_parse_error;
 use lagrange::expr::Style;
 use lagrange::report::Paint;
 use lagrange::tutor::Response;
 use lagrange::tutor::response::{
-    AnalysisReply, AnalysisReport, ErrorReply, HintReply, PartsReply, ProblemEntry, VerdictReply,
+    AnalysisReply, AnalysisReport, ErrorReply, HintReply, PartsReply, ProblemEntry, StepPrompt,
 };
 
 /// How `:read` asks for dimensions in the REPL (the CLI says `--dims`).
@@ -19,8 +19,7 @@ const GIVE_DIMENSIONS: &str = "dimensions come from the open problem";
 /// The text of one response to `line`, ending in a newline (empty for `Quit`).
 pub fn response(r: &Response, line: &str, paint: &dyn Paint, color: bool) -> String {
     let mut o = String::new();
-    // Writing into a String cannot fail.
-    let _ = write_response(&mut o, r, line, paint, color);
+    write_response(&mut o, r, line, paint, color).expect("writing into a String cannot fail");
     o
 }
 
@@ -32,7 +31,39 @@ fn write_response(
     color: bool,
 ) -> std::fmt::Result {
     match r {
-        Response::Verdict(v) => verdict(o, v, line, paint, color),
+        Response::Verdict(v) => verdict(o, &v.verdict, v.attempts, line, paint, color),
+        Response::Step(st) => step(o, st, paint),
+        Response::StepVerdict(v) => {
+            verdict(o, &v.verdict, v.attempts, line, paint, color)?;
+            match &v.next {
+                Some(Some(next)) => step(o, next, paint),
+                Some(None) => writeln!(
+                    o,
+                    "{} every step of the derivation is done",
+                    paint.good("tutor:")
+                ),
+                None => Ok(()),
+            }
+        }
+        Response::StepSolution(s) => {
+            writeln!(
+                o,
+                "{} {}",
+                paint.heading(&format!("step {} of {} ({}):", s.number, s.total, s.step)),
+                s.answer
+            )?;
+            if !s.unicode.is_empty() {
+                writeln!(o, "{} {}", paint.dim("read as:"), s.unicode)?;
+            }
+            match &s.next {
+                Some(next) => step(o, next, paint),
+                None => writeln!(
+                    o,
+                    "{} every step of the derivation is done",
+                    paint.good("tutor:")
+                ),
+            }
+        }
         Response::Statement(s) => {
             let text = s.sheet.render(paint);
             // The sheet ends with how to answer on the command line; in the REPL one types.
@@ -91,14 +122,28 @@ fn write_response(
     }
 }
 
+/// A tutor step: its number, id and question.
+fn step(o: &mut String, s: &StepPrompt, paint: &dyn Paint) -> std::fmt::Result {
+    writeln!(
+        o,
+        "{} {}",
+        paint.heading(&format!("step {} of {} ({}):", s.number, s.total, s.step)),
+        s.prompt
+    )?;
+    if let Some(n) = &s.note {
+        writeln!(o, "   {}", paint.dim(n))?;
+    }
+    Ok(())
+}
+
 fn verdict(
     o: &mut String,
-    r: &VerdictReply,
+    v: &Verdict,
+    attempts: u32,
     line: &str,
     paint: &dyn Paint,
     color: bool,
 ) -> std::fmt::Result {
-    let v = &r.verdict;
     if !v.reading.unicode.is_empty() {
         writeln!(o, "{} {}", paint.heading("read as:"), v.reading.unicode)?;
         if let Some(n) = &v.reading.note {
@@ -119,7 +164,7 @@ fn verdict(
             o,
             "{status}  score {:.0}%  {}",
             v.score * 100.0,
-            paint.dim(&format!("(attempt {})", r.attempts))
+            paint.dim(&format!("(attempt {attempts})"))
         )?,
     }
     for d in &v.diagnoses {
