@@ -54,7 +54,12 @@ impl Output {
             texts.concat()
         };
         let mut out = std::io::stdout().lock();
-        let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+        // A closed pipe (`… | head`) just ends the output; anything else is worth a word.
+        if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush())
+            && e.kind() != std::io::ErrorKind::BrokenPipe
+        {
+            eprintln!("warning: cannot write the output: {e}");
+        }
         if let Some(s) = &mut self.store
             && let Err(e) = s.save(session.progress())
         {
@@ -144,19 +149,26 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
     rl.set_helper(Some(editor::ReplHelper::new(session.clone(), out.color)));
     let history = store::data_dir().map(|d| d.join("history.txt"));
     if let Some(h) = &history {
-        let _ = rl.load_history(h);
+        // No history file yet is the normal first run.
+        rl.load_history(h).ok();
     }
     if !out.json {
         println!("lagrange — `:problems` lists the problems, `:help` the commands, Ctrl-D quits.");
     }
     loop {
-        let prompt = match session.borrow().current_part() {
-            Some(part) => format!("{part}> "),
-            None => "> ".to_string(),
+        // The prompt names what a line answers: the tutor's step, else the current part.
+        let prompt = {
+            let s = session.borrow();
+            match (s.current_step(), s.current_part()) {
+                (Some(step), _) => format!("tutor {step}> "),
+                (None, Some(part)) => format!("{part}> "),
+                (None, None) => "> ".to_string(),
+            }
         };
         match rl.readline(&prompt) {
             Ok(line) => {
-                let _ = rl.add_history_entry(line.as_str());
+                // A history entry that cannot be added (a duplicate, an empty line) is no error.
+                rl.add_history_entry(line.as_str()).ok();
                 let r = session.borrow_mut().handle(&line);
                 if out.emit(&line, &r, &session.borrow()) {
                     break;
@@ -168,10 +180,17 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
         }
     }
     if let Some(h) = &history {
-        if let Some(dir) = h.parent() {
-            let _ = std::fs::create_dir_all(dir);
+        let saved = h
+            .parent()
+            .map_or(Ok(()), std::fs::create_dir_all)
+            .map_err(|e| e.to_string())
+            .and_then(|()| rl.save_history(h).map_err(|e| e.to_string()));
+        if let Err(e) = saved {
+            eprintln!(
+                "warning: the line history was not saved ({}): {e}",
+                h.display()
+            );
         }
-        let _ = rl.save_history(h);
     }
     Ok(())
 }
