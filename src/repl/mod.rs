@@ -100,6 +100,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         color: opts.color && terminal && !opts.json,
         store,
     };
+    if terminal && !out.json {
+        println!("lagrange — `:problems` lists the problems, `:help` the commands, Ctrl-D quits.");
+    }
     if let Some(id) = &opts.problem {
         let line = format!(":open {id}");
         let r = session.borrow_mut().handle(&line);
@@ -151,9 +154,6 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
     if let Some(h) = &history {
         // No history file yet is the normal first run.
         rl.load_history(h).ok();
-    }
-    if !out.json {
-        println!("lagrange — `:problems` lists the problems, `:help` the commands, Ctrl-D quits.");
     }
     loop {
         // The prompt names what a line answers: the tutor's step, else the current part.
