@@ -21,7 +21,11 @@ fn script() -> Vec<String> {
     'all: for p in &bank.problems {
         lines.push(format!(":open {}", p.id));
         for part in &p.parts {
-            let wrong = part.wrong.first().cloned().unwrap_or_else(|| "0".to_string());
+            let wrong = part
+                .wrong
+                .first()
+                .cloned()
+                .unwrap_or_else(|| "0".to_string());
             for a in [wrong, part.reference_text(p.system.n())] {
                 lines.push(a);
                 answers += 1;

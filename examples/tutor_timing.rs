@@ -11,7 +11,12 @@ fn main() {
     for p in &bank.problems {
         lines.push(format!(":open {}", p.id));
         for part in &p.parts {
-            lines.push(part.wrong.first().cloned().unwrap_or_else(|| "0".to_string()));
+            lines.push(
+                part.wrong
+                    .first()
+                    .cloned()
+                    .unwrap_or_else(|| "0".to_string()),
+            );
             lines.push(part.reference_text(p.system.n()));
         }
         lines.push(":tutor".to_string());

@@ -13,6 +13,7 @@ mod hostile;
 mod ladder;
 mod mechanics;
 mod props;
+mod pty;
 mod repl;
 mod resources;
 mod scale;
