@@ -36,12 +36,7 @@ fn write_response(
         Response::StepVerdict(v) => {
             verdict(o, &v.verdict, v.attempts, line, paint, color)?;
             match &v.next {
-                Some(Some(next)) => step(o, next, paint),
-                Some(None) => writeln!(
-                    o,
-                    "{} every step of the derivation is done",
-                    paint.good("tutor:")
-                ),
+                Some(next) => next_step(o, next.as_ref(), paint),
                 None => Ok(()),
             }
         }
@@ -55,14 +50,7 @@ fn write_response(
             if !s.unicode.is_empty() {
                 writeln!(o, "{} {}", paint.dim("read as:"), s.unicode)?;
             }
-            match &s.next {
-                Some(next) => step(o, next, paint),
-                None => writeln!(
-                    o,
-                    "{} every step of the derivation is done",
-                    paint.good("tutor:")
-                ),
-            }
+            next_step(o, s.next.as_ref(), paint)
         }
         Response::Statement(s) => {
             let text = s.sheet.render(paint);
@@ -119,6 +107,18 @@ fn write_response(
         Response::Analysis(a) => analysis(o, a, paint),
         Response::Error(e) => error(o, e, paint),
         Response::Quit => Ok(()),
+    }
+}
+
+/// The step asked next, or the end of the derivation.
+fn next_step(o: &mut String, next: Option<&StepPrompt>, paint: &dyn Paint) -> std::fmt::Result {
+    match next {
+        Some(next) => step(o, next, paint),
+        None => writeln!(
+            o,
+            "{} every step of the derivation is done",
+            paint.good("tutor:")
+        ),
     }
 }
 

@@ -132,7 +132,8 @@ impl Session {
             Command::Read(expr) => vec![self.read(&expr)],
             Command::Derive(l) if l.is_empty() => vec![self.analyse(false)],
             Command::Modes(l) if l.is_empty() => vec![self.analyse(true)],
-            Command::Derive(_) | Command::Modes(_) => vec![not_available(&cmd)],
+            Command::Derive(l) => vec![analyse_typed(&l, false)],
+            Command::Modes(l) => vec![analyse_typed(&l, true)],
         }
     }
 
@@ -896,14 +897,91 @@ fn no_problem() -> Response {
     )
 }
 
-fn not_available(cmd: &Command) -> Response {
-    let message = match cmd {
-        Command::Derive(_) => {
-            "`:derive L` is not available yet: `:derive` analyses the open problem"
-        }
-        _ => "`:modes L` is not available yet: `:modes` analyses the open problem",
+/// `:derive L` / `:modes L` on a typed Lagrangian, with optional `--coords q1,q2` (else the
+/// names that appear with a time derivative) and, for modes, `--params m=1,k=2`.
+fn analyse_typed(text: &str, modes: bool) -> Response {
+    let (l, coords, params) = split_flags(text);
+    let coords: Vec<String> = match coords {
+        Some(c) => c
+            .split(',')
+            .map(|x| x.trim().to_string())
+            .filter(|x| !x.is_empty())
+            .collect(),
+        None => moving_names(l),
     };
-    Response::error("not-available", message, None)
+    if coords.is_empty() {
+        return Response::error(
+            "no-coordinates",
+            "no coordinate: write the velocities with a prime (x') or add --coords x,y",
+            None,
+        );
+    }
+    let names: Vec<&str> = coords.iter().map(String::as_str).collect();
+    let sys = match crate::mechanics::System::from_lagrangian(l, &names) {
+        Ok(sys) => sys,
+        Err(e) => return Response::error(e.code(), e.to_string(), None),
+    };
+    let report = if modes {
+        let params = match params.map(report::modes::assignments).transpose() {
+            Ok(p) => p.unwrap_or_default(),
+            Err(e) => return Response::error("bad-params", e.to_string(), None),
+        };
+        let opts = ModesOptions {
+            params,
+            default_range: Some((-10.0, 10.0)),
+            ..ModesOptions::default()
+        };
+        report::modes(&sys, &opts)
+            .map(|r| AnalysisReport::Modes(Box::new(r)))
+            .map_err(|e| e.to_string())
+    } else {
+        report::derivation(&sys)
+            .map(|r| AnalysisReport::Derive(Box::new(r)))
+            .map_err(|e| e.to_string())
+    };
+    match report {
+        Ok(report) => Response::Analysis(AnalysisReply {
+            of: if modes { "modes" } else { "derive" }.to_string(),
+            report,
+            note: None,
+        }),
+        Err(e) => Response::error("analysis", e, None),
+    }
+}
+
+/// The Lagrangian and the values of `--coords` and `--params` in `:derive L --coords x`.
+fn split_flags(text: &str) -> (&str, Option<&str>, Option<&str>) {
+    let mut l = text;
+    let mut coords = None;
+    let mut params = None;
+    // Flags come after the Lagrangian, in any order.
+    while let Some(i) = l.rfind(" --") {
+        let (head, flag) = (&l[..i], &l[i + 3..]);
+        match flag.split_once(char::is_whitespace) {
+            Some(("coords", v)) => coords = Some(v.trim()),
+            Some(("params", v)) => params = Some(v.trim()),
+            _ => break,
+        }
+        l = head;
+    }
+    (l.trim(), coords, params)
+}
+
+/// The names that appear with a time derivative in `l` (its coordinates, by the notation).
+fn moving_names(l: &str) -> Vec<String> {
+    let mut pool = crate::expr::Pool::new();
+    let Ok(e) = crate::expr::read_expr(l, &crate::expr::Context::open(), &mut pool) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = pool
+        .variables(e)
+        .into_iter()
+        .filter(|v| v.1 >= 1)
+        .map(|v| pool.name(v.0).to_string())
+        .collect();
+    names.sort();
+    names.dedup();
+    names
 }
 
 /// Help on every command, or on one (an unknown one gets did-you-mean).

@@ -286,9 +286,20 @@ fn analyses_of_the_open_problem() {
         "{omega:?}"
     );
     assert!(matches!(one(&mut s, ":read 1/(m"), Response::Error(e) if e.code == "syntax"));
-    assert!(
-        matches!(one(&mut s, ":modes 1/2*x'^2"), Response::Error(e) if e.code == "not-available")
-    );
+    // A typed Lagrangian: coordinates are the names written with a prime, or --coords.
+    let derived = json(&one(&mut s, ":derive 1/2 m x'^2 - 1/2 k x^2"));
+    assert_eq!(derived["report"]["coordinates"][0], "x");
+    assert_eq!(derived["report"]["equations"][0], "m*x'' + k*x");
+    let modes = json(&one(
+        &mut s,
+        ":modes 1/2 m x'^2 - 1/2 k x^2 --params m=1,k=4",
+    ));
+    let omega = modes["report"]["equilibria"][0]["frequencies"][0].as_f64();
+    assert!(omega.is_some_and(|w| (w - 2.0).abs() < 1e-12), "{omega:?}");
+    assert!(matches!(
+        one(&mut s, ":derive 1/2 x'^2 + y --coords x,x"),
+        Response::Error(e) if e.code == "repeated-coordinate"
+    ));
 }
 
 #[test]
