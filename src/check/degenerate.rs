@@ -132,6 +132,10 @@ struct DetC {
     a: Program,
     m: Option<Program>,
     n: usize,
+    /// One equation of a system with several coordinates: `m` holds the reference
+    /// equation's acceleration row r, and the factor is a·r / r·r (the answer must be the
+    /// reference times a factor that vanishes nowhere).
+    projection: bool,
     scratch: std::cell::RefCell<(Vec<f64>, Vec<f64>)>,
 }
 
@@ -161,14 +165,64 @@ impl DetC {
             a,
             m,
             n,
+            projection: false,
             scratch: std::cell::RefCell::new(scratch),
         })
+    }
+
+    /// For one equation `r` of a system with several coordinates, against the reference
+    /// equation `reference`.
+    fn projection(p: &mut Prepared, r: Id, reference: Id) -> Option<DetC> {
+        let coords = p.system.coordinate_syms();
+        let row = |p: &mut Prepared, e: Id| -> Vec<Id> {
+            coords
+                .iter()
+                .map(|&c| p.system.pool.diff(e, c, 2))
+                .collect()
+        };
+        let (ra, rr) = (row(p, r), row(p, reference));
+        let a = p.system.compile(&ra).ok()?;
+        let m = p.system.compile(&rr).ok()?;
+        let scratch = (a.scratch(), m.scratch());
+        Some(DetC {
+            a,
+            m: Some(m),
+            n: coords.len(),
+            projection: true,
+            scratch: std::cell::RefCell::new(scratch),
+        })
+    }
+
+    /// a·r / r·r at `x` (projection mode).
+    fn ratio_at(&self, x: &[f64], m: &Program, sa: &mut [f64], sm: &mut [f64]) -> Det {
+        if m.run(x, sm).is_err() {
+            return Det::Skip;
+        }
+        let rr: f64 = (0..self.n).map(|j| m.output(j, sm).powi(2)).sum();
+        if !rr.is_finite() || rr == 0.0 {
+            return Det::Skip;
+        }
+        if self.a.run(x, sa).is_err() {
+            return Det::Undefined;
+        }
+        let ar: f64 = (0..self.n)
+            .map(|j| self.a.output(j, sa) * m.output(j, sm))
+            .sum();
+        let d = ar / rr;
+        if d.is_finite() {
+            Det::Value(d)
+        } else {
+            Det::Undefined
+        }
     }
 
     fn at(&self, x: &[f64]) -> Det {
         let n = self.n;
         let mut guard = self.scratch.borrow_mut();
         let (sa, sm) = &mut *guard;
+        if let (true, Some(m)) = (self.projection, &self.m) {
+            return self.ratio_at(x, m, sa, sm);
+        }
         // The reference first: where M is undefined or singular it does not determine the
         // accelerations either, and there is nothing to judge.
         let det_m = match &self.m {
@@ -212,12 +266,21 @@ fn det(n: usize, e: impl Fn(usize, usize) -> f64) -> f64 {
 
 /// Whether the equations `res` (which hold at the true accelerations, `rows == n`) determine
 /// the accelerations everywhere; the reason when they do not.
-pub(crate) fn degeneracy(p: &mut Prepared, res: &[Id]) -> Option<Degeneracy> {
+///
+/// One equation of a system with several coordinates (`res.len() == 1 < n`) is judged
+/// against `reference`, the part's own reference equation: it must be that equation times a
+/// factor that vanishes nowhere.
+pub(crate) fn degeneracy(
+    p: &mut Prepared,
+    res: &[Id],
+    reference: Option<Id>,
+) -> Option<Degeneracy> {
     let n = p.system.n();
-    if res.len() != n {
-        return None;
-    }
-    let det = DetC::new(p, res)?;
+    let det = match (res, reference) {
+        _ if res.len() == n => DetC::new(p, res)?,
+        ([r], Some(reference)) => DetC::projection(p, *r, reference)?,
+        _ => return None,
+    };
     let found = probe(p, &det)?;
     Some(explain(p, res, found))
 }
@@ -594,5 +657,16 @@ fn bisect(value: &dyn Fn(&[f64]) -> Option<f64>, x: &[f64], y: &[f64]) -> Vec<f6
             _ => hi = mid,
         }
     }
+    // A zero found by bisection carries rounding noise (θ̇ = −6.7e-16): show it as 0.
     along(0.5 * (lo + hi))
+        .into_iter()
+        .zip(x.iter().zip(y))
+        .map(|(v, (a, b))| {
+            if v.abs() <= tolerance::SAME * a.abs().max(b.abs()) {
+                0.0
+            } else {
+                v
+            }
+        })
+        .collect()
 }

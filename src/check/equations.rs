@@ -92,7 +92,7 @@ pub(crate) fn equations_hold(
             "the equations do not determine the accelerations".into(),
         ));
     }
-    Ok(degeneracy(p, res).map(|d| d.details().message))
+    Ok(degeneracy(p, res, None).map(|d| d.details().message))
 }
 
 /// An equation's affine form at one point: the coefficients of q'' and the rest.
@@ -416,6 +416,7 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
         .map(|(r, _)| *r)
         .collect();
     let rank = rank_of(p, &holding);
+    let mut degenerate = false;
     if res.len() != want {
         v.diagnoses.push(Diagnosis::new(
             Code::EquationCount,
@@ -430,9 +431,13 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
         if rank == want {
             // Holding at the true accelerations is not enough: the equations must determine
             // them everywhere, not only away from where a factor vanishes.
-            match degeneracy(p, res) {
+            let reference = single_reference(part, p);
+            match degeneracy(p, res, reference) {
                 None => v.status = Status::Correct,
-                Some(d) => v.diagnoses.push(d.details()),
+                Some(d) => {
+                    v.diagnoses.push(d.details());
+                    degenerate = true;
+                }
             }
         } else {
             v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
@@ -460,16 +465,35 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
             "your equation does not hold for the true motion",
         ));
     }
-    v.score = if v.status == Status::Correct {
-        1.0
+    v.score = score(v.status, degenerate, rank, want, res.len());
+}
+
+/// Partial credit for equations: the share of the asked equations that hold independently,
+/// less for extra ones; none for equations that stop determining the motion somewhere.
+fn score(status: Status, degenerate: bool, rank: usize, want: usize, given: usize) -> f64 {
+    if status == Status::Correct {
+        return 1.0;
+    }
+    if degenerate {
+        return 0.0;
+    }
+    let extra = if given > want {
+        want as f64 / given as f64
     } else {
-        rank.min(want) as f64 / want as f64
-            * if res.len() > want {
-                want as f64 / res.len() as f64
-            } else {
-                1.0
-            }
+        1.0
     };
+    rank.min(want) as f64 / want as f64 * extra
+}
+
+/// For an `equation` part of a system with several coordinates: the residual of its reference
+/// equation, against which one answer equation is judged for vanishing factors.
+fn single_reference(part: &Part, p: &mut Prepared) -> Option<Id> {
+    if part.kind != PartKind::Equation || p.system.n() < 2 {
+        return None;
+    }
+    let (l, r) =
+        crate::expr::read_equation(&part.answers[0], &p.context, &mut p.system.pool).ok()?;
+    Some(p.system.pool.sub(l, r))
 }
 
 fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {

@@ -160,3 +160,81 @@ fn the_global_problems_folder_is_the_bank() {
     assert!(!out.contains("simple-pendulum"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A wrong answer to a tutor step, chosen by what the step asks so that its diagnosis is a
+/// telling one: ω² for ω (and ω for ω²), a list with its last item dropped, one term's sign
+/// flipped in a Lagrangian or an equation (a constant multiple of either is still right), any
+/// other expression doubled.
+fn wrong_step(step: &lagrange::tutor::ladder::Step, reference: &str) -> String {
+    let id = step.id.as_str();
+    if reference == "0" {
+        return "1".to_string();
+    }
+    if id == "frequencies" {
+        return reference
+            .split(", ")
+            .map(|w| format!("({w})^2"))
+            .collect::<Vec<_>>()
+            .join(", ");
+    }
+    if id == "characteristic" {
+        return reference
+            .split(", ")
+            .map(|w| format!("sqrt({w})"))
+            .collect::<Vec<_>>()
+            .join(", ");
+    }
+    if id == "equilibria" || id.starts_with("position:") {
+        let items: Vec<&str> = reference.split(", ").collect();
+        return match items.as_slice() {
+            // One equilibrium: give another point instead.
+            [one] => match one.split_once('=') {
+                Some((q, _)) => format!("{q}= 1"),
+                None => "1".to_string(),
+            },
+            _ => items[..items.len() - 1].join(", "),
+        };
+    }
+    // A constant multiple of L, or of an equation, is still right: flip one term's sign.
+    if id == "lagrangian" || id.starts_with("eom:") || id == "linearized" {
+        return match (reference.find(" + "), reference.find(" - ")) {
+            (Some(i), Some(j)) if j < i => format!("{} + {}", &reference[..j], &reference[j + 3..]),
+            (Some(i), _) => format!("{} - {}", &reference[..i], &reference[i + 3..]),
+            (None, Some(j)) => format!("{} + {}", &reference[..j], &reference[j + 3..]),
+            // One term: multiplied by the coordinate's velocity, the energy-law slip.
+            (None, None) => match (id.strip_prefix("eom:"), reference.split_once(" = ")) {
+                (Some(q), Some((lhs, rhs))) => format!("{q}'*({lhs}) = {rhs}"),
+                _ => format!("2*({reference})"),
+            },
+        };
+    }
+    format!("2*({reference})")
+}
+
+#[test]
+fn a_tutor_session_per_bank_problem() {
+    let dir = home("tutor-transcripts");
+    for p in &lagrange::embedded::bank().problems {
+        let steps = lagrange::tutor::ladder::ladder(p).expect("the ladder builds");
+        let mut script = format!(":open {}\n:tutor\n", p.id);
+        for s in &steps {
+            let reference = s.reference_text(p.system.n());
+            script.push_str(&format!("{}\n{reference}\n", wrong_step(s, &reference)));
+        }
+        let (code, out, err) = repl(&dir, &["repl", "--no-save"], &script);
+        assert_eq!(code, 0, "{}: {err}", p.id);
+        // Every step's reference is accepted: one `correct` per step.
+        let correct = out.matches("\ncorrect  score 100%").count();
+        assert_eq!(correct, steps.len(), "{}:\n{out}", p.id);
+        // And every step's wrong answer is judged wrong, with a reason.
+        let wrong = out.matches("\nincorrect  score").count();
+        assert_eq!(wrong, steps.len(), "{}:\n{out}", p.id);
+        assert!(
+            out.contains("every step of the derivation is done"),
+            "{}",
+            p.id
+        );
+        insta::assert_snapshot!(format!("tutor_{}", p.id), format!("{script}\n---\n{out}"));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

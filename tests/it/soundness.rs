@@ -343,3 +343,29 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn one_equation_of_a_system_times_a_vanishing_factor_is_wrong() {
+    // The tutor's `eom:theta1` step asks for one equation of the double pendulum.
+    let p = embedded::problem("double-pendulum").expect("in the bank");
+    let steps = lagrange::tutor::ladder::ladder(&p).expect("the ladder builds");
+    let step = steps
+        .iter()
+        .find(|s| s.id == "eom:theta1")
+        .expect("an eom step");
+    let reference = step.reference_text(p.system.n());
+    let (lhs, rhs) = reference.split_once(" = ").expect("an equation");
+    for factor in ["theta1'", "sin(theta2)", "(m1 - m2)"] {
+        let answer = format!("{factor}*({lhs}) = {rhs}");
+        let v = lagrange::tutor::ladder::check_step(&p, step, &answer).expect("checks");
+        assert_eq!(v.status, Status::Incorrect, "{answer}: {v:#?}");
+        assert!(
+            v.diagnoses.iter().any(|d| d.code == Code::VanishingFactor),
+            "{answer}: {:#?}",
+            v.diagnoses
+        );
+    }
+    let right = format!("(2 + cos(theta1))*({lhs}) = {rhs}");
+    let v = lagrange::tutor::ladder::check_step(&p, step, &right).expect("checks");
+    assert_eq!(v.status, Status::Correct, "{right}: {v:#?}");
+}
