@@ -10,7 +10,8 @@ use lagrange::expr::Style;
 use lagrange::report::Paint;
 use lagrange::tutor::Response;
 use lagrange::tutor::response::{
-    AnalysisReply, AnalysisReport, ErrorReply, HintReply, PartsReply, ProblemEntry, StepPrompt,
+    AnalysisReply, AnalysisReport, ErrorReply, HintReply, PartsReply, ProblemEntry, SolutionReply,
+    StepPrompt,
 };
 
 /// How `:read` asks for dimensions in the REPL (the CLI says `--dims`).
@@ -79,13 +80,7 @@ fn write_response(
             d.parts
         ),
         Response::Hint(h) => hint(o, h, paint),
-        Response::Solution(s) => {
-            writeln!(o, "{} {}", paint.heading("answer:"), s.answer)?;
-            if !s.unicode.is_empty() {
-                writeln!(o, "{} {}", paint.dim("read as:"), s.unicode)?;
-            }
-            Ok(())
-        }
+        Response::Solution(s) => solution(o, s, paint),
         Response::Problems(p) => problems(o, &p.problems, paint),
         Response::Progress(p) => {
             problems(o, &p.problems, paint)?;
@@ -108,6 +103,22 @@ fn write_response(
         Response::Error(e) => error(o, e, paint),
         Response::Quit => Ok(()),
     }
+}
+
+/// The reference answer, after its worked derivation.
+fn solution(o: &mut String, s: &SolutionReply, paint: &dyn Paint) -> std::fmt::Result {
+    if !s.derivation.is_empty() {
+        writeln!(o, "{}", paint.heading("worked derivation:"))?;
+        for (i, w) in s.derivation.iter().enumerate() {
+            writeln!(o, "  {}. {}", i + 1, paint.dim(&w.prompt))?;
+            writeln!(o, "     {}", w.answer)?;
+        }
+    }
+    writeln!(o, "{} {}", paint.heading("answer:"), s.answer)?;
+    if !s.unicode.is_empty() {
+        writeln!(o, "{} {}", paint.dim("read as:"), s.unicode)?;
+    }
+    Ok(())
 }
 
 /// The step asked next, or the end of the derivation.

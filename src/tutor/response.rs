@@ -121,6 +121,20 @@ pub struct SolutionReply {
     pub answer: String,
     /// The answer as read, in Unicode (empty if it cannot be read).
     pub unicode: String,
+    /// The worked derivation: the tutor's steps that lead to this part, with their results
+    /// (empty when the ladder cannot be built or no step leads there).
+    pub derivation: Vec<WorkedStep>,
+}
+
+/// One step of a worked derivation: its id, question and result.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct WorkedStep {
+    /// The step id (as in the tutor).
+    pub step: String,
+    /// The question.
+    pub prompt: String,
+    /// The result, as a student would type it.
+    pub answer: String,
 }
 
 /// One problem of the bank with the student's progress on it.

@@ -20,6 +20,7 @@ use super::command::{COMMANDS, Command, command_info, did_you_mean, parse};
 use super::follow::{Earlier, follows_from_earlier};
 use super::ladder::{Step, StepChecker, ladder};
 use super::progress::Progress;
+use super::response::WorkedStep;
 use super::response::{
     AnalysisReply, AnalysisReport, DoneReply, HelpEntry, HelpReply, HintReply, PartEntry,
     PartPrompt, PartsReply, ProblemEntry, ProblemsReply, ProgressReply, Response, SolutionReply,
@@ -474,6 +475,7 @@ impl Session {
             return vec![self.no_part()];
         };
         let answer = part.reference_text(problem.system.n());
+        let derivation = worked_derivation(problem, part);
         let (pid, qid) = (problem.id.clone(), part.id.clone());
         // The reference read as an answer gives its Unicode form.
         let unicode = self
@@ -486,6 +488,7 @@ impl Session {
             part: qid,
             answer,
             unicode,
+            derivation,
         })]
     }
 
@@ -831,6 +834,43 @@ fn not_in_tutor() -> Response {
         "the tutor is not running: `:tutor` starts the guided derivation of the open problem",
         None,
     )
+}
+
+/// The ladder's steps that lead to `part`, with their results: up to T, V or L for those
+/// parts, up to the momenta for a momentum, up to the equations of motion for an equation,
+/// and on to the equilibria or the frequencies for those.
+fn worked_derivation(problem: &Problem, part: &Part) -> Vec<WorkedStep> {
+    let last = match (part.kind, part.quantity) {
+        (_, Quantity::Kinetic) => "kinetic",
+        (_, Quantity::Potential) => "potential",
+        (PartKind::Lagrangian, _) | (_, Quantity::Lagrangian) => "lagrangian",
+        (_, Quantity::Momentum(_)) => "momentum:",
+        (PartKind::Equation | PartKind::Equations, _) => "eom:",
+        (PartKind::Equilibria, _) => "equilibria",
+        (PartKind::Frequencies, _) => "frequencies",
+        _ => return Vec::new(),
+    };
+    let Ok(steps) = ladder(problem) else {
+        return Vec::new();
+    };
+    // Through the last step whose id matches (a prefix like `eom:` takes every coordinate).
+    let Some(end) = steps.iter().rposition(|s| {
+        if last.ends_with(':') {
+            s.id.starts_with(last)
+        } else {
+            s.id == last
+        }
+    }) else {
+        return Vec::new();
+    };
+    steps[..=end]
+        .iter()
+        .map(|s| WorkedStep {
+            step: s.id.clone(),
+            prompt: s.prompt.clone(),
+            answer: s.reference_text(problem.system.n()),
+        })
+        .collect()
 }
 
 fn solution_in_tutor() -> Response {

@@ -315,3 +315,29 @@ fn json_of_a_short_tutor_session() {
     }
     insta::assert_snapshot!("tutor_session_json", out);
 }
+
+/// `:solution` gives the reference answer and its worked derivation: the tutor's steps that
+/// lead to the part, with their results.
+#[test]
+fn a_solution_comes_with_its_worked_derivation() {
+    let mut s =
+        lagrange::tutor::Session::new(lagrange::embedded::bank(), lagrange::tutor::Progress::new());
+    s.handle(":open simple-pendulum");
+    s.handle(":part eom");
+    let out = s.handle(":solution");
+    let v = serde_json::to_value(&out[0]).expect("serialises");
+    assert_eq!(v["kind"], "solution");
+    let steps: Vec<&str> = v["derivation"]
+        .as_array()
+        .expect("a derivation")
+        .iter()
+        .filter_map(|w| w["step"].as_str())
+        .collect();
+    assert_eq!(steps.first(), Some(&"position:1"));
+    assert_eq!(steps.last(), Some(&"eom:theta"));
+    let p = v["derivation"]
+        .as_array()
+        .and_then(|a| a.iter().find(|w| w["step"] == "momentum:theta"))
+        .expect("the momentum step");
+    assert_eq!(p["answer"], "m*l^2*theta'");
+}
