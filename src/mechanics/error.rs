@@ -1,4 +1,5 @@
-//! Errors of the mechanics layer: one variant per situation, with the data a face needs to
+//! Errors of the mechanics layer (names a user typed are shown with invisible and control
+//! characters made visible): one variant per situation, with the data a face needs to
 //! phrase it, a one-line help that names no face's flags, and a stable code each (through
 //! [`Diagnostic`]).
 
@@ -16,7 +17,7 @@ pub enum MechError {
         error: Box<ParseError>,
     },
     /// A name used as a coordinate is not one.
-    #[error("`{name}` is not a coordinate of this system")]
+    #[error("`{}` is not a coordinate of this system", crate::expr::error::visible(.name))]
     UnknownCoordinate { name: String },
     /// A coordinate's velocity does not enter L quadratically.
     #[error("L does not depend on {name}' quadratically: the system is degenerate")]
@@ -25,7 +26,7 @@ pub enum MechError {
     #[error("the mass matrix is singular: the velocities {names} enter L only in a combination")]
     SingularMass { names: String },
     /// A numeric analysis needs a value for this parameter.
-    #[error("parameter `{name}` has no value")]
+    #[error("parameter `{}` has no value", crate::expr::error::visible(.name))]
     MissingValue { name: String },
     /// The equilibrium search found nothing.
     #[error("no equilibrium was found in the coordinate ranges")]
@@ -43,13 +44,13 @@ pub enum MechError {
     #[error("a velocity constraint must be linear in the velocities")]
     NonlinearVelocityConstraint,
     /// An expression uses a symbol that is neither a coordinate nor a parameter.
-    #[error("`{name}` is not a symbol of this system")]
+    #[error("`{}` is not a symbol of this system", crate::expr::error::visible(.name))]
     UnknownSymbol { name: String },
     /// A value was given for a coordinate where parameter values were expected.
-    #[error("`{name}` is a coordinate, not a parameter")]
+    #[error("`{}` is a coordinate, not a parameter", crate::expr::error::visible(.name))]
     ValueForCoordinate { name: String },
     /// A value was given for a name that is not a parameter.
-    #[error("`{name}` is not a parameter of this system")]
+    #[error("`{}` is not a parameter of this system", crate::expr::error::visible(.name))]
     UnknownParameter { name: String },
     /// Numeric parameter values do not match the system's parameters.
     #[error("wrong number of parameter values")]
