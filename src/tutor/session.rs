@@ -608,27 +608,11 @@ impl Session {
                 shown.join(", ")
             )
         });
-        let report = if modes {
-            let opts = ModesOptions {
-                params,
-                ..ModesOptions::default()
-            };
-            report::modes(&p.system, &opts)
-                .map(|r| AnalysisReport::Modes(Box::new(r)))
-                .map_err(|e| e.to_string())
-        } else {
-            report::derivation(&p.system)
-                .map(|r| AnalysisReport::Derive(Box::new(r)))
-                .map_err(|e| e.to_string())
+        let opts = ModesOptions {
+            params,
+            ..ModesOptions::default()
         };
-        match report {
-            Ok(report) => Response::Analysis(AnalysisReply {
-                of: if modes { "modes" } else { "derive" }.to_string(),
-                report,
-                note,
-            }),
-            Err(e) => Response::error("analysis", e, None),
-        }
+        analysis_response(&p.system, modes, &opts, note)
     }
 
     fn no_part(&self) -> Response {
@@ -961,21 +945,32 @@ fn analyse_typed(text: &str, modes: bool) -> Response {
         Ok(sys) => sys,
         Err(e) => return Response::error(e.code(), e.to_string(), None),
     };
-    let report = if modes {
-        let params = match params.map(report::modes::assignments).transpose() {
-            Ok(p) => p.unwrap_or_default(),
+    let mut opts = ModesOptions {
+        default_range: Some((-10.0, 10.0)),
+        ..ModesOptions::default()
+    };
+    if modes {
+        match params.map(report::modes::assignments).transpose() {
+            Ok(p) => opts.params = p.unwrap_or_default(),
             Err(e) => return Response::error("bad-params", e.to_string(), None),
-        };
-        let opts = ModesOptions {
-            params,
-            default_range: Some((-10.0, 10.0)),
-            ..ModesOptions::default()
-        };
-        report::modes(&sys, &opts)
+        }
+    }
+    analysis_response(&sys, modes, &opts, None)
+}
+
+/// The derivation or the modes of `sys` as an analysis response (or why not).
+fn analysis_response(
+    sys: &crate::mechanics::System,
+    modes: bool,
+    opts: &ModesOptions,
+    note: Option<String>,
+) -> Response {
+    let report = if modes {
+        report::modes(sys, opts)
             .map(|r| AnalysisReport::Modes(Box::new(r)))
             .map_err(|e| e.to_string())
     } else {
-        report::derivation(&sys)
+        report::derivation(sys)
             .map(|r| AnalysisReport::Derive(Box::new(r)))
             .map_err(|e| e.to_string())
     };
@@ -983,7 +978,7 @@ fn analyse_typed(text: &str, modes: bool) -> Response {
         Ok(report) => Response::Analysis(AnalysisReply {
             of: if modes { "modes" } else { "derive" }.to_string(),
             report,
-            note: None,
+            note,
         }),
         Err(e) => Response::error("analysis", e, None),
     }
