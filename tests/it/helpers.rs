@@ -65,3 +65,15 @@ pub fn lagrange(args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// A tutor session on the embedded bank with fresh progress.
+pub fn session() -> lagrange::tutor::Session {
+    lagrange::tutor::Session::new(lagrange::embedded::bank(), lagrange::tutor::Progress::new())
+}
+
+/// The one response of a line that must answer with exactly one.
+pub fn one(s: &mut lagrange::tutor::Session, line: &str) -> lagrange::tutor::Response {
+    let mut r = s.handle(line);
+    assert_eq!(r.len(), 1, "`{line}` gave {r:?}");
+    r.remove(0)
+}

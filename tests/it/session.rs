@@ -7,16 +7,7 @@ use lagrange::embedded;
 use lagrange::tutor::response::VerdictReply;
 use lagrange::tutor::{Progress, ProgressError, Response, Session};
 
-fn session() -> Session {
-    Session::new(embedded::bank(), Progress::new())
-}
-
-/// The one response of a line that must answer with exactly one.
-fn one(s: &mut Session, line: &str) -> Response {
-    let mut r = s.handle(line);
-    assert_eq!(r.len(), 1, "`{line}` gave {r:?}");
-    r.remove(0)
-}
+use crate::helpers::{one, session};
 
 fn verdict(r: &Response) -> &VerdictReply {
     match r {

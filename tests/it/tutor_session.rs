@@ -6,20 +6,11 @@
 
 use lagrange::check::{Code, Status};
 use lagrange::embedded;
+use lagrange::tutor::Response;
 use lagrange::tutor::ladder::ladder;
 use lagrange::tutor::response::{StepPrompt, StepVerdictReply};
-use lagrange::tutor::{Progress, Response, Session};
 
-fn session() -> Session {
-    Session::new(embedded::bank(), Progress::new())
-}
-
-/// The one response of a line that must answer with exactly one.
-fn one(s: &mut Session, line: &str) -> Response {
-    let mut r = s.handle(line);
-    assert_eq!(r.len(), 1, "`{line}` gave {r:?}");
-    r.remove(0)
-}
+use crate::helpers::{one, session};
 
 fn step(r: &Response) -> &StepPrompt {
     match r {
