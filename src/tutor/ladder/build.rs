@@ -1,77 +1,13 @@
-//! The derivation ladder: the guided Euler–Lagrange derivation of a problem, generated from its
-//! system by the mechanics engine (never written in the problem file). Each rung is a [`Step`]
-//! whose [`Part`] carries the engine's result as its reference answer, so the ordinary checker
-//! judges a step with all its diagnoses.
-//!
-//! Order: for a system built from bodies, each body's position and speed squared, then T, V
-//! and L (a system given by L alone starts at L); for each coordinate q, p = ∂L/∂q', d/dt p,
-//! ∂L/∂q and the equation of motion; then, when the problem asks for them, the equilibria, the
-//! linearized equations at the stable equilibrium its `frequencies` part names, the roots ω² of
-//! det(K − ω² M) = 0 and the frequencies.
-//!
-//! [`check_step`] checks one answer; a session keeps a [`StepChecker`], which prepares each
-//! step once. A step judged against another system than the problem's (the linearized one, or
-//! the unconstrained one for a constrained problem's `eom:Q`) carries it in [`Step::against`].
-//!
-//! Choices:
-//! - A position is a `values` part, one item per Cartesian component. The list checker matches
-//!   items unordered, so [`check_step`] also checks the components in order (an exchanged x
-//!   and y is `swapped-symbols`). The student types `x, y` (no brackets).
-//! - The momentum-rate and generalized-force (∂L/∂q) steps are `expression` parts containing
-//!   accelerations and velocities; the checker samples those as independent variables (over
-//!   [−2, 2]) with the coordinates, so they are compared numerically like any expression, with
-//!   the usual diagnoses (`velocity-term` for a missing θ̇₁θ̇₂ term, `sign-error`, …).
-//! - Equilibria, ω² and ω are not solved symbolically by the engine (it finds them
-//!   numerically); their steps take the problem's own verified answers (`lagrange problems
-//!   verify` proves them against the engine's search and eigen-solver). The `characteristic`
-//!   step asks for the roots ω² of det(K − ω² M) = 0 (a `frequencies` part with `squared`).
-//!   The equilibria step checks the points only: the checker does not read a stability.
-
-use std::borrow::Cow;
-use std::collections::hash_map::Entry;
+//! Building the ladder from the problem's system: [`ladder`] climbs the energies, each
+//! coordinate's Euler–Lagrange steps and the statics (equilibria, linearized equations,
+//! characteristic roots, frequencies), with the engine's results as reference answers.
 
 use rustc_hash::FxHashMap;
 
-use crate::check::answer::check_prepared;
-use crate::check::prepare::{Prepared, prepare};
-use crate::check::{self, CheckError, Code, Diagnosis, Status, Verdict};
+use super::step::{LadderError, Step};
 use crate::expr::{Id, Style, Sym, read_expr};
-use crate::mechanics::{Body, MechError, System};
+use crate::mechanics::{Body, System};
 use crate::problem::{Part, PartKind, Problem, Quantity};
-
-/// One rung of the ladder: what is asked, and the part that checks it.
-#[derive(Clone, Debug)]
-pub struct Step {
-    /// Stable id: `position:1`, `kinetic`, `momentum:theta`, `eom:theta`, `frequencies`, …
-    pub id: String,
-    /// The question, a plain sentence.
-    pub prompt: String,
-    /// The part the checker judges the answer against; its `answers` are the reference.
-    pub part: Part,
-    /// The system an equation step is judged against when it is not the problem's own (the
-    /// checker compares an equation with the motion of a system): the linearized system for
-    /// `linearized`, the system without its constraints for the `eom:Q` steps of a
-    /// constrained problem (whose Euler–Lagrange equations lack the constraint forces).
-    pub against: Option<Box<System>>,
-}
-
-impl Step {
-    /// The reference answer as a student would type it in one line.
-    pub fn reference_text(&self, coordinates: usize) -> String {
-        self.part.reference_text(coordinates)
-    }
-}
-
-/// Why a ladder cannot be built.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum LadderError {
-    /// The engine could not derive the equations of motion.
-    #[error("cannot derive the equations of motion: {0}")]
-    Mechanics(#[from] MechError),
-    /// A point named by the problem (a `frequencies` part's `at`) cannot be read.
-    #[error("cannot read the equilibrium `{text}` of part `{part}`")]
-    BadPoint { part: String, text: String },
-}
 
 /// The ladder of `problem`, in the order a student climbs it.
 pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
@@ -84,127 +20,6 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
     b.coordinates()?;
     b.statics()?;
     Ok(b.steps)
-}
-
-/// Checks `input` against one step. A position is also checked component by component, in
-/// order (the list checker alone would accept x and y exchanged).
-pub fn check_step(problem: &Problem, step: &Step, input: &str) -> Result<Verdict, CheckError> {
-    StepChecker::new(problem).check(step, input)
-}
-
-/// Checks answers to the steps of one problem's ladder, preparing each step once (the first
-/// answer to a step samples its points and derives what it needs; later answers reuse that).
-/// This is what a session keeps while a student climbs the ladder.
-pub struct StepChecker<'a> {
-    problem: Cow<'a, Problem>,
-    /// Per step id: the problem as the step sees it (when it is judged against its own
-    /// system) and the prepared part.
-    prepared: FxHashMap<String, (Option<Problem>, Prepared)>,
-}
-
-impl<'a> StepChecker<'a> {
-    /// A checker for the steps of `problem`'s ladder.
-    pub fn new(problem: &'a Problem) -> Self {
-        StepChecker {
-            problem: Cow::Borrowed(problem),
-            prepared: FxHashMap::default(),
-        }
-    }
-
-    /// A checker that owns its problem (what a session keeps while the bank it borrows from
-    /// is its own).
-    pub fn owned(problem: Problem) -> StepChecker<'static> {
-        StepChecker {
-            problem: Cow::Owned(problem),
-            prepared: FxHashMap::default(),
-        }
-    }
-
-    /// The problem whose ladder this checker judges.
-    pub fn problem(&self) -> &Problem {
-        &self.problem
-    }
-
-    /// Checks `input` against `step` (a step of this problem's ladder). Errors are usage
-    /// errors (a part that cannot be prepared), never a judgement of the input.
-    pub fn check(&mut self, step: &Step, input: &str) -> Result<Verdict, CheckError> {
-        let problem: &Problem = &self.problem;
-        let (own, prepared) = match self.prepared.entry(step.id.clone()) {
-            Entry::Occupied(o) => o.into_mut(),
-            Entry::Vacant(v) => {
-                let own = step.against.as_ref().map(|sys| {
-                    let mut own = problem.clone();
-                    own.system = (**sys).clone();
-                    own
-                });
-                let prepared = prepare(own.as_ref().unwrap_or(problem), &step.part)?;
-                v.insert((own, prepared))
-            }
-        };
-        let judged = own.as_ref().unwrap_or(problem);
-        let mut v = check_prepared(judged, &step.part, prepared, input);
-        if step.id.starts_with("position:") && v.status == Status::Correct {
-            order_of_components(problem, step, input, &mut v)?;
-        }
-        Ok(v)
-    }
-}
-
-/// Turns a correct but reordered position into an incorrect one.
-fn order_of_components(
-    problem: &Problem,
-    step: &Step,
-    input: &str,
-    v: &mut Verdict,
-) -> Result<(), CheckError> {
-    let items = split_top_level(input);
-    if items.len() != step.part.answers.len() {
-        return Ok(());
-    }
-    for (i, (item, answer)) in items.iter().zip(&step.part.answers).enumerate() {
-        let mut part = step.part.clone();
-        part.kind = PartKind::Expression;
-        part.answers = vec![answer.clone()];
-        let c = check::check(problem, &part, item)?;
-        if c.status != Status::Correct {
-            v.status = Status::Incorrect;
-            v.score = 0.0;
-            v.diagnoses.push(Diagnosis::new(
-                Code::SwappedSymbols,
-                format!(
-                    "these are the right components in the wrong order: component {} should be {}",
-                    i + 1,
-                    answer
-                ),
-            ));
-            return Ok(());
-        }
-    }
-    Ok(())
-}
-
-/// Splits `a, b, (c, d)` at the commas outside brackets (also `;`).
-fn split_top_level(input: &str) -> Vec<&str> {
-    let mut out = Vec::new();
-    let (mut depth, mut start) = (0i32, 0usize);
-    let trimmed = input.trim();
-    let inner = match (trimmed.strip_prefix('('), trimmed.strip_suffix(')')) {
-        (Some(_), Some(_)) if trimmed.len() >= 2 => &trimmed[1..trimmed.len() - 1],
-        _ => trimmed,
-    };
-    for (i, ch) in inner.char_indices() {
-        match ch {
-            '(' | '[' => depth += 1,
-            ')' | ']' => depth -= 1,
-            ',' | ';' if depth == 0 => {
-                out.push(inner[start..i].trim());
-                start = i + ch.len_utf8();
-            }
-            _ => {}
-        }
-    }
-    out.push(inner[start..].trim());
-    out
 }
 
 /// Builds the steps in order.
@@ -672,53 +487,8 @@ fn at_text(sys: &System, point: &[Id]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bank::load_str;
-
-    const ONLY_L: &str = r#"
-id = "oscillator"
-title = "Harmonic oscillator"
-coordinates = [{ name = "x" }]
-lagrangian = "1/2*m*x'^2 - 1/2*k*x^2"
-
-[parameters]
-m = { dimension = "M", range = [0.5, 2.0] }
-k = { dimension = "M T^-2", range = [0.5, 2.0] }
-
-[[parts]]
-id = "eom"
-kind = "equation"
-prompt = "EOM?"
-answer = "m*x'' + k*x = 0"
-"#;
-
-    #[test]
-    fn a_problem_with_only_l_starts_at_l() {
-        let p = load_str("oscillator.toml", ONLY_L).unwrap();
-        let steps = ladder(&p).unwrap();
-        let ids: Vec<&str> = steps.iter().map(|s| s.id.as_str()).collect();
-        assert_eq!(
-            ids,
-            [
-                "lagrangian",
-                "momentum:x",
-                "momentum-rate:x",
-                "generalized-force:x",
-                "eom:x"
-            ]
-        );
-        assert_eq!(steps[1].part.answers, ["m*x'"]);
-        assert_eq!(steps[3].part.answers, ["-k*x"]);
-        let v = check_step(&p, &steps[4], "x'' = -k/m*x").unwrap();
-        assert_eq!(v.status, Status::Correct);
-    }
-
-    #[test]
-    fn a_degenerate_system_is_an_error_not_a_panic() {
-        let text = ONLY_L.replace("1/2*m*x'^2 - 1/2*k*x^2", "m*x'*x - 1/2*k*x^2");
-        // The bank loads it (verification, not loading, would reject it).
-        let p = load_str("degenerate.toml", &text).unwrap();
-        assert!(matches!(ladder(&p), Err(LadderError::Mechanics(_))));
-    }
+    use crate::check::Status;
+    use crate::tutor::ladder::check_step;
 
     /// The roots ω² of det(K − ω² M) = 0 in closed form, for one or two coordinates.
     fn roots(sys: &mut System, m: &[Vec<Id>], k: &[Vec<Id>]) -> Vec<Id> {
@@ -782,11 +552,5 @@ answer = "m*x'' + k*x = 0"
                 v.diagnoses
             );
         }
-    }
-
-    #[test]
-    fn splits_at_top_level_commas() {
-        assert_eq!(split_top_level("(a, f(b, c))"), vec!["a", "f(b, c)"]);
-        assert_eq!(split_top_level("x; y"), vec!["x", "y"]);
     }
 }
