@@ -60,6 +60,10 @@ impl Degeneracy {
             } => {
                 let how = match how {
                     Vanishing::Zero => "vanishes".to_string(),
+                    Vanishing::Rounding => {
+                        "vanishes (to within 1e-12 of its typical size, the limit of the arithmetic)"
+                            .to_string()
+                    }
                     Vanishing::Undefined => "is undefined".to_string(),
                     Vanishing::Negligible(r) => {
                         format!("becomes negligible ({r:.0e} of its typical size)")
@@ -89,6 +93,8 @@ impl Degeneracy {
 pub(crate) enum Vanishing {
     /// It is 0 there.
     Zero,
+    /// It is 0 up to rounding there (below 1e-12 of its typical size, not exactly 0).
+    Rounding,
     /// It is undefined there.
     Undefined,
     /// It is this fraction (below the tolerance) of its typical size there.
@@ -208,7 +214,8 @@ fn vanishing_factor(
                 let how = match value(&at).map(|v| v.abs() / typical) {
                     None => Vanishing::Undefined,
                     Some(r) if r >= 1.0 => Vanishing::Undefined,
-                    Some(r) if r <= NUMERICAL_ZERO => Vanishing::Zero,
+                    Some(0.0) => Vanishing::Zero,
+                    Some(r) if r <= NUMERICAL_ZERO => Vanishing::Rounding,
                     Some(r) => Vanishing::Negligible(r),
                 };
                 let row = (res.len() > 1).then_some(i);
