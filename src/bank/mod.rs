@@ -8,6 +8,10 @@ pub mod finding;
 pub mod load;
 pub mod schema;
 pub mod verify;
+mod verify_equilibria;
+mod verify_expression;
+mod verify_failed;
+mod verify_frequencies;
 
 pub use crate::problem::{Part, PartKind, Problem, Quantity};
 pub use finding::Finding;
