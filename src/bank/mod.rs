@@ -3,6 +3,8 @@
 //! bank embedded in the binary.
 
 pub(crate) mod build;
+mod build_part;
+mod build_reader;
 pub mod embedded;
 pub mod finding;
 pub mod load;
