@@ -3,11 +3,17 @@
 //! bank embedded in the binary.
 
 pub(crate) mod build;
+mod build_part;
+mod build_reader;
 pub mod embedded;
 pub mod finding;
 pub mod load;
 pub mod schema;
 pub mod verify;
+mod verify_equilibria;
+mod verify_expression;
+mod verify_failed;
+mod verify_frequencies;
 
 pub use crate::problem::{Part, PartKind, Problem, Quantity};
 pub use finding::Finding;

@@ -1,0 +1,75 @@
+//! Verification of frequencies parts: for every parameter sample, the stated frequencies (or
+//! their squares) against the eigen-solver's at the part's equilibrium.
+
+use super::verify_failed::{Check, Failed, check_dimension};
+use crate::check::compare::{close, parameter_text, values};
+use crate::check::points::PointSet;
+use crate::check::prepare::{Prepared, equilibrium_of, read_frequency};
+use crate::check::tolerance;
+use crate::expr::{Dimension, Id};
+use crate::mechanics::sample::seed_from;
+use crate::problem::{Part, Problem};
+
+/// Parameter samples for frequencies.
+const FREQUENCY_SAMPLES: usize = 20;
+
+pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    let stated: Vec<Id> = part
+        .answers
+        .iter()
+        .map(|a| read_frequency(p, a))
+        .collect::<Result<_, _>>()?;
+    let per_time = if part.squared {
+        Dimension::new(0, 0, -2)
+    } else {
+        Dimension::new(0, 0, -1)
+    };
+    for &s in &stated {
+        check_dimension(problem, p, s, Some(per_time))?;
+    }
+    let at = equilibrium_of(p, part)?;
+    let samples = PointSet::draw(
+        &p.system,
+        &p.assumptions,
+        seed_from(&[&problem.id, &part.id, "frequencies"]),
+        FREQUENCY_SAMPLES,
+    )
+    .map_err(|e| Failed::new("sampling", e.to_string()))?;
+    let mut roots = stated.clone();
+    roots.extend(at.iter().copied());
+    let vals =
+        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
+    for (k, v) in vals.iter().enumerate() {
+        let Some(v) = v else { continue };
+        let params = samples.params(&p.system, k).to_vec();
+        let q0 = &v[stated.len()..];
+        let modes = p
+            .system
+            .modes_at(&p.derivation, &params, q0)
+            .map_err(|e| Failed::new("unusable", e.to_string()))?;
+        let mut want: Vec<f64> = if part.squared {
+            modes.frequencies.iter().map(|w| w * w).collect()
+        } else {
+            modes.frequencies.clone()
+        };
+        let mut got: Vec<f64> = v[..stated.len()].to_vec();
+        want.sort_by(f64::total_cmp);
+        got.sort_by(f64::total_cmp);
+        let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if want.len() != got.len()
+            || !want
+                .iter()
+                .zip(&got)
+                .all(|(a, b)| close(*a, *b, scale, part.tolerance.max(tolerance::EIGEN)))
+        {
+            let pstr = parameter_text(&p.system, &params);
+            return Err(Failed::new(
+                "wrong-frequency",
+                format!(
+                    "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
