@@ -1,0 +1,298 @@
+//! Primaries: numbers, parentheses, names resolved against the context, function calls,
+//! `dot(q)`/`ddot(q)`, and derivative marks (primes and combining dots).
+
+use super::Parser;
+use crate::expr::ast::{Ast, AstKind};
+use crate::expr::context::{Call, Context, Resolved, call_named};
+use crate::expr::error::{ParseError, ParseErrorKind};
+use crate::expr::lexer::{Span, Tok, Token};
+
+impl Parser<'_> {
+    /// Whether the next tokens are `(t)`.
+    pub(super) fn at_time_argument(&self) -> bool {
+        self.peek() == Some(&Tok::LParen)
+            && matches!(self.peek_at(1), Some(Tok::Name { text, dots: 0 }) if text == "t")
+            && self.peek_at(2) == Some(&Tok::RParen)
+    }
+
+    /// Applies `order` derivative marks to a name read as `a`.
+    pub(super) fn differentiate(
+        &mut self,
+        a: Ast,
+        order: u8,
+        end: usize,
+    ) -> Result<Ast, ParseError> {
+        let span = a.span.start..end;
+        match a.kind {
+            AstKind::Coordinate { name, order: o } => Ok(Ast {
+                kind: AstKind::Coordinate {
+                    name,
+                    order: o.saturating_add(order),
+                },
+                span,
+            }),
+            AstKind::Parameter(name) if self.ctx.is_open() && !self.ctx.is_parameter(&name) => {
+                self.implied.insert(name.clone());
+                Ok(Ast {
+                    kind: AstKind::Coordinate { name, order },
+                    span,
+                })
+            }
+            AstKind::Parameter(name) => Err(ParseError::new(
+                ParseErrorKind::NotACoordinate { name },
+                a.span,
+            )),
+            AstKind::Time | AstKind::Pi => Err(ParseError::new(
+                ParseErrorKind::NotACoordinate {
+                    name: if matches!(a.kind, AstKind::Time) {
+                        "t"
+                    } else {
+                        "pi"
+                    }
+                    .into(),
+                },
+                a.span,
+            )),
+            _ => Err(ParseError::new(ParseErrorKind::PrimeWithoutName, span)),
+        }
+    }
+
+    pub(super) fn primary(&mut self) -> Result<Ast, ParseError> {
+        let Some(tok) = self.next() else {
+            // Point at the operator left dangling at the end.
+            let span = self.tokens.last().map_or(0..self.end, |t| t.span.clone());
+            return Err(ParseError::new(
+                ParseErrorKind::MissingOperand {
+                    context: "at the end of the input".into(),
+                },
+                span,
+            ));
+        };
+        let span = tok.span.clone();
+        match tok.tok {
+            Tok::Num(v) => Ok(Ast {
+                kind: AstKind::Num(v),
+                span,
+            }),
+            Tok::LParen => {
+                self.enter(&span)?;
+                let inner = self.sum();
+                self.leave();
+                let inner = inner?;
+                if !self.eat(&Tok::RParen) {
+                    return Err(match self.peek() {
+                        None | Some(Tok::Comma | Tok::Semi | Tok::Eq) => {
+                            ParseError::new(ParseErrorKind::UnclosedParen, span)
+                        }
+                        Some(t) => ParseError::new(
+                            ParseErrorKind::MissingOperand {
+                                context: format!("or `)` before {}", t.describe()),
+                            },
+                            self.here(),
+                        ),
+                    });
+                }
+                let end = self.prev_end();
+                Ok(Ast {
+                    kind: inner.kind,
+                    span: span.start..end,
+                })
+            }
+            Tok::Root => {
+                self.enter(&span)?;
+                let arg = self.postfix();
+                self.leave();
+                let arg = arg?;
+                let span = span.start..arg.span.end;
+                Ok(Ast {
+                    kind: AstKind::Call(Call::Sqrt, Box::new(arg)),
+                    span,
+                })
+            }
+            Tok::Name { text, dots } => self.name(text, dots, span),
+            Tok::RParen => Err(ParseError::new(ParseErrorKind::UnmatchedParen, span)),
+            other => Err(ParseError::new(
+                ParseErrorKind::MissingOperand {
+                    context: format!("before {}", other.describe()),
+                },
+                span,
+            )),
+        }
+    }
+
+    fn name(&mut self, text: String, dots: u8, span: Span) -> Result<Ast, ParseError> {
+        if text == "dot" || text == "ddot" {
+            return self.dot_call(&text, span);
+        }
+        if let Some(call) = call_named(&text) {
+            return self.function_call(call, text, span);
+        }
+        let resolved = self.ctx.resolve(&text);
+        // `theta(t)`: a coordinate written as a function of time is the coordinate itself.
+        if let Some(Resolved::Coordinate(name, order)) = &resolved
+            && self.at_time_argument()
+        {
+            self.pos += 3;
+            let end = self.prev_end();
+            let a = Ast {
+                kind: AstKind::Coordinate {
+                    name: name.clone(),
+                    order: *order,
+                },
+                span: span.start..end,
+            };
+            return self.with_dots(a, dots, end);
+        }
+        if self.peek() == Some(&Tok::LParen) {
+            self.check_called_name(&text, resolved.as_ref(), &span)?;
+        }
+        let Some(resolved) = resolved else {
+            return Err(ParseError::new(
+                ParseErrorKind::UnknownName {
+                    suggestion: self.ctx.suggest(&text),
+                    split: self.ctx.split(&text),
+                    name: text,
+                },
+                span,
+            ));
+        };
+        let kind = match resolved {
+            Resolved::Coordinate(name, order) => AstKind::Coordinate { name, order },
+            Resolved::Parameter(name) => AstKind::Parameter(name),
+            Resolved::Time => AstKind::Time,
+            Resolved::Pi => AstKind::Pi,
+        };
+        let end = span.end;
+        self.with_dots(Ast { kind, span }, dots, end)
+    }
+
+    /// `a` differentiated `dots` times (combining dots over a name), or `a` itself.
+    fn with_dots(&mut self, a: Ast, dots: u8, end: usize) -> Result<Ast, ParseError> {
+        if dots > 0 {
+            self.differentiate(a, dots, end)
+        } else {
+            Ok(a)
+        }
+    }
+
+    /// `sin(…)` and the other named functions: the name must be followed by `(`.
+    fn function_call(&mut self, call: Call, text: String, span: Span) -> Result<Ast, ParseError> {
+        if self.peek() != Some(&Tok::LParen) {
+            return Err(ParseError::new(
+                ParseErrorKind::FunctionWithoutArgs { name: text },
+                span,
+            ));
+        }
+        let open = self.here();
+        self.pos += 1;
+        self.enter(&open)?;
+        let arg = self.sum();
+        self.leave();
+        let arg = arg?;
+        if !self.eat(&Tok::RParen) {
+            return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
+        }
+        let end = self.prev_end();
+        Ok(Ast {
+            kind: AstKind::Call(call, Box::new(arg)),
+            span: span.start..end,
+        })
+    }
+
+    /// A name that is not a function but is followed by `(`: an unknown function (with a
+    /// suggestion when it looks like a misspelt one) unless it is a declared name, which
+    /// then multiplies the parenthesis.
+    fn check_called_name(
+        &self,
+        text: &str,
+        resolved: Option<&Resolved>,
+        span: &Span,
+    ) -> Result<(), ParseError> {
+        let declared = matches!(
+            resolved,
+            Some(Resolved::Coordinate(..) | Resolved::Pi | Resolved::Time)
+        ) || self.ctx.is_parameter(text);
+        if !declared && let Some(s) = Context::suggest_function(text) {
+            return Err(ParseError::new(
+                ParseErrorKind::UnknownFunction {
+                    name: text.to_string(),
+                    suggestion: Some(s),
+                },
+                span.clone(),
+            ));
+        }
+        if resolved.is_none() {
+            return Err(ParseError::new(
+                ParseErrorKind::UnknownFunction {
+                    name: text.to_string(),
+                    suggestion: None,
+                },
+                span.clone(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// `dot(q)` and `ddot(q)`.
+    fn dot_call(&mut self, which: &str, span: Span) -> Result<Ast, ParseError> {
+        let order = if which == "dot" { 1 } else { 2 };
+        let bad = || {
+            ParseError::new(
+                ParseErrorKind::DotNeedsName {
+                    name: which.to_string(),
+                },
+                span.clone(),
+            )
+        };
+        if self.peek() != Some(&Tok::LParen) {
+            return Err(ParseError::new(
+                ParseErrorKind::FunctionWithoutArgs {
+                    name: which.to_string(),
+                },
+                span,
+            ));
+        }
+        let open = self.here();
+        self.pos += 1;
+        let Some(Token {
+            tok: Tok::Name { text, dots },
+            span: name_span,
+        }) = self.next()
+        else {
+            return Err(bad());
+        };
+        let mut primes = dots;
+        while self.eat(&Tok::Prime) {
+            primes = primes.saturating_add(1);
+        }
+        if !self.eat(&Tok::RParen) {
+            return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
+        }
+        let end = self.prev_end();
+        let inner = match self.ctx.resolve(&text) {
+            Some(Resolved::Coordinate(name, o)) => Ast {
+                kind: AstKind::Coordinate { name, order: o },
+                span: name_span,
+            },
+            Some(Resolved::Parameter(name)) => Ast {
+                kind: AstKind::Parameter(name),
+                span: name_span,
+            },
+            Some(_) => return Err(bad()),
+            None => {
+                return Err(ParseError::new(
+                    ParseErrorKind::UnknownName {
+                        suggestion: self.ctx.suggest(&text),
+                        split: None,
+                        name: text,
+                    },
+                    name_span,
+                ));
+            }
+        };
+        self.differentiate(inner, order + primes, end).map(|a| Ast {
+            span: span.start..end,
+            ..a
+        })
+    }
+}
