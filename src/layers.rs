@@ -1,6 +1,8 @@
 //! The layering test: reads the `crate::…` and `super::…` paths of every library file and fails
 //! when a lower layer imports a higher one ([`crate::LAYERS`]) or when the files of one module
-//! import each other in a loop. Test-only: the library itself reads no files.
+//! import each other in a loop. Files in a folder below a module (a file split by concept) are
+//! checked for upward imports; the loop check is between a module's top-level files, where
+//! such a folder counts as one file. Test-only: the library itself reads no files.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -171,23 +173,34 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
     out
 }
 
-/// The `.rs` files directly in `dir`, by stem.
+/// The `.rs` files in `dir`, by stem; files of a folder below it (a file split by concept,
+/// `session/answer.rs`) as `session/answer`, and its `mod.rs` as `session`.
 fn rs_files(dir: &Path) -> Vec<(String, String)> {
-    let mut out: Vec<(String, String)> = std::fs::read_dir(dir)
+    let mut out = Vec::new();
+    for p in std::fs::read_dir(dir)
         .into_iter()
         .flatten()
         .flatten()
         .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "rs"))
-        .map(|p| {
-            let stem = p
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or("")
-                .to_string();
-            (stem, std::fs::read_to_string(&p).unwrap_or_default())
-        })
-        .collect();
+    {
+        let stem = p
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("")
+            .to_string();
+        if p.is_dir() {
+            for (file, text) in rs_files(&p) {
+                let name = if file == "mod" {
+                    stem.clone()
+                } else {
+                    format!("{stem}/{file}")
+                };
+                out.push((name, text));
+            }
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push((stem, std::fs::read_to_string(&p).unwrap_or_default()));
+        }
+    }
     out.sort();
     out
 }
@@ -239,7 +252,7 @@ fn violations(units: &[(Unit, String)], layers: &[&str]) -> Vec<String> {
                 )),
                 Some(_)
                     if to.module == from.module
-                        && from.file.is_some()
+                        && from.file.as_ref().is_some_and(|f| !f.contains('/'))
                         && to.file.is_some()
                         && to.file != from.file =>
                 {
