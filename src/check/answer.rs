@@ -33,18 +33,44 @@ impl<'a> Checker<'a> {
     /// Checks `input` against part `part_id`. Errors are usage errors (no such part, a part
     /// that cannot be prepared), never a judgement of the input.
     pub fn check(&mut self, part_id: &str, input: &str) -> Result<Verdict, CheckError> {
-        let part = self
-            .problem
-            .part(part_id)
-            .ok_or_else(|| CheckError::UnknownPart {
-                problem: self.problem.id.clone(),
-                part: part_id.to_string(),
-            })?;
+        let problem = self.problem;
+        let (part, p) = self.prepared(part_id)?;
+        Ok(check_prepared(problem, part, p, input))
+    }
+
+    /// The canonical form of `input` as part `part_id` reads it (list items sorted): answers
+    /// with one canonical form get one verdict, so a caller checking many answers may check
+    /// one of them and reuse the verdict. `None` when the input cannot be read.
+    pub fn canonical(&mut self, part_id: &str, input: &str) -> Result<Option<String>, CheckError> {
+        let (part, p) = self.prepared(part_id)?;
+        Ok(super::fingerprint::canonical(part, p, input))
+    }
+
+    /// A fingerprint of `input` for part `part_id`: equal for answers equal at the sample
+    /// points (equations up to scaling, lists in any order), so wrong answers can be grouped
+    /// by what they mean rather than how they were typed. `None` when the input cannot be read
+    /// or evaluated.
+    pub fn fingerprint(
+        &mut self,
+        part_id: &str,
+        input: &str,
+    ) -> Result<Option<String>, CheckError> {
+        let (part, p) = self.prepared(part_id)?;
+        Ok(super::fingerprint::fingerprint(part, p, input))
+    }
+
+    /// The part `part_id` and its preparation (made on first use).
+    fn prepared(&mut self, part_id: &str) -> Result<(&'a Part, &mut Prepared), CheckError> {
+        let problem = self.problem;
+        let part = problem.part(part_id).ok_or_else(|| CheckError::UnknownPart {
+            problem: problem.id.clone(),
+            part: part_id.to_string(),
+        })?;
         let p = match self.prepared.entry(part_id.to_string()) {
             std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
-            std::collections::hash_map::Entry::Vacant(v) => v.insert(prepare(self.problem, part)?),
+            std::collections::hash_map::Entry::Vacant(v) => v.insert(prepare(problem, part)?),
         };
-        Ok(check_prepared(self.problem, part, p, input))
+        Ok((part, p))
     }
 }
 

@@ -11,6 +11,7 @@ mod common;
 pub(crate) mod compare;
 mod degenerate;
 mod diagnose;
+mod fingerprint;
 pub(crate) mod equations;
 pub mod error;
 mod lists;

@@ -478,13 +478,13 @@ impl Pool {
             Node::Add(ch) => {
                 // The term printed first decides, so a stored sum reads as it prints:
                 // (2 − √2), not −(−2 + √2).
-                if let Some(&v) = self.negative_sum.borrow().get(&a) {
+                if let Some(v) = self.negative_sum.get(a) {
                     return v;
                 }
                 let v = self
                     .display_first_term(ch)
                     .is_some_and(|t| self.is_negative_form(t));
-                self.negative_sum.borrow_mut().insert(a, v);
+                self.negative_sum.insert(a, v);
                 v
             }
             _ => false,

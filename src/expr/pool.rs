@@ -65,10 +65,44 @@ pub struct Pool {
     /// Memo of [`content`](Pool::content) by sum.
     pub(crate) contents: FxHashMap<Id, (num_rational::BigRational, Id)>,
     /// Memo of the sign test of sums (the printed-first term is costly to find).
-    pub(crate) negative_sum: std::cell::RefCell<FxHashMap<Id, bool>>,
+    pub(crate) negative_sum: Memo,
     /// While a simplification runs: the pool size at which it gives up (see
     /// [`MAX_NEW_NODES`]).
     pub(crate) budget_end: Option<usize>,
+}
+
+/// A memo filled while printing (through `&Pool`). A mutex rather than a `RefCell` keeps the
+/// pool `Sync`, so problems can be shared by reference between threads (a face grading a
+/// class in parallel); it is never contended within one thread's use of a pool.
+#[derive(Debug, Default)]
+pub(crate) struct Memo(std::sync::Mutex<FxHashMap<Id, bool>>);
+
+impl Memo {
+    pub(crate) fn get(&self, id: Id) -> Option<bool> {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .get(&id)
+            .copied()
+    }
+
+    pub(crate) fn insert(&self, id: Id, v: bool) {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .insert(id, v);
+    }
+}
+
+impl Clone for Memo {
+    fn clone(&self) -> Self {
+        let inner = self
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .clone();
+        Memo(std::sync::Mutex::new(inner))
+    }
 }
 
 /// Per-node memo tables of the rewrite passes.
@@ -100,7 +134,7 @@ impl Pool {
             minus_one: Id(0),
             caches: Caches::default(),
             contents: FxHashMap::default(),
-            negative_sum: std::cell::RefCell::new(FxHashMap::default()),
+            negative_sum: Memo::default(),
             budget_end: None,
         };
         pool.zero = pool.intern(Node::Num(BigRational::zero()));
