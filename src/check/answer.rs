@@ -62,10 +62,12 @@ impl<'a> Checker<'a> {
     /// The part `part_id` and its preparation (made on first use).
     fn prepared(&mut self, part_id: &str) -> Result<(&'a Part, &mut Prepared), CheckError> {
         let problem = self.problem;
-        let part = problem.part(part_id).ok_or_else(|| CheckError::UnknownPart {
-            problem: problem.id.clone(),
-            part: part_id.to_string(),
-        })?;
+        let part = problem
+            .part(part_id)
+            .ok_or_else(|| CheckError::UnknownPart {
+                problem: problem.id.clone(),
+                part: part_id.to_string(),
+            })?;
         let p = match self.prepared.entry(part_id.to_string()) {
             std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
             std::collections::hash_map::Entry::Vacant(v) => v.insert(prepare(problem, part)?),

@@ -229,7 +229,10 @@ fn equations_key(p: &mut Prepared, res: &[Id], pts: &PointSet) -> Option<String>
 }
 
 fn quantise_all(vs: &[f64]) -> String {
-    vs.iter().map(|&v| quantise(v)).collect::<Vec<_>>().join(",")
+    vs.iter()
+        .map(|&v| quantise(v))
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 /// `v` to [`DIGITS`] significant digits; round-off around zero is zero.
@@ -319,7 +322,11 @@ mod tests {
         // In another order, one equation scaled, or replaced by a combination: the same
         // accelerations.
         let combined = format!("{B}; 2*({})", A.replace("= 0", ""));
-        let summed = format!("{A}; ({}) + m2*({})", A.replace("= 0", ""), B.replace("= 0", ""));
+        let summed = format!(
+            "{A}; ({}) + m2*({})",
+            A.replace("= 0", ""),
+            B.replace("= 0", "")
+        );
         assert_groups(
             "double-pendulum",
             "eom",
@@ -332,7 +339,9 @@ mod tests {
     fn canonical_forms_ignore_spelling_and_item_order() {
         let pr = crate::bank::embedded::problem("simple-pendulum").expect("problem");
         let mut c = Checker::new(&pr);
-        let a = c.canonical("eom", "m*l^2*theta''+m*g*l*sin(theta)=0").unwrap();
+        let a = c
+            .canonical("eom", "m*l^2*theta''+m*g*l*sin(theta)=0")
+            .unwrap();
         let b = c.canonical("eom", "m l² θ'' + m g l sin(θ) = 0").unwrap();
         assert!(a.is_some());
         assert_eq!(a, b);

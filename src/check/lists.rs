@@ -49,7 +49,11 @@ fn shifted(e: ParseError, by: usize) -> ParseError {
 }
 
 /// The student's items, each one value per coordinate (equilibria) or one value.
-pub(crate) fn read_items(part: &Part, p: &mut Prepared, input: &str) -> Result<Vec<Vec<Id>>, ParseError> {
+pub(crate) fn read_items(
+    part: &Part,
+    p: &mut Prepared,
+    input: &str,
+) -> Result<Vec<Vec<Id>>, ParseError> {
     if part.kind == PartKind::Equilibria {
         let n = p.system.n();
         let reading = read(input, &p.context, &mut p.system.pool)?;

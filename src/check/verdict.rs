@@ -45,6 +45,8 @@ pub enum Code {
     Syntax,
     /// The answer is not of the part's kind (an equation for an expression, a list…).
     WrongKind,
+    /// A named answer (`T = …`) names another quantity than the part asks for.
+    WrongName,
     /// The answer (or an item) has the wrong dimension or adds unlike terms.
     Dimension,
     /// The answer is undefined where the right one is defined.
@@ -52,29 +54,62 @@ pub enum Code {
     /// Wrong, but exactly what follows from the student's own earlier wrong answer (their L →
     /// the equation of motion of that L…): the real mistake is in the earlier part.
     FollowsFromEarlier,
+    /// Right in another common convention (angle from the horizontal, y pointing down) than the
+    /// one the problem states.
+    Convention,
+    /// A height or an extension measured wrongly in the potential (heights multiplied instead of
+    /// added; gravity on a mass it does not act on).
+    PeGeometry,
+    /// A product- or chain-rule term lost in d/dt ∂L/∂q̇.
+    DerivativeRule,
+    /// A conserved momentum put into L before differentiating.
+    PrematureSubstitution,
+    /// The energy function taken as T + V where they differ (a moving frame or constraint), or a
+    /// wrong claim that T + V is conserved.
+    HVsE,
     /// T + V written where L = T − V (or h) is asked.
     TPlusV,
     /// The Lagrangian given where T, V, h or a momentum is asked.
     GaveLagrangian,
+    /// ω² = V''/m where the inertia is m·l² (or I): the wrong inertia in a frequency.
+    EffectiveMass,
     /// ω² given for ω (or the square of an ω²).
     OmegaSquared,
     /// ω given for ω² (or √ω for ω).
     OmegaRoot,
+    /// f = ω/2π given for the angular frequency ω.
+    OrdinaryFrequency,
+    /// A period 2π/ω given for a frequency.
+    Period,
     /// An equation multiplied by a factor that vanishes somewhere (the energy law θ'·(EOM) = 0,
     /// θ·(EOM) = 0): it no longer determines the accelerations there.
     VanishingFactor,
     /// The linearized (small-angle) equation given for the full one.
     SmallAngle,
+    /// Linearised about another point than the one asked for.
+    ExpansionPoint,
     /// Two symbols exchanged.
     SwappedSymbols,
     /// A sign flipped, in one term or overall.
     SignError,
     /// Off by a constant factor, in one term or overall.
     ConstantFactor,
+    /// A wrong factor inside one term (sin for cos, l for l², θ₁ + θ₂ for θ₁ − θ₂).
+    WrongFactor,
+    /// A term of the right answer is missing.
+    MissingTerm,
+    /// A term the right answer does not have.
+    ExtraTerm,
     /// Right at rest: a velocity-dependent term is wrong.
     VelocityTerm,
+    /// Right in a limit (a parameter set to zero): the mistake is in a term with that parameter.
+    RightInLimit,
     /// Agrees only to a few digits: a decimal where an exact constant belongs.
     RoundedConstant,
+    /// Equilibria missing because a factor (sin θ) was divided out.
+    LostRoot,
+    /// An equilibrium's stability stated wrongly.
+    WrongStability,
     /// Not as many equations as asked for.
     EquationCount,
     /// Equations that hold but do not determine the accelerations.
@@ -97,25 +132,41 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 27] = [
+    pub const ALL: [Code; 43] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
         Code::WrongKind,
+        Code::WrongName,
         Code::Dimension,
         Code::Undefined,
         Code::FollowsFromEarlier,
+        Code::Convention,
+        Code::PeGeometry,
+        Code::DerivativeRule,
+        Code::PrematureSubstitution,
+        Code::HVsE,
         Code::TPlusV,
         Code::GaveLagrangian,
+        Code::EffectiveMass,
         Code::OmegaSquared,
         Code::OmegaRoot,
+        Code::OrdinaryFrequency,
+        Code::Period,
         Code::VanishingFactor,
         Code::SmallAngle,
+        Code::ExpansionPoint,
         Code::SwappedSymbols,
         Code::SignError,
         Code::ConstantFactor,
+        Code::WrongFactor,
+        Code::MissingTerm,
+        Code::ExtraTerm,
         Code::VelocityTerm,
+        Code::RightInLimit,
         Code::RoundedConstant,
+        Code::LostRoot,
+        Code::WrongStability,
         Code::EquationCount,
         Code::DependentEquations,
         Code::WrongEquation,
@@ -134,20 +185,36 @@ impl Code {
             Code::SubstitutedSymbol => "substituted-symbol",
             Code::Syntax => "syntax",
             Code::WrongKind => "wrong-kind",
+            Code::WrongName => "wrong-name",
             Code::Dimension => "dimension",
             Code::Undefined => "undefined",
             Code::FollowsFromEarlier => "follows-from-earlier",
+            Code::Convention => "convention",
+            Code::PeGeometry => "pe-geometry",
+            Code::DerivativeRule => "derivative-rule",
+            Code::PrematureSubstitution => "premature-substitution",
+            Code::HVsE => "h-vs-e",
             Code::TPlusV => "t-plus-v",
             Code::GaveLagrangian => "gave-lagrangian",
+            Code::EffectiveMass => "effective-mass",
             Code::OmegaSquared => "omega-squared",
             Code::OmegaRoot => "omega-root",
+            Code::OrdinaryFrequency => "ordinary-frequency",
+            Code::Period => "period",
             Code::VanishingFactor => "vanishing-factor",
             Code::SmallAngle => "small-angle",
+            Code::ExpansionPoint => "expansion-point",
             Code::SwappedSymbols => "swapped-symbols",
             Code::SignError => "sign-error",
             Code::ConstantFactor => "constant-factor",
+            Code::WrongFactor => "wrong-factor",
+            Code::MissingTerm => "missing-term",
+            Code::ExtraTerm => "extra-term",
             Code::VelocityTerm => "velocity-term",
+            Code::RightInLimit => "right-in-limit",
             Code::RoundedConstant => "rounded-constant",
+            Code::LostRoot => "lost-root",
+            Code::WrongStability => "wrong-stability",
             Code::EquationCount => "equation-count",
             Code::DependentEquations => "dependent-equations",
             Code::WrongEquation => "wrong-equation",
@@ -222,25 +289,41 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 27] = [
+        const DOCUMENTED: [&str; 43] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
             "wrong-kind",
+            "wrong-name",
             "dimension",
             "undefined",
             "follows-from-earlier",
+            "convention",
+            "pe-geometry",
+            "derivative-rule",
+            "premature-substitution",
+            "h-vs-e",
             "t-plus-v",
             "gave-lagrangian",
+            "effective-mass",
             "omega-squared",
             "omega-root",
+            "ordinary-frequency",
+            "period",
             "vanishing-factor",
             "small-angle",
+            "expansion-point",
             "swapped-symbols",
             "sign-error",
             "constant-factor",
+            "wrong-factor",
+            "missing-term",
+            "extra-term",
             "velocity-term",
+            "right-in-limit",
             "rounded-constant",
+            "lost-root",
+            "wrong-stability",
             "equation-count",
             "dependent-equations",
             "wrong-equation",
