@@ -133,6 +133,9 @@ fn residuals(p: &mut Prepared, r: Reading) -> Option<Vec<Id>> {
         .collect()
 }
 
+/// One equation at one point: the coefficients of the accelerations, and the rest.
+type Row = (Vec<f64>, f64);
+
 /// The key of a set of equations: the implied accelerations when they determine them, or
 /// else each equation normalised on its own (sorted).
 fn equations_key(p: &mut Prepared, res: &[Id], pts: &PointSet) -> Option<String> {
@@ -148,84 +151,85 @@ fn equations_key(p: &mut Prepared, res: &[Id], pts: &PointSet) -> Option<String>
     }
     let vals = values(&p.system, &roots, pts).ok()?;
     let at = p.system.state_layout();
-    let row = |v: &[f64], i: usize, x: &[f64]| -> (Vec<f64>, f64) {
-        let a = v[i * (n + 1)..i * (n + 1) + n].to_vec();
-        let b = v[i * (n + 1) + n] - (0..n).map(|j| a[j] * x[at.qddot(j)]).sum::<f64>();
-        (a, b)
-    };
-    if res.len() == n && n > 0 {
-        let solved: Option<Vec<String>> = vals
-            .iter()
-            .zip(&pts.points)
-            .map(|(v, x)| {
-                let v = v.as_deref()?;
-                let mut m = DMatrix::zeros(n, n);
-                let mut rhs = DVector::zeros(n);
-                for i in 0..n {
-                    let (a, b) = row(v, i, x);
-                    for j in 0..n {
-                        m[(i, j)] = a[j];
-                    }
-                    rhs[i] = -b;
-                }
-                let scale = m.amax().max(f64::MIN_POSITIVE);
-                let lu = m.lu();
-                if lu.determinant().abs() <= 1e-12 * scale.powi(n as i32) {
-                    return None;
-                }
-                Some(quantise_all(lu.solve(&rhs)?.as_slice()))
+    // Equation `i` at one point as its affine form: (coefficients of q'', the rest).
+    let rows = |v: &[f64], x: &[f64]| -> Vec<Row> {
+        (0..res.len())
+            .map(|i| {
+                let a = v[i * (n + 1)..i * (n + 1) + n].to_vec();
+                let b = v[i * (n + 1) + n] - (0..n).map(|j| a[j] * x[at.qddot(j)]).sum::<f64>();
+                (a, b)
             })
+            .collect()
+    };
+    let affine: Vec<Option<Vec<Row>>> = vals
+        .iter()
+        .zip(&pts.points)
+        .map(|(v, x)| v.as_deref().map(|v| rows(v, x)))
+        .collect();
+    if res.len() == n && n > 0 {
+        let solved: Option<Vec<String>> = affine
+            .iter()
+            .map(|a| implied_accelerations(a.as_deref()?))
             .collect();
         if let Some(s) = solved {
             return Some(format!("acc:{}", s.join(" ")));
         }
     }
-    let mut keys = Vec::with_capacity(res.len());
-    for i in 0..res.len() {
-        // The normaliser: the first acceleration's coefficient that is nonzero at the first
-        // point, or the residual's own value at the first point where it is nonzero.
-        let first = vals.iter().zip(&pts.points).find_map(|(v, x)| {
-            let v = v.as_deref()?;
-            Some(row(v, i, x))
-        });
-        let (a0, _) = first?;
-        let pick = (0..n).find(|&j| a0[j].abs() > ZERO);
-        let norm_at = |v: &[f64], x: &[f64]| -> Option<f64> {
-            match pick {
-                Some(j) => Some(row(v, i, x).0[j]),
-                None => Some(v[i * (n + 1) + n]),
-            }
-        };
-        let lead = match pick {
-            Some(_) => None,
-            None => vals
-                .iter()
-                .flatten()
-                .map(|v| v[i * (n + 1) + n])
-                .find(|r| r.abs() > ZERO),
-        };
-        let mut parts = Vec::with_capacity(vals.len());
-        for (v, x) in vals.iter().zip(&pts.points) {
-            let Some(v) = v.as_deref() else {
-                parts.push("u".to_string());
-                continue;
-            };
-            let r = v[i * (n + 1) + n];
-            let d = match (pick, lead) {
-                (Some(_), _) => norm_at(v, x)?,
-                (None, Some(l)) => l,
-                (None, None) => 1.0,
-            };
-            parts.push(if d.abs() > ZERO {
-                quantise(r / d)
-            } else {
-                "u".to_string()
-            });
-        }
-        keys.push(parts.join(" "));
-    }
+    let mut keys: Vec<String> = (0..res.len())
+        .map(|i| normalised(&affine, i))
+        .collect::<Option<_>>()?;
     keys.sort();
     Some(format!("each:{}", keys.join("; ")))
+}
+
+/// The accelerations a square system implies at one point (quantised), `None` when it does
+/// not determine them.
+fn implied_accelerations(rows: &[Row]) -> Option<String> {
+    let n = rows.len();
+    let m = DMatrix::from_fn(n, n, |i, j| rows[i].0[j]);
+    let rhs = DVector::from_fn(n, |i, _| -rows[i].1);
+    let scale = m.amax().max(f64::MIN_POSITIVE);
+    let lu = m.lu();
+    if lu.determinant().abs() <= 1e-12 * scale.powi(n as i32) {
+        return None;
+    }
+    Some(quantise_all(lu.solve(&rhs)?.as_slice()))
+}
+
+/// Equation `i` at every point divided by a normaliser that scales with it: the coefficient of
+/// the first acceleration nonzero at the first point, or (no accelerations) the residual's own
+/// value at the first point where it is nonzero. `c·E = 0` and `E = 0` share the key.
+fn normalised(affine: &[Option<Vec<Row>>], i: usize) -> Option<String> {
+    let first = affine.iter().flatten().next()?;
+    let pick = first[i].0.iter().position(|a| a.abs() > ZERO);
+    // The value of the residual at a point, from its affine form (b holds the rest).
+    let residual_lead = affine
+        .iter()
+        .flatten()
+        .map(|rows| rows[i].1)
+        .find(|r| r.abs() > ZERO);
+    let parts: Vec<String> = affine
+        .iter()
+        .map(|rows| {
+            let Some(rows) = rows else {
+                return "u".to_string();
+            };
+            let (a, b) = &rows[i];
+            let d = match pick {
+                Some(j) => a[j],
+                None => residual_lead.unwrap_or(1.0),
+            };
+            if d.abs() > ZERO {
+                // Every coefficient and the acceleration-free rest, normalised.
+                let mut all: Vec<f64> = a.iter().map(|c| c / d).collect();
+                all.push(b / d);
+                quantise_all(&all)
+            } else {
+                "u".to_string()
+            }
+        })
+        .collect();
+    Some(parts.join(" "))
 }
 
 fn quantise_all(vs: &[f64]) -> String {
@@ -332,6 +336,20 @@ mod tests {
             "eom",
             &[&format!("{A}; {B}"), &combined, &summed],
             &[&format!("{A}; {WRONG_B}"), A],
+        );
+    }
+
+    #[test]
+    fn a_lone_equation_of_a_system_keeps_every_coefficient() {
+        // Same acceleration-free part relative to θ₁'', different θ₂'' coefficient.
+        assert_groups(
+            "double-pendulum",
+            "eom",
+            &[
+                "theta1'' + theta2'' + g/l1*sin(theta1) = 0",
+                "2*theta1'' + 2*theta2'' + 2*g/l1*sin(theta1) = 0",
+            ],
+            &["theta1'' + 2*theta2'' + g/l1*sin(theta1) = 0"],
         );
     }
 
