@@ -82,6 +82,9 @@ pub struct Judged {
     pub reps: Vec<Rep>,
 }
 
+/// The most answers one checker reads (see [`par_map`]).
+const CHUNK: usize = 1024;
+
 /// What a row resolves to before anything is checked.
 enum Target {
     Error(String),
@@ -122,7 +125,11 @@ pub fn judge(
     let bar = progress(rep_inputs.len());
     let checked = par_map(bank, &rep_inputs, |c, part, text| {
         let verdict = c.check(part, text).map_err(|e| e.to_string());
-        let fingerprint = c.fingerprint(part, text).ok().flatten();
+        // Only wrong answers are grouped, so a right one needs no fingerprint.
+        let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
+        let fingerprint = wrong
+            .then(|| c.fingerprint(part, text).ok().flatten())
+            .flatten();
         bar.inc(1);
         (verdict, fingerprint)
     });
@@ -151,18 +158,19 @@ pub fn judge(
 }
 
 /// Maps `f(checker, part id, answer)` over `(problem, part, answer)` items in parallel, in
-/// order, giving each worker one checker per problem (a checker prepares each part once, so
-/// the work is split in few, long chunks).
+/// order, giving each chunk of work one checker per problem. A checker prepares each part
+/// once, so chunks are not tiny; but its expression pool grows with every answer it reads,
+/// which makes a long chunk slower per answer, so chunks are not long either.
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
     items: &[(usize, usize, &str)],
     f: impl Fn(&mut Checker<'b>, &str, &str) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
-    let min_len = (items.len() / (rayon::current_num_threads() * 8)).max(16);
     items
         .par_iter()
-        .with_min_len(min_len)
+        .with_min_len(CHUNK / 4)
+        .with_max_len(CHUNK)
         .map_init(
             || (0..n).map(|_| None).collect::<Vec<Option<Checker<'b>>>>(),
             |checkers, &(p, q, text)| {
