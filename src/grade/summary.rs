@@ -313,20 +313,18 @@ fn wrong_answers(s: &Summary, out: &mut String) {
         }
         let _ = write!(
             out,
-            "\n### {key}\n\n| count | answer (as read) | status | diagnosis | typed as |\n|---:|---|---|---|---|\n"
+            "\n### {key}\n\n| count | answer (as read) | status | codes | diagnosis | typed as |\n|---:|---|---|---|---|---|\n"
         );
         for g in &p.wrong {
-            let diagnosis = match g.codes.first() {
-                Some(c) => format!("{c}: {}", cell(&g.diagnosis)),
-                None => cell(&g.diagnosis),
-            };
             let typed: Vec<String> = g.examples.iter().map(|e| code(e)).collect();
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {diagnosis} | {} |",
+                "| {} | {} | {} | {} | {} | {} |",
                 g.count,
                 cell(&g.answer),
                 g.status,
+                g.codes.join(", "),
+                cell(&g.diagnosis),
                 typed.join(", ")
             );
         }
