@@ -100,10 +100,12 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     emit(&text)?;
     let errors = summary.status.get("error").copied().unwrap_or(0);
     if errors > 0 {
-        eprintln!(
-            "{errors} rows had errors, see {}",
-            shown(&dir.join("results.csv"))
-        );
+        let what = if errors == 1 {
+            "1 row had an error".to_string()
+        } else {
+            format!("{errors} rows had errors")
+        };
+        eprintln!("{what}, see {}", shown(&dir.join("results.csv")));
     }
     Ok(ExitCode::SUCCESS)
 }

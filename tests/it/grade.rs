@@ -410,3 +410,55 @@ fn summary_of_a_small_class() {
     let md = std::fs::read_to_string(dir.join("summary.md")).expect("summary.md");
     insta::assert_snapshot!("grade_summary_class", md);
 }
+
+#[test]
+fn a_file_over_512_mb_is_refused_unread() {
+    let dir = scratch("huge");
+    let input = dir.join("huge.csv");
+    // Sparse: the size is checked before anything is read.
+    let f = std::fs::File::create(&input).expect("create");
+    f.set_len(513 * 1024 * 1024).expect("set_len");
+    let (code, _, err) = grade(
+        &[
+            input.to_str().unwrap_or_default(),
+            "--out",
+            dir.to_str().unwrap_or_default(),
+        ],
+        &[],
+        None,
+    );
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("over 512 MB") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+}
+
+#[test]
+fn a_wide_line_with_the_wrong_field_count_is_one_error_row() {
+    let dir = scratch("wide-bad");
+    let input = dir.join("wide.csv");
+    std::fs::write(
+        &input,
+        "student,simple-pendulum/eom,simple-pendulum/potential\nw1,x\nw2,,-m*g*l*cos(theta)\n",
+    )
+    .expect("write");
+    let out = dir.join("out");
+    let (code, _, err) = grade(
+        &[
+            input.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ],
+        &[],
+        None,
+    );
+    assert_eq!(code, 0, "{err}");
+    let rows = results(&out);
+    let got: Vec<(&str, &str, &str)> = rows
+        .iter()
+        .map(|r| (r[0].as_str(), r[1].as_str(), r[5].as_str()))
+        .collect();
+    assert_eq!(got, [("2", "w1", "error"), ("3", "w2", "correct")]);
+    assert!(err.contains("1 row had an error, see"), "{err}");
+}
