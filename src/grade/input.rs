@@ -101,8 +101,12 @@ fn header_name(field: &[u8]) -> String {
 fn layout(names: &[String]) -> Result<Layout, BadFile> {
     let find = |n: &str| names.iter().position(|h| h == n);
     let found = || {
-        let shown: Vec<&str> = names.iter().map(String::as_str).collect();
-        format!("found `{}`", shown.join(","))
+        // Control characters shown escaped, and a binary file's "header" cut short.
+        let shown: String = lagrange::expr::error::visible(&names.join(","))
+            .chars()
+            .take(200)
+            .collect();
+        format!("found `{shown}`")
     };
     let Some(student) = find("student") else {
         return Err(BadFile(format!("bad header: {EXPECTED}; {}", found())));

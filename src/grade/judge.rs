@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use lagrange::bank::Bank;
 use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
-use lagrange::expr::error::MAX_INPUT_BYTES;
+use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::Problem;
 use lagrange::tutor::command::did_you_mean;
 use lagrange::tutor::follow::{Earlier, follows_from_earlier};
@@ -214,7 +214,10 @@ fn resolve(row: &Row, bank: &Bank) -> Target {
         let ids = bank.problems.iter().map(|p| p.id.as_str());
         let hint = did_you_mean(&row.problem, ids)
             .map_or(String::new(), |s| format!("; did you mean `{s}`?"));
-        return Target::Error(format!("line {line}: no problem `{}`{hint}", row.problem));
+        return Target::Error(format!(
+            "line {line}: no problem `{}`{hint}",
+            visible(&row.problem)
+        ));
     };
     let problem: &Problem = &bank.problems[p];
     let Some(q) = problem.parts.iter().position(|x| x.id == row.part) else {
@@ -224,7 +227,7 @@ fn resolve(row: &Row, bank: &Bank) -> Target {
         return Target::Error(format!(
             "line {line}: `{}` has no part `{}`; {hint}the parts are {}",
             problem.id,
-            row.part,
+            visible(&row.part),
             ids.join(", ")
         ));
     };
