@@ -462,3 +462,41 @@ fn a_wide_line_with_the_wrong_field_count_is_one_error_row() {
     assert_eq!(got, [("2", "w1", "error"), ("3", "w2", "correct")]);
     assert!(err.contains("1 row had an error, see"), "{err}");
 }
+
+#[test]
+fn the_summary_does_not_depend_on_row_order() {
+    // No repeated attempts here, so which row counts cannot change with the order.
+    let text = std::fs::read_to_string(fixture("long.csv")).expect("fixture");
+    let mut lines: Vec<&str> = text.lines().collect();
+    let header = lines.remove(0);
+    lines.reverse();
+    let dir = scratch("reversed");
+    let reversed = dir.join("reversed.csv");
+    std::fs::write(&reversed, format!("{header}\n{}\n", lines.join("\n"))).expect("write");
+    let a = graded(&fixture("long.csv"), "order-a", &[]);
+    let b = graded(&reversed, "order-b", &[]);
+    for name in ["summary.md", "summary.json"] {
+        let read = |d: &Path| std::fs::read(d.join(name)).expect("summary");
+        assert_eq!(read(&a), read(&b), "{name}");
+    }
+}
+
+#[test]
+fn the_default_out_dir_is_grades_beside_the_input_or_here_for_stdin() {
+    let dir = scratch("default-out");
+    let input = dir.join("class.csv");
+    std::fs::copy(fixture("long.csv"), &input).expect("copy");
+    let (code, _, err) = grade(&[input.to_str().unwrap_or_default()], &[], None);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("grades/results.csv").is_file());
+    let here = dir.join("here");
+    std::fs::create_dir_all(&here).expect("mkdir");
+    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(["grade", "-"])
+        .current_dir(&here)
+        .stdin(std::fs::File::open(&input).expect("open"))
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0));
+    assert!(here.join("grades/summary.md").is_file());
+}
