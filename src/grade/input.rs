@@ -19,9 +19,13 @@ pub enum Format {
 pub struct Row {
     /// The input line number the record starts on (the header is line 1).
     pub line: u64,
+    /// The student key (trimmed), as the LMS knows the student.
     pub student: String,
+    /// The problem id (trimmed; in the wide format, from the column name).
     pub problem: String,
+    /// The part id (trimmed; in the wide format, from the column name).
     pub part: String,
+    /// The answer exactly as typed.
     pub answer: String,
     /// Why the row cannot be graded, already phrased for results.csv.
     pub error: Option<String>,
@@ -30,13 +34,18 @@ pub struct Row {
 /// The rows of a class file and its layout.
 #[derive(Debug)]
 pub struct Table {
+    /// The layout the header chose.
     pub format: Format,
+    /// One row per answer, in input order.
     pub rows: Vec<Row>,
 }
 
 /// Why a class file cannot be read at all (exit 2).
 #[derive(Debug)]
-pub struct BadFile(pub String);
+pub struct BadFile(
+    /// The one-line reason.
+    pub String,
+);
 
 /// The columns the header must have, for the error message.
 const EXPECTED: &str = "expected the columns `student,problem,part,answer` (long format) or \

@@ -44,13 +44,17 @@ impl Status {
 /// How to judge: follow-through credit (`None`: off) and whether the best attempt counts.
 #[derive(Clone, Copy, Debug)]
 pub struct Settings {
+    /// The follow-through credit as a fraction of the points; `None`: no follow-through.
     pub follow_through: Option<f64>,
+    /// The best attempt counts instead of the last.
     pub best: bool,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
 pub struct Rep {
+    /// The problem's index in the bank.
     pub problem: usize,
+    /// The part's index in the problem.
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
@@ -63,10 +67,13 @@ pub struct Rep {
 /// The outcome of one row of the input.
 #[derive(Clone, Debug)]
 pub struct Graded {
+    /// The status column.
     pub status: Status,
     /// The verdict's score times the part's points (follow-through credit included).
     pub score: f64,
+    /// The diagnosis codes, most specific first (`follows-from-earlier` leading).
     pub codes: Vec<String>,
+    /// The first diagnosis, or why the row is an error or unread.
     pub message: String,
     /// `(problem, part)` indices into the bank, for rows that name a real part.
     pub target: Option<(usize, usize)>,
@@ -78,7 +85,9 @@ pub struct Graded {
 
 /// Every row's outcome (same order as the input) and the representatives checked.
 pub struct Judged {
+    /// One outcome per input row, in input order.
     pub rows: Vec<Graded>,
+    /// The answers actually checked.
     pub reps: Vec<Rep>,
 }
 

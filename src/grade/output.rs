@@ -17,8 +17,11 @@ use super::summary::{Summary, num, students};
 /// The learning-management systems an import file can be written for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lms {
+    /// `canvas.csv`: Canvas's gradebook import.
     Canvas,
+    /// `moodle.csv`: Moodle's "Import grades → CSV file".
     Moodle,
+    /// `gradescope.csv`: Gradescope's score upload.
     Gradescope,
 }
 

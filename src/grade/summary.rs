@@ -36,12 +36,17 @@ pub struct Summary {
 /// One part's answers.
 #[derive(Debug, Serialize)]
 pub struct PartSummary {
+    /// The part's weight.
     pub points: f64,
     /// Every attempt, counted or not.
     pub answers: usize,
+    /// Attempts by status.
     pub correct: usize,
+    /// Readable but wrong.
     pub incorrect: usize,
+    /// Unreadable (or too long to read).
     pub invalid: usize,
+    /// Not gradable (the part could not be prepared).
     pub error: usize,
     /// Students whose answer counts for this part.
     pub students: usize,
@@ -56,10 +61,13 @@ pub struct PartSummary {
 /// Wrong answers equal at the sample points (or, unreadable, equal as typed).
 #[derive(Debug, Serialize)]
 pub struct Group {
+    /// Rows in the group.
     pub count: usize,
+    /// `incorrect` or `invalid`.
     pub status: String,
     /// The group's most common reading, in Unicode.
     pub answer: String,
+    /// The diagnosis codes of that reading.
     pub codes: Vec<String>,
     /// The first diagnosis of that reading.
     pub diagnosis: String,
