@@ -102,8 +102,8 @@ enum Target {
     Answer(usize, usize),
 }
 
-/// Grades every row. `progress` makes the bar (given the number of distinct answers to check)
-/// that ticks once per answer checked.
+/// Grades every row. `progress` makes the bar (given the number of distinct answers): it
+/// ticks once per answer read, then once per canonical form checked.
 pub fn judge(
     rows: &[Row],
     bank: &Bank,
@@ -127,11 +127,16 @@ pub fn judge(
             Target::Error(..) | Target::TooLong(..) => None,
         })
         .collect();
+    let bar = progress(distinct.len());
+    bar.set_message("reading");
     let canon = par_map(bank, &distinct, |c, part, text| {
+        bar.inc(1);
         c.canonical(part, text).ok().flatten()
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
-    let bar = progress(rep_inputs.len());
+    bar.set_message("checking");
+    bar.set_length(rep_inputs.len() as u64);
+    bar.set_position(0);
     let checked = par_map(bank, &rep_inputs, |c, part, text| {
         let verdict = c.check(part, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.

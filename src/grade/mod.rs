@@ -191,8 +191,7 @@ fn progress_bar(distinct: usize) -> ProgressBar {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(distinct as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template("checking {bar:40} {pos}/{len} distinct answers")
+    if let Ok(style) = ProgressStyle::with_template("{msg:9} {bar:40} {pos}/{len} distinct answers")
     {
         bar.set_style(style);
     }
