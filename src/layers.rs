@@ -128,8 +128,8 @@ fn target(
     Some(Unit { module, file })
 }
 
-/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`) are the binary's, not the
-/// library's, and are left out.
+/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`, `grade/`) are the
+/// binary's, not the library's, and are left out.
 fn library_files(src: &Path) -> Vec<(Unit, String)> {
     let mut out = Vec::new();
     let Ok(entries) = std::fs::read_dir(src) else {
@@ -144,7 +144,7 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
             .unwrap_or("")
             .to_string();
         if path.is_dir() {
-            if name == "cli" || name == "repl" {
+            if name == "cli" || name == "repl" || name == "grade" {
                 continue;
             }
             for (file, text) in rs_files(&path) {

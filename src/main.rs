@@ -5,6 +5,7 @@
 //! 2 usage or other error.
 
 mod cli;
+mod grade;
 mod repl;
 
 use std::process::ExitCode;

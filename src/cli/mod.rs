@@ -3,6 +3,7 @@
 
 mod check;
 mod derive;
+mod grade;
 mod modes;
 pub(crate) mod problems;
 mod read;
@@ -50,6 +51,8 @@ enum Command {
     /// List, show and verify the problems of the bank.
     #[command(subcommand)]
     Problems(problems::ProblemsCommand),
+    /// Grade a class from a CSV file: results, a gradebook, a summary of the mistakes.
+    Grade(grade::GradeArgs),
     /// Practise the problems: answers checked as you type them, hints, progress kept.
     Repl(ReplArgs),
 }
@@ -93,6 +96,7 @@ pub fn run() -> anyhow::Result<ExitCode> {
         Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Check(args) => check::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
+        Command::Grade(args) => return grade::run(&args, cli.problems.as_deref()),
         Command::Repl(args) => {
             return crate::repl::run(&crate::repl::Options {
                 problem: args.problem,

@@ -8,6 +8,7 @@ mod diagnostics;
 mod dimensions;
 mod follow;
 mod fuzz_replay;
+mod grade;
 mod helpers;
 mod hostile;
 mod ladder;

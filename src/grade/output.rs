@@ -1,0 +1,225 @@
+//! The files `lagrange grade` writes: results.csv (one row per answer), gradebook.csv (one
+//! row per student), summary.md / summary.json, and an LMS import file. Each file is written
+//! under a temporary name in the same folder and renamed over the old one, so a reader never
+//! sees half a file and an interrupted run leaves the previous outputs whole.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+
+use lagrange::bank::Bank;
+
+use super::input::Row;
+use super::judge::Judged;
+use super::summary::{Summary, num, students};
+
+/// The learning-management systems an import file can be written for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lms {
+    /// `canvas.csv`: Canvas's gradebook import.
+    Canvas,
+    /// `moodle.csv`: Moodle's "Import grades → CSV file".
+    Moodle,
+    /// `gradescope.csv`: Gradescope's score upload.
+    Gradescope,
+}
+
+/// Writes `bytes` to `dir/name` atomically (temporary file in `dir`, then rename).
+pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> anyhow::Result<PathBuf> {
+    let path = dir.join(name);
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::File::create(&tmp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
+        .and_then(|()| std::fs::rename(&tmp, &path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+    }
+    Ok(path)
+}
+
+/// A CSV document built in memory.
+fn csv_bytes(
+    header: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> anyhow::Result<Vec<u8>> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header)?;
+    for r in rows {
+        w.write_record(&r)?;
+    }
+    w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))
+}
+
+/// results.csv: every input answer, in input order.
+pub fn results(rows: &[Row], judged: &Judged) -> anyhow::Result<Vec<u8>> {
+    let header = [
+        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message",
+    ];
+    let lines = rows.iter().zip(&judged.rows).map(|(r, g)| {
+        vec![
+            r.line.to_string(),
+            r.student.clone(),
+            r.problem.clone(),
+            r.part.clone(),
+            r.answer.clone(),
+            g.status.name().to_string(),
+            num(g.score),
+            g.codes.join(";"),
+            g.message.clone(),
+        ]
+    });
+    csv_bytes(&header, lines)
+}
+
+/// The gradebook: students in order of first appearance, one column per part answered by
+/// anyone (in bank order), the counted score of each, the total, the maximum and the percent.
+pub struct Gradebook {
+    /// `PROBLEM/PART` column titles.
+    pub columns: Vec<String>,
+    /// The points of each column.
+    pub points: Vec<f64>,
+    /// Student key and score per column (`None`: not answered).
+    pub students: Vec<(String, Vec<Option<f64>>)>,
+}
+
+impl Gradebook {
+    /// The maximum total.
+    pub fn max(&self) -> f64 {
+        self.points.iter().sum()
+    }
+}
+
+/// Builds the gradebook from the rows that count.
+pub fn gradebook(rows: &[Row], judged: &Judged, bank: &Bank) -> Gradebook {
+    let mut targets: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
+    targets.sort_unstable();
+    targets.dedup();
+    let column: std::collections::HashMap<(usize, usize), usize> =
+        targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+    let names = students(rows);
+    let index: std::collections::HashMap<&str, usize> =
+        names.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let mut scores = vec![vec![None; targets.len()]; names.len()];
+    for (r, g) in rows.iter().zip(&judged.rows) {
+        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str())) {
+            scores[s][column[&t]] = Some(g.score);
+        }
+    }
+    Gradebook {
+        columns: targets
+            .iter()
+            .map(|&(p, q)| format!("{}/{}", bank.problems[p].id, bank.problems[p].parts[q].id))
+            .collect(),
+        points: targets
+            .iter()
+            .map(|&(p, q)| bank.problems[p].parts[q].points)
+            .collect(),
+        students: names.iter().map(|s| s.to_string()).zip(scores).collect(),
+    }
+}
+
+/// A student's total.
+fn total(scores: &[Option<f64>]) -> f64 {
+    scores.iter().flatten().sum()
+}
+
+/// The percent of `max`, one decimal.
+fn percent(total: f64, max: f64) -> String {
+    if max > 0.0 {
+        format!("{:.1}", 100.0 * total / max)
+    } else {
+        String::new()
+    }
+}
+
+/// gradebook.csv.
+pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
+    let mut header: Vec<&str> = vec!["student"];
+    header.extend(book.columns.iter().map(String::as_str));
+    header.extend(["total", "max", "percent"]);
+    let max = book.max();
+    let lines = book.students.iter().map(|(s, scores)| {
+        let mut line = vec![s.clone()];
+        line.extend(scores.iter().map(|x| x.map_or(String::new(), num)));
+        let t = total(scores);
+        line.extend([num(t), num(max), percent(t, max)]);
+        line
+    });
+    csv_bytes(&header, lines)
+}
+
+/// Whether every student key looks like an email address (Moodle and Gradescope then match on
+/// email rather than on an ID number).
+fn emails(book: &Gradebook) -> bool {
+    !book.students.is_empty() && book.students.iter().all(|(s, _)| s.contains('@'))
+}
+
+/// The LMS import file's name and contents; `assignment` names the total column.
+pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<(String, Vec<u8>)> {
+    let max = book.max();
+    let totals = book
+        .students
+        .iter()
+        .map(|(s, scores)| (s.clone(), num(total(scores))));
+    let bytes = match lms {
+        // Canvas matches a student on SIS Login ID (among its ID columns) and reads the
+        // optional "Points Possible" row right under the header.
+        Lms::Canvas => {
+            let header = [
+                "Student",
+                "ID",
+                "SIS User ID",
+                "SIS Login ID",
+                "Section",
+                assignment,
+            ];
+            let points = vec![
+                "    Points Possible".to_string(),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                num(max),
+            ];
+            let rows = totals
+                .map(|(s, t)| vec![s.clone(), String::new(), String::new(), s, String::new(), t]);
+            csv_bytes(&header, std::iter::once(points).chain(rows))?
+        }
+        // Moodle's CSV import maps one identifier column to a user field and each other
+        // column to a grade item, chosen in its import form.
+        Lms::Moodle => {
+            let id = if emails(book) {
+                "Email address"
+            } else {
+                "ID number"
+            };
+            csv_bytes(&[id, assignment], totals.map(|(s, t)| vec![s, t]))?
+        }
+        // Gradescope's score upload matches on SID or Email, with the score and its maximum.
+        Lms::Gradescope => {
+            let by_email = emails(book);
+            let rows = totals.map(|(s, t)| {
+                let (sid, email) = if by_email {
+                    (String::new(), s)
+                } else {
+                    (s, String::new())
+                };
+                vec![sid, email, t, num(max)]
+            });
+            csv_bytes(&["SID", "Email", "Score", "Max Points"], rows)?
+        }
+    };
+    let name = match lms {
+        Lms::Canvas => "canvas.csv",
+        Lms::Moodle => "moodle.csv",
+        Lms::Gradescope => "gradescope.csv",
+    };
+    Ok((name.to_string(), bytes))
+}
+
+/// summary.json, pretty, ending in a newline.
+pub fn summary_json(s: &Summary) -> anyhow::Result<String> {
+    Ok(serde_json::to_string_pretty(s)? + "\n")
+}

@@ -1,0 +1,347 @@
+//! What the class got right and wrong: per-part counts, diagnosis-code counts and the most
+//! common wrong answers grouped by mathematical equivalence (the checker's fingerprint: equal
+//! at the sample points). Built from counts only, in `BTreeMap`s, with ties broken by text, so
+//! nothing in it depends on row order or thread count. Rendered as Markdown and JSON.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use lagrange::bank::Bank;
+
+use super::input::Row;
+use super::judge::{Judged, Status};
+
+/// How many wrong-answer groups are listed per part.
+const MAX_GROUPS: usize = 10;
+/// How long a spelling may be in the summary before it is cut.
+const MAX_SHOWN: usize = 80;
+
+/// The whole class at a glance.
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    /// Rows of results.csv (= answers in the input).
+    pub rows: usize,
+    /// Distinct non-empty student keys.
+    pub students: usize,
+    /// Rows by status (correct, incorrect, invalid, error).
+    pub status: BTreeMap<String, usize>,
+    /// Per `PROBLEM/PART`.
+    pub parts: BTreeMap<String, PartSummary>,
+    /// How many rows carry each diagnosis code.
+    pub codes: BTreeMap<String, usize>,
+}
+
+/// One part's answers.
+#[derive(Debug, Serialize)]
+pub struct PartSummary {
+    /// The part's weight.
+    pub points: f64,
+    /// Every attempt, counted or not.
+    pub answers: usize,
+    /// Attempts by status.
+    pub correct: usize,
+    /// Readable but wrong.
+    pub incorrect: usize,
+    /// Unreadable (or too long to read).
+    pub invalid: usize,
+    /// Not gradable (the part could not be prepared).
+    pub error: usize,
+    /// Students whose answer counts for this part.
+    pub students: usize,
+    /// Mean score (in points) of the answers that count.
+    pub mean_score: f64,
+    /// The most common wrong (incorrect or invalid) answers, grouped by meaning.
+    pub wrong: Vec<Group>,
+    /// Wrong answers in groups not listed.
+    pub other_wrong: usize,
+}
+
+/// Wrong answers equal at the sample points (or, unreadable, equal as typed).
+#[derive(Debug, Serialize)]
+pub struct Group {
+    /// Rows in the group.
+    pub count: usize,
+    /// `incorrect` or `invalid`.
+    pub status: String,
+    /// The group's most common reading, in Unicode.
+    pub answer: String,
+    /// The diagnosis codes of that reading.
+    pub codes: Vec<String>,
+    /// The first diagnosis of that reading.
+    pub diagnosis: String,
+    /// Up to two spellings as typed, most common first.
+    pub examples: Vec<String>,
+}
+
+/// A group being counted: rows per representative and per spelling.
+#[derive(Default)]
+struct Tally<'a> {
+    count: usize,
+    by_rep: HashMap<usize, usize>,
+    by_text: HashMap<&'a str, usize>,
+}
+
+/// The summary of a judged class.
+pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
+    let mut status = BTreeMap::new();
+    let mut codes = BTreeMap::new();
+    let mut parts: BTreeMap<String, PartSummary> = BTreeMap::new();
+    let mut sums: BTreeMap<String, f64> = BTreeMap::new();
+    let mut tallies: HashMap<(String, Status, String), Tally> = HashMap::new();
+    for (row, g) in rows.iter().zip(&judged.rows) {
+        *status.entry(g.status.name().to_string()).or_insert(0) += 1;
+        for c in &g.codes {
+            *codes.entry(c.clone()).or_insert(0) += 1;
+        }
+        let Some((p, q)) = g.target else { continue };
+        let problem = &bank.problems[p];
+        let key = format!("{}/{}", problem.id, problem.parts[q].id);
+        let s = parts
+            .entry(key.clone())
+            .or_insert_with(|| empty(problem.parts[q].points));
+        s.answers += 1;
+        match g.status {
+            Status::Correct => s.correct += 1,
+            Status::Incorrect => s.incorrect += 1,
+            Status::Invalid => s.invalid += 1,
+            Status::Error => s.error += 1,
+        }
+        if g.counts {
+            s.students += 1;
+            *sums.entry(key.clone()).or_insert(0.0) += g.score;
+        }
+        let (Some(rep), Status::Incorrect | Status::Invalid) = (g.rep, g.status) else {
+            continue;
+        };
+        let r = &judged.reps[rep];
+        let meaning = r
+            .fingerprint
+            .clone()
+            .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
+        let t = tallies.entry((key, g.status, meaning)).or_default();
+        t.count += 1;
+        *t.by_rep.entry(rep).or_insert(0) += 1;
+        *t.by_text.entry(row.answer.trim()).or_insert(0) += 1;
+    }
+    for (key, s) in parts.iter_mut() {
+        let sum = sums.get(key).copied().unwrap_or(0.0);
+        s.mean_score = if s.students == 0 {
+            0.0
+        } else {
+            sum / s.students as f64
+        };
+    }
+    add_groups(&mut parts, tallies, judged);
+    Summary {
+        rows: rows.len(),
+        students: students(rows).len(),
+        status,
+        parts,
+        codes,
+    }
+}
+
+/// The distinct non-empty students, in order of first appearance.
+pub fn students(rows: &[Row]) -> Vec<&str> {
+    let mut seen = std::collections::HashSet::new();
+    rows.iter()
+        .map(|r| r.student.as_str())
+        .filter(|s| !s.is_empty() && seen.insert(*s))
+        .collect()
+}
+
+fn empty(points: f64) -> PartSummary {
+    PartSummary {
+        points,
+        answers: 0,
+        correct: 0,
+        incorrect: 0,
+        invalid: 0,
+        error: 0,
+        students: 0,
+        mean_score: 0.0,
+        wrong: Vec::new(),
+        other_wrong: 0,
+    }
+}
+
+/// Turns the tallies into each part's sorted, truncated group list.
+fn add_groups(
+    parts: &mut BTreeMap<String, PartSummary>,
+    tallies: HashMap<(String, Status, String), Tally>,
+    judged: &Judged,
+) {
+    let mut per_part: BTreeMap<String, Vec<Group>> = BTreeMap::new();
+    for ((key, status, _), t) in tallies {
+        per_part
+            .entry(key)
+            .or_default()
+            .push(group(status, &t, judged));
+    }
+    for (key, mut groups) in per_part {
+        groups.sort_by(|a, b| {
+            b.count
+                .cmp(&a.count)
+                .then_with(|| a.answer.cmp(&b.answer))
+                .then_with(|| a.status.cmp(&b.status))
+                .then_with(|| a.examples.cmp(&b.examples))
+        });
+        let other = groups.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
+        groups.truncate(MAX_GROUPS);
+        if let Some(s) = parts.get_mut(&key) {
+            s.wrong = groups;
+            s.other_wrong = other;
+        }
+    }
+}
+
+/// One group: shown as its most common reading (ties: the smaller text).
+fn group(status: Status, t: &Tally, judged: &Judged) -> Group {
+    let shown_of = |rep: usize| {
+        let r = &judged.reps[rep];
+        match &r.verdict {
+            Ok(v) if !v.reading.unicode.is_empty() => v.reading.unicode.clone(),
+            _ => r.answer.trim().to_string(),
+        }
+    };
+    let mut reps: Vec<(usize, String, usize)> = t
+        .by_rep
+        .iter()
+        .map(|(&r, &n)| (n, shown_of(r), r))
+        .collect();
+    reps.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(&b.1)));
+    let (answer, rep) = reps
+        .first()
+        .map(|(_, s, r)| (s.clone(), Some(*r)))
+        .unwrap_or_default();
+    let verdict = rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
+    let mut texts: Vec<(&str, usize)> = t.by_text.iter().map(|(&s, &n)| (s, n)).collect();
+    texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
+    Group {
+        count: t.count,
+        status: status.name().to_string(),
+        answer: cut(&answer),
+        codes: verdict.map_or(Vec::new(), |v| {
+            v.diagnoses.iter().map(|d| d.code.to_string()).collect()
+        }),
+        diagnosis: verdict
+            .and_then(|v| v.diagnoses.first())
+            .map_or(String::new(), |d| d.message.clone()),
+        examples: texts.iter().take(2).map(|(s, _)| cut(s)).collect(),
+    }
+}
+
+/// A text cut to [`MAX_SHOWN`] characters, on one line.
+fn cut(s: &str) -> String {
+    let one: String = s.split_whitespace().collect::<Vec<_>>().join(" ");
+    if one.chars().count() <= MAX_SHOWN {
+        return one;
+    }
+    let mut t: String = one.chars().take(MAX_SHOWN - 1).collect();
+    t.push('…');
+    t
+}
+
+/// A number as the outputs print it: at most 4 decimals, no trailing zeros.
+pub fn num(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
+/// A Markdown table cell: pipes escaped, one line.
+fn cell(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
+/// A Markdown code span that survives backticks in the text.
+fn code(s: &str) -> String {
+    let s = cell(s);
+    if s.contains('`') {
+        format!("`` {s} ``")
+    } else {
+        format!("`{s}`")
+    }
+}
+
+/// The summary as Markdown (summary.md).
+pub fn markdown(s: &Summary) -> String {
+    let mut out = String::from("# Grading summary\n\n");
+    let errors = s.status.get("error").copied().unwrap_or(0);
+    let _ = writeln!(
+        out,
+        "{} students, {} answers; {} correct, {} incorrect, {} invalid, {errors} errors \
+         (see results.csv).\n",
+        s.students,
+        s.rows,
+        s.status.get("correct").copied().unwrap_or(0),
+        s.status.get("incorrect").copied().unwrap_or(0),
+        s.status.get("invalid").copied().unwrap_or(0),
+    );
+    out.push_str("## Parts\n\n");
+    out.push_str(
+        "| part | points | answers | correct | incorrect | invalid | error | mean score |\n",
+    );
+    out.push_str("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (key, p) in &s.parts {
+        let _ = writeln!(
+            out,
+            "| {key} | {} | {} | {} | {} | {} | {} | {} |",
+            num(p.points),
+            p.answers,
+            p.correct,
+            p.incorrect,
+            p.invalid,
+            p.error,
+            num(p.mean_score)
+        );
+    }
+    if !s.codes.is_empty() {
+        out.push_str("\n## Diagnosis codes\n\n| code | answers |\n|---|---:|\n");
+        for (c, n) in &s.codes {
+            let _ = writeln!(out, "| {c} | {n} |");
+        }
+    }
+    wrong_answers(s, &mut out);
+    out
+}
+
+/// The "most common wrong answers" section.
+fn wrong_answers(s: &Summary, out: &mut String) {
+    out.push_str("\n## Most common wrong answers\n\nGrouped by meaning: answers equal at the sample points are one group.\n");
+    for (key, p) in &s.parts {
+        if p.wrong.is_empty() {
+            continue;
+        }
+        let _ = write!(
+            out,
+            "\n### {key}\n\n| count | answer (as read) | status | codes | diagnosis | typed as |\n|---:|---|---|---|---|---|\n"
+        );
+        for g in &p.wrong {
+            let typed: Vec<String> = g.examples.iter().map(|e| code(e)).collect();
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {} | {} |",
+                g.count,
+                cell(&g.answer),
+                g.status,
+                g.codes.join(", "),
+                cell(&g.diagnosis),
+                typed.join(", ")
+            );
+        }
+        if p.other_wrong > 0 {
+            let _ = writeln!(
+                out,
+                "\n{} more wrong answers in smaller groups.",
+                p.other_wrong
+            );
+        }
+    }
+}
