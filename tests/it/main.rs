@@ -11,6 +11,7 @@ mod fuzz_replay;
 mod helpers;
 mod hostile;
 mod ladder;
+mod literature;
 mod mechanics;
 mod props;
 mod pty;
