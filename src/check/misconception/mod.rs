@@ -54,9 +54,21 @@ fn report(v: &mut Verdict, found: Option<Diagnosis>) {
     v.diagnoses.push(d);
 }
 
+/// Largest answer (in expression nodes) the detectors look at: students' answers have tens of
+/// nodes; past this the story is not one documented slip, and the work stays bounded.
+const MAX_ANSWER_NODES: usize = 2_000;
+
+/// Whether the answer `ids` is small enough to search.
+fn small(p: &Prepared, ids: &[Id]) -> bool {
+    ids.iter()
+        .map(|&i| p.system.pool.tree_size(i))
+        .sum::<usize>()
+        <= MAX_ANSWER_NODES
+}
+
 /// Hook for a wrong expression answer `s` (T, V, L, h, a momentum).
 pub(crate) fn expression(part: &Part, p: &mut Prepared, s: Id, reference: Id, v: &mut Verdict) {
-    if v.status == Status::Correct {
+    if v.status == Status::Correct || !small(p, &[s]) {
         return;
     }
     let found = energies::diagnose(part, p, s, reference);
@@ -65,7 +77,7 @@ pub(crate) fn expression(part: &Part, p: &mut Prepared, s: Id, reference: Id, v:
 
 /// Hook for wrong equations of motion (`res` are the student's residuals).
 pub(crate) fn equations(part: &Part, p: &mut Prepared, res: &[Id], v: &mut Verdict) {
-    if v.status == Status::Correct {
+    if v.status == Status::Correct || !small(p, res) {
         return;
     }
     let found = motion::diagnose(part, p, res);
@@ -80,7 +92,8 @@ pub(crate) fn list(
     items: &[Vec<Id>],
     v: &mut Verdict,
 ) {
-    if v.status == Status::Correct {
+    let all: Vec<Id> = items.iter().flatten().copied().collect();
+    if v.status == Status::Correct || !small(p, &all) {
         return;
     }
     let found = frequencies::diagnose(problem, part, p, items);

@@ -12,12 +12,15 @@ use crate::expr::Id;
 use crate::problem::{Part, PartKind};
 use rustc_hash::FxHashMap;
 
+/// Most coordinates for which wrong systems are generated (each costs a derivation).
+const MAX_COORDINATES: usize = 6;
+
 /// Most coordinates for which every subset of wrong equations is tried (2ⁿ − 1 systems).
 const MAX_SUBSET_COORDINATES: usize = 3;
 
 /// The first generated wrong system of equations the student's equations `res` follow.
 pub fn diagnose(part: &Part, p: &mut Prepared, res: &[Id]) -> Option<Diagnosis> {
-    if !p.system.constraints.is_empty() || res.is_empty() {
+    if !p.system.constraints.is_empty() || res.is_empty() || p.system.n() > MAX_COORDINATES {
         return None;
     }
     let truth = true_accelerations(p).ok()?;
