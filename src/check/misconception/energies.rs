@@ -117,7 +117,8 @@ pub fn gravity_flipped(p: &mut Prepared) -> Option<(Id, String)> {
 pub type Substitution = FxHashMap<(Sym, u8), Id>;
 
 /// θ → π/2 − θ for every angle (and θ̇ → −θ̇, θ̈ → −θ̈): the angles measured from the
-/// horizontal instead; with its `convention` sentence. `None` without angle coordinates.
+/// perpendicular axis (the map is its own inverse, so the sentence names no direction); with
+/// its `convention` sentence. `None` without angle coordinates.
 pub fn angle_from_horizontal(p: &mut Prepared) -> Option<(Substitution, String)> {
     let angles: Vec<Sym> = p
         .system
@@ -144,7 +145,7 @@ pub fn angle_from_horizontal(p: &mut Prepared) -> Option<(Substitution, String)>
     Some((
         map,
         format!(
-            "convention: your answer is right with {name} measured from the horizontal; the problem measures it as its statement defines it, so rewrite it in the problem's convention"
+            "convention: your answer is right for {name} measured from the perpendicular axis (from the horizontal instead of the vertical, or the reverse: {name} → π/2 − {name}); use the angle as the problem's statement defines it"
         ),
     ))
 }
