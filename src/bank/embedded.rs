@@ -37,6 +37,14 @@ pub const FILES: &[(&str, &str)] = &[
         "rotating-hoop.toml",
         include_str!("../../problems/rotating-hoop.toml"),
     ),
+    (
+        "cart-pendulum.toml",
+        include_str!("../../problems/cart-pendulum.toml"),
+    ),
+    (
+        "central-force.toml",
+        include_str!("../../problems/central-force.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

@@ -509,4 +509,5 @@ fn diagnose_expression(
     }
     v.diagnoses
         .extend(mistakes.into_iter().map(|m| m.details(p)));
+    super::misconception::expression(part, p, s, reference, v);
 }

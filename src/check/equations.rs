@@ -459,6 +459,7 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
         }
         diagnose_equation(p, r, &which, &truth, v);
     }
+    super::misconception::equations(part, p, res, v);
     if v.status != Status::Correct && v.diagnoses.is_empty() {
         v.diagnoses.push(Diagnosis::new(
             Code::NotEqual,

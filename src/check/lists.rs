@@ -491,5 +491,6 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         v.score = 1.0;
         v.diagnoses.clear();
     }
+    super::misconception::list(problem, part, p, &items, &mut v);
     v
 }

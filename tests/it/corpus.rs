@@ -354,19 +354,11 @@ fn every_diagnosis_code_is_exercised() {
 /// corpus answer triggers it (the list must be empty when the issue is done).
 const PENDING: &[&str] = &[
     "wrong-name",
-    "convention",
-    "pe-geometry",
-    "derivative-rule",
-    "premature-substitution",
-    "h-vs-e",
-    "effective-mass",
     "ordinary-frequency",
     "period",
-    "expansion-point",
     "wrong-factor",
     "missing-term",
     "extra-term",
     "right-in-limit",
-    "lost-root",
     "wrong-stability",
 ];

@@ -8,7 +8,8 @@ use lagrange::problem::{PartKind, Problem};
 use lagrange::tutor::follow::{Earlier, check_with_history, follow_through};
 
 /// Per bank problem with a `lagrangian` and an `eom` part: a wrong L (a flipped potential
-/// sign, or for the bead on a wire, where V = 0, the centrifugal term's), the EOM that follows
+/// sign, or for the bead on a wire, where V = 0, the centrifugal term's, and for the cart-pendulum,
+/// whose x equation a flipped V leaves right, the cross term's), the EOM that follows
 /// from it, and an unrelated wrong EOM.
 const WRONG_L: &[(&str, &str, &str, &str)] = &[
     (
@@ -28,6 +29,18 @@ const WRONG_L: &[(&str, &str, &str, &str)] = &[
         "1/2*m*(r'^2 - omega^2*r^2)",
         "r'' = -omega^2*r",
         "r'' = 2*omega^2*r",
+    ),
+    (
+        "cart-pendulum",
+        "1/2*(M+m)*x'^2 - m*l*x'*theta'*cos(theta) + 1/2*m*l^2*theta'^2 + m*g*l*cos(theta)",
+        "(M+m)*x'' - m*l*theta''*cos(theta) + m*l*theta'^2*sin(theta) = 0; l*theta'' - x''*cos(theta) + g*sin(theta) = 0",
+        "(M+m)*x'' = 0; l*theta'' + g*sin(theta) = 0",
+    ),
+    (
+        "central-force",
+        "1/2*m*(r'^2 + r^2*phi'^2) - k/r",
+        "m*r'' - m*r*phi'^2 - k/r^2 = 0",
+        "m*r'' + 2*k/r^2 = 0",
     ),
     (
         "double-pendulum",
@@ -140,7 +153,7 @@ fn an_unrelated_wrong_eom_gets_no_follow_through() {
 #[test]
 fn the_message_carries_the_earlier_diagnosis() {
     let p = problem("simple-pendulum");
-    let (_, wrong_l, its_eom, _) = WRONG_L[4];
+    let (_, wrong_l, its_eom, _) = WRONG_L[6];
     let l = verdict(&p, "lagrangian", wrong_l, &[]);
     let first = &l.diagnoses[0].message;
     let v = verdict(&p, "eom", its_eom, &[Earlier::new("lagrangian", wrong_l)]);
@@ -352,9 +365,9 @@ fn verdict_with_follow_through_snapshot() {
         (
             "double-pendulum",
             "lagrangian",
-            WRONG_L[3].1,
+            WRONG_L[5].1,
             "eom",
-            WRONG_L[3].2,
+            WRONG_L[5].2,
         ),
     ];
     for (id, before, wrong, part, input) in cases {
@@ -490,7 +503,7 @@ fn a_wrong_t_or_l_carries_into_the_momentum_and_the_energy_function() {
     assert_eq!(v.status, Status::Correct);
     assert!(!follows(&v));
     // A flipped V leaves p alone but flips the potential part of h.
-    let l = [Earlier::new("lagrangian", WRONG_L[4].1)];
+    let l = [Earlier::new("lagrangian", WRONG_L[6].1)];
     assert_follows(
         &p,
         "energy-function",

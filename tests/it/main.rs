@@ -12,6 +12,7 @@ mod grade;
 mod helpers;
 mod hostile;
 mod ladder;
+mod literature;
 mod mechanics;
 mod props;
 mod pty;
