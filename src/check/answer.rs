@@ -569,6 +569,8 @@ fn diagnose_expression(
         Some(d) => mistakes.push(Mistake::Found(d)),
         None => mistakes.extend(term_mistakes(p, s, reference)),
     }
+    // The one call site for the literature's detectors (`super::misconception`, issue 12):
+    // they add to `mistakes` here, after the term-level search and before the limits.
     if mistakes.is_empty()
         && let Some(d) = right_in_limit(p, s, reference)
     {

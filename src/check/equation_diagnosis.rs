@@ -156,6 +156,8 @@ pub(super) fn diagnose_equation(
         v.diagnoses.push(d);
         return;
     }
+    // The one call site for the literature's detectors (`super::misconception`, issue 12):
+    // they push to `v.diagnoses` here, after the term-level search and before the limits.
     if let Some(d) = term {
         v.diagnoses.push(d);
         return;

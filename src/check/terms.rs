@@ -334,13 +334,13 @@ fn pair(
                 true,
             ));
         }
-        if (f.abs() - 1.0).abs() < tolerance::ROUNDED {
+        if (f - 1.0).abs() < tolerance::ROUNDED {
             return Some((
                 Diagnosis::new(
                     Code::RoundedConstant,
                     format!(
                         "the coefficient of your term {yours} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
-                        (f.abs() - 1.0).abs() * 100.0
+                        (f - 1.0).abs() * 100.0
                     ),
                 ),
                 true,
