@@ -266,7 +266,7 @@ pub(super) fn classify_unmatched(
         return ItemFinding::Twice { label, periodic };
     }
     if part.kind == PartKind::Frequencies
-        && let Some((k, d)) = inside_item(p, first, lists, free, &label)
+        && let Some((k, d)) = inside_item(p, (first, part.squared), lists, free, &label)
     {
         free.remove(k);
         return ItemFinding::Inside(d);
@@ -297,39 +297,55 @@ pub(super) fn classify_unmatched(
     }
 }
 
-/// Why a frequency is wrong, found inside it against one free reference item: one term of
-/// its square differs (a sign under the root), or it is off by a constant factor (√2). The
-/// index in `free` of the item it explains, and the diagnosis.
+/// Why a frequency is wrong, found inside it against one free reference item: it is off by
+/// a constant factor (√2), or one of its terms differs — under the root for a root (a sign
+/// under the root), or itself for ω² and for an item without a root. The index in `free` of
+/// the item it explains, and the diagnosis.
 fn inside_item(
     p: &mut Prepared,
-    item: Id,
+    (item, squared): (Id, bool),
     lists: &Lists,
     free: &[usize],
     label: &str,
 ) -> Option<(usize, Diagnosis)> {
-    let s2 = p.system.pool.powi(item, 2);
-    let s2 = p.system.pool.expand(s2);
-    let st = Terms::of_expression(p, s2);
+    let root = !squared && is_root(p, item);
+    let mine = if root {
+        p.system.pool.powi(item, 2)
+    } else {
+        item
+    };
+    let mine = p.system.pool.expand(mine);
+    let st = Terms::of_expression(p, mine);
     for (k, &j) in free.iter().enumerate() {
         let r = *lists.reference_ids.get(j)?.first()?;
         if let Some(d) = factor_of_item(p, item, r, label) {
             return Some((k, d));
         }
-        let r2 = p.system.pool.powi(r, 2);
-        let r2 = p.system.pool.expand(r2);
-        let rt = Terms::of_expression(p, r2);
-        let under = "the square";
-        // Only what a term of the square says plainly: a sign (under the root), a term
-        // missing or extra. A factor between two whole items would relate any two numbers.
-        if let Some(d) = one_term(p, &st, &rt, Scaling::None, under).filter(|d| {
-            d.code == Code::SignError
-                || (matches!(d.code, Code::MissingTerm | Code::ExtraTerm) && rt.len() > 1)
-        }) {
-            let message = format!("{label}, under the square root: {}", d.message);
+        let theirs = if root { p.system.pool.powi(r, 2) } else { r };
+        let theirs = p.system.pool.expand(theirs);
+        let rt = Terms::of_expression(p, theirs);
+        let which = if root { "the square" } else { "it" };
+        // Only what a term says plainly: a sign, a term too many. A factor between two whole
+        // items would relate any two numbers, and a missing term of constants cannot be
+        // described without giving it away.
+        if let Some(d) = one_term(p, &st, &rt, Scaling::None, which)
+            .filter(|d| d.code == Code::SignError || (d.code == Code::ExtraTerm && rt.len() > 1))
+        {
+            let place = if root { ", under the square root" } else { "" };
+            let message = format!("{label}{place}: {}", d.message);
             return Some((k, Diagnosis::new(d.code, message)));
         }
     }
     None
+}
+
+/// Whether `e` is a square root.
+fn is_root(p: &Prepared, e: Id) -> bool {
+    let half = |x: Id| matches!(p.system.pool.node(x), crate::expr::Node::Num(q) if *q == num_rational::BigRational::new(1.into(), 2.into()));
+    match p.system.pool.node(e) {
+        crate::expr::Node::Pow(_, x) => half(*x),
+        _ => false,
+    }
 }
 
 /// An item that is a simple constant times the reference item, or the root of one (√2).

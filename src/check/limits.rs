@@ -61,14 +61,19 @@ fn vanishing(p: &Prepared, terms: &[Id], pts: &PointSet) -> Option<usize> {
     )
 }
 
-/// The limits that apply to an answer whose terms (expanded) are `terms`, most telling first:
-/// each removes at least one term and keeps at least one.
+/// The limits that apply to `e` (an answer, or an equation's residual), most telling first:
+/// each removes at least one of its terms (expanded) and keeps at least one.
 pub(super) fn applicable(p: &mut Prepared, e: Id) -> Vec<Limit> {
     let x = p.system.pool.expand(e);
+    // Terms with an acceleration are left out: in an equation the acceleration is the true
+    // one, never zero, so "vanishing at rest" says nothing about them.
     let terms: Vec<Id> = match p.system.pool.node(x) {
         Node::Add(t) => t.to_vec(),
         _ => vec![x],
-    };
+    }
+    .into_iter()
+    .filter(|&t| !p.system.pool.variables(t).iter().any(|v| v.1 == 2))
+    .collect();
     if terms.len() > super::diagnose::MAX_SEARCH_TERMS {
         return Vec::new();
     }
