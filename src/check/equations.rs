@@ -14,6 +14,7 @@ use super::error::CheckError;
 use super::points::PointSet;
 use super::prepare::Prepared;
 use super::residual::{Miss, affine, holds, miss};
+use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Reading, Style};
@@ -186,8 +187,13 @@ impl ConditionFinding {
 }
 
 /// Compares a condition with the reference up to a nonzero factor.
-fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> ConditionFinding {
-    let [r0] = res else {
+fn judge_condition(
+    part: &Part,
+    p: &mut Prepared,
+    (eqs, res): (&[(Id, Id)], &[Id]),
+    reference: Id,
+) -> ConditionFinding {
+    let ([r0], [(lhs, rhs)]) = (res, eqs) else {
         return ConditionFinding::Count(res.len());
     };
     let r0 = *r0;
@@ -198,9 +204,15 @@ fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> 
         Ok(Relation::Equal | Relation::Factor(_)) => ConditionFinding::Equivalent,
         _ if eq(p, r0) => ConditionFinding::Equivalent,
         Ok(Relation::Undefined { point }) => ConditionFinding::Undefined { point },
-        _ => sign_in_term(p, r0, &mut |p, c| eq(p, c))
-            .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
-            .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found),
+        // One term as the student wrote it first; the whole-residual searches after.
+        _ => {
+            let st = Terms::of_equation(p, *lhs, *rhs);
+            let rt = Terms::of_expression(p, reference);
+            one_term(p, &st, &rt, Scaling::Common, "your equation")
+                .or_else(|| sign_in_term(p, r0, &mut |p, c| eq(p, c)))
+                .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
+                .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found)
+        }
     }
 }
 
@@ -233,7 +245,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     // A condition (a reference equation without accelerations, such as an equilibrium
     // condition) is compared with the reference up to a nonzero factor.
     if let Some(reference) = condition_of(part, p) {
-        let finding = judge_condition(part, p, &res, reference);
+        let finding = judge_condition(part, p, (&eqs, &res), reference);
         if matches!(finding, ConditionFinding::Equivalent) {
             v.status = Status::Correct;
             v.score = 1.0;

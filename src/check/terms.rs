@@ -164,7 +164,10 @@ fn match_with(t: &Table, c: &[f64]) -> Option<Difference> {
 }
 
 /// The common scalings to try: 1 for expressions; for equations the ratio of a student term
-/// to a reference term at each point, acceleration terms first (the natural normalisation).
+/// to a reference term of the same shape (the same state variables) at each point. A ratio
+/// of acceleration terms may depend on the parameters (θ'' + g/l·sin θ is m·l²·θ'' + … over
+/// m·l²); any other ratio must be a plain number, or terms of one shape (ω²·r, 2·a·g·r) could
+/// be "matched" through a scaling that means nothing.
 fn scalings(
     p: &Prepared,
     student: &Terms,
@@ -185,24 +188,48 @@ fn scalings(
     }
     let accel = |e: Id| p.system.pool.variables(e).iter().any(|v| v.1 == 2);
     let mut pairs: Vec<(bool, usize, usize)> = Vec::new();
+    // (not both accelerations, student term, reference term), in the order tried.
     for i in 0..student.len() {
         for j in 0..reference.len() {
-            let both = accel(student.signed[i]) && accel(reference.signed[j]);
+            let (si, rj) = (student.signed[i], reference.signed[j]);
+            let both = accel(si) && accel(rj);
+            // Acceleration terms pair by their accelerations (a mass matrix entry may depend
+            // on the state: ψ'' and (1 + x²)·ψ''); other terms by all their state variables.
+            let shape = |e: Id| -> Vec<(Sym, u8)> {
+                let v = state_vars(p, e);
+                if both {
+                    v.into_iter().filter(|x| x.1 == 2).collect()
+                } else {
+                    v
+                }
+            };
+            if shape(si) != shape(rj) {
+                continue;
+            }
             pairs.push((!both, i, j));
         }
     }
-    pairs.sort();
-    pairs
+    // Acceleration pairs first, then a scaling of 1 (the student's equation as written), then
+    // the other numbers: among equally true readings, the plainest.
+    let mut found: Vec<(bool, bool, usize, Vec<f64>)> = pairs
         .into_iter()
-        .filter_map(|(_, i, j)| {
+        .enumerate()
+        .filter_map(|(rank, (numeric_only, i, j))| {
             let c: Vec<f64> = t.student[i]
                 .iter()
                 .zip(&t.reference[j])
                 .map(|(x, y)| x / y)
                 .collect();
-            c.iter().all(|x| x.is_finite() && *x != 0.0).then_some(c)
+            let c0 = *c.first()?;
+            let constant = c.iter().all(|x| close(*x, c0, 0.0, tolerance::NUMBER));
+            let usable =
+                c.iter().all(|x| x.is_finite() && *x != 0.0) && (!numeric_only || constant);
+            let one = constant && (c0 - 1.0).abs() < tolerance::NUMBER;
+            usable.then_some((numeric_only, !one, rank, c))
         })
-        .collect()
+        .collect();
+    found.sort_by_key(|&(numeric_only, not_one, rank, _)| (numeric_only, not_one, rank));
+    found.into_iter().map(|(_, _, _, c)| c).collect()
 }
 
 /// The one term that differs between `student` and `reference`, as a diagnosis about
