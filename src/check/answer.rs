@@ -488,49 +488,6 @@ fn term_mistakes(p: &mut Prepared, s: Id, reference: Id) -> Vec<Mistake> {
     found.into_iter().map(Mistake::Found).collect()
 }
 
-/// The most telling limit (at rest, a parameter zero) in which the answer is right, said as
-/// where the mistake must be. Only limits that remove some of the reference's terms and keep
-/// others apply.
-fn right_in_limit(p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
-    for limit in limits::applicable(p, reference) {
-        let pts = limits::points_in(p, limit);
-        if relate(&p.system, s, reference, &pts, tolerance::SAME).ok() == Some(Relation::Equal) {
-            return Some(limits::right_in(p, limit, "your answer"));
-        }
-    }
-    None
-}
-
-/// A potential, a Lagrangian or an energy expanded to second order about q = 0 where the
-/// full expression is asked (`½ m g l θ²` for V).
-fn small_angle(part: &Part, p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
-    let energy = matches!(
-        part.quantity,
-        Quantity::Potential | Quantity::Lagrangian | Quantity::EnergyFunction | Quantity::Kinetic
-    ) || part.kind == PartKind::Lagrangian;
-    let coords = p.system.coordinate_syms();
-    let depends = p
-        .system
-        .pool
-        .variables(reference)
-        .iter()
-        .any(|(c, o)| *o == 0 && coords.contains(c));
-    if !energy || !depends {
-        return None;
-    }
-    let quadratic = limits::quadratic_about_zero(p, reference);
-    let constant_ok = part.up_to_constant || part.kind == PartKind::Lagrangian;
-    match relate(&p.system, s, quadratic, &p.points, tolerance::SAME).ok()? {
-        Relation::Equal => {}
-        Relation::UpToConstant(_) if constant_ok => {}
-        _ => return None,
-    }
-    Some(Diagnosis::new(
-        Code::SmallAngle,
-        "your answer is the small-angle (quadratic) approximation about 0, but the full expression is asked: keep cos θ and sin θ as they are",
-    ))
-}
-
 /// What is left to say when no mistake was found.
 fn unexplained(p: &Prepared, s: Id, reference: Id, rel: Relation) -> Mistake {
     match rel {
@@ -565,14 +522,14 @@ fn diagnose_expression(
     v: &mut Verdict,
 ) {
     let mut mistakes = wrong_quantity(part, p, s);
-    match small_angle(part, p, s, reference) {
+    match limits::small_angle(part, p, s, reference) {
         Some(d) => mistakes.push(Mistake::Found(d)),
         None => mistakes.extend(term_mistakes(p, s, reference)),
     }
     // The one call site for the literature's detectors (`super::misconception`, issue 12):
     // they add to `mistakes` here, after the term-level search and before the limits.
     if mistakes.is_empty()
-        && let Some(d) = right_in_limit(p, s, reference)
+        && let Some(d) = limits::right_in_limit(p, s, reference)
     {
         mistakes.push(Mistake::Found(d));
     }

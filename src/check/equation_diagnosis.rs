@@ -10,11 +10,12 @@ use super::compare::values;
 use super::diagnose::swapped;
 use super::limits;
 use super::prepare::Prepared;
-use super::residual::{accelerations_at, holds, miss};
+use super::residual::{holds, miss};
 use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, Verdict};
 use crate::expr::Id;
+use crate::mechanics::accel::Dynamics;
 use crate::problem::Part;
 
 /// Accelerations of the equations linearized about q = 0, q' = 0.
@@ -96,9 +97,20 @@ fn limit_finding(p: &mut Prepared, refs: &[(Id, Id)], r: Id, which: &str) -> Opt
         [(l, rr)] => p.system.pool.sub(*l, *rr),
         _ => r,
     };
-    for limit in limits::applicable(p, basis) {
+    let limits = limits::applicable(p, basis);
+    if limits.is_empty() {
+        return None;
+    }
+    // One compiled dynamics for every limit.
+    let dynamics = Dynamics::new(&p.system, &p.derivation).ok()?;
+    let mut scratch = dynamics.scratch();
+    for limit in limits {
         let pts = limits::points_in(p, limit);
-        let acc = accelerations_at(p, &pts);
+        let acc: Vec<Option<Vec<f64>>> = pts
+            .points
+            .iter()
+            .map(|x| dynamics.accelerations(x, &mut scratch).ok())
+            .collect();
         if acc.iter().filter(|a| a.is_some()).count() * 2 < pts.points.len() {
             continue;
         }

@@ -3,19 +3,24 @@
 //! the mistake must be in a term that the limit removes. The limits are tried most telling
 //! first (the one that removes the fewest terms), and a limit is used only where it applies:
 //! it must remove some of the reference's terms and keep others (a momentum at rest is zero
-//! whatever its mistake, so "right at rest" says nothing about it).
+//! whatever its mistake, so "right at rest" says nothing about it). Also the small-angle
+//! approximation of an expression (its quadratic part about q = 0).
 
-use super::compare::values;
+use super::compare::{Relation, relate};
 use super::points::PointSet;
 use super::prepare::Prepared;
+use super::tolerance;
 use super::verdict::{Code, Diagnosis};
-use crate::expr::{Id, Node, Style};
+use crate::expr::{Id, Node, Program, Style};
+use crate::problem::{Part, PartKind, Quantity};
 
 /// A limiting case: at rest, or one parameter (by index) set to zero.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Limit {
     /// Every velocity and acceleration zero.
     Rest,
+    /// Every coordinate zero (the point a small-angle approximation is made about).
+    Origin,
     /// Parameter `j` zero.
     Zero(usize),
 }
@@ -36,6 +41,11 @@ pub(super) fn points_in(p: &Prepared, limit: Limit) -> PointSet {
                         y[at.qddot(i)] = 0.0;
                     }
                 }
+                Limit::Origin => {
+                    for i in 0..at.coordinates() {
+                        y[at.q(i)] = 0.0;
+                    }
+                }
                 Limit::Zero(j) => y[at.param(j)] = 0.0,
             }
             y
@@ -44,13 +54,21 @@ pub(super) fn points_in(p: &Prepared, limit: Limit) -> PointSet {
     PointSet { points }
 }
 
-/// How many of `terms` vanish at every point of the limit, or `None` when some cannot be
-/// evaluated there.
-fn vanishing(p: &Prepared, terms: &[Id], pts: &PointSet) -> Option<usize> {
-    let vals = values(&p.system, terms, pts).ok()?;
-    let rows: Vec<Vec<f64>> = vals.into_iter().collect::<Option<Vec<_>>>()?;
+/// How many of the terms (the outputs of `prog`) vanish at every point of the limit, or
+/// `None` when some cannot be evaluated there.
+fn vanishing(prog: &Program, n: usize, pts: &PointSet) -> Option<usize> {
+    let mut scratch = prog.scratch();
+    let mut rows = Vec::with_capacity(pts.points.len());
+    for x in &pts.points {
+        prog.run(x, &mut scratch).ok()?;
+        rows.push(
+            (0..n)
+                .map(|k| prog.output(k, &scratch))
+                .collect::<Vec<f64>>(),
+        );
+    }
     Some(
-        (0..terms.len())
+        (0..n)
             .filter(|&i| {
                 rows.iter().all(|r| {
                     let size: f64 = r.iter().map(|x| x.abs()).sum();
@@ -77,12 +95,15 @@ pub(super) fn applicable(p: &mut Prepared, e: Id) -> Vec<Limit> {
     if terms.len() > super::diagnose::MAX_SEARCH_TERMS {
         return Vec::new();
     }
+    let Ok(prog) = Program::compile(&p.system.pool, &terms, &p.system.layout()) else {
+        return Vec::new();
+    };
     let mut found: Vec<(usize, usize, Limit)> = Vec::new();
     let candidates =
         std::iter::once(Limit::Rest).chain((0..p.system.parameters.len()).map(Limit::Zero));
     for (rank, limit) in candidates.enumerate() {
         let pts = points_in(p, limit);
-        if let Some(k) = vanishing(p, &terms, &pts)
+        if let Some(k) = vanishing(&prog, terms.len(), &pts)
             && k > 0
             && k < terms.len()
         {
@@ -96,7 +117,7 @@ pub(super) fn applicable(p: &mut Prepared, e: Id) -> Vec<Limit> {
 /// The sentence for an answer right in `limit`; `which` is "your answer" or "equation 2".
 pub(super) fn right_in(p: &Prepared, limit: Limit, which: &str) -> Diagnosis {
     match limit {
-        Limit::Rest => Diagnosis::new(
+        Limit::Rest | Limit::Origin => Diagnosis::new(
             Code::VelocityTerm,
             format!(
                 "{which} is right when nothing moves, so the mistake is in a term with a velocity"
@@ -150,4 +171,86 @@ pub(super) fn quadratic_about_zero(p: &mut Prepared, e: Id) -> Id {
         }
     }
     sum
+}
+
+/// Whether `e` applies a function (sin, cos, exp, …) to something that depends on a
+/// coordinate. Walks the expression without recursion, each node once.
+pub(super) fn has_function_of_coordinate(p: &Prepared, e: Id) -> bool {
+    let coords = p.system.coordinate_syms();
+    let pool = &p.system.pool;
+    let mut stack = vec![e];
+    let mut seen = rustc_hash::FxHashSet::default();
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        match pool.node(x) {
+            Node::Func(_, a) => {
+                if pool.variables(*a).iter().any(|(s, _)| coords.contains(s)) {
+                    return true;
+                }
+            }
+            Node::Add(t) | Node::Mul(t) => stack.extend(t.iter().copied()),
+            Node::Pow(b, x) => stack.extend([*b, *x]),
+            Node::Num(_) | Node::Var(..) | Node::Pi => {}
+        }
+    }
+    false
+}
+
+/// The most telling limit (at rest, a parameter zero) in which the answer is right, said as
+/// where the mistake must be. Only limits that remove some of the reference's terms and keep
+/// others apply.
+pub(super) fn right_in_limit(p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
+    for limit in applicable(p, reference) {
+        let pts = points_in(p, limit);
+        if relate(&p.system, s, reference, &pts, tolerance::SAME).ok() == Some(Relation::Equal) {
+            return Some(right_in(p, limit, "your answer"));
+        }
+    }
+    None
+}
+
+/// A potential, a Lagrangian or an energy expanded to second order about q = 0 where the
+/// full expression is asked (`½ m g l θ²` for V).
+pub(super) fn small_angle(
+    part: &Part,
+    p: &mut Prepared,
+    s: Id,
+    reference: Id,
+) -> Option<Diagnosis> {
+    let energy = matches!(
+        part.quantity,
+        Quantity::Potential | Quantity::Lagrangian | Quantity::EnergyFunction | Quantity::Kinetic
+    ) || part.kind == PartKind::Lagrangian;
+    let coords = p.system.coordinate_syms();
+    let depends = p
+        .system
+        .pool
+        .variables(reference)
+        .iter()
+        .any(|(c, o)| *o == 0 && coords.contains(c));
+    // A quadratic approximation has no function of a coordinate left (cheap to rule out first).
+    if !energy || !depends || has_function_of_coordinate(p, s) {
+        return None;
+    }
+    let constant_ok = part.up_to_constant || part.kind == PartKind::Lagrangian;
+    // At q = 0 the quadratic approximation of a T, V or L (at most quadratic in the
+    // velocities) is the expression itself: a cheap numeric test before the Taylor expansion.
+    let origin = points_in(p, Limit::Origin);
+    match relate(&p.system, s, reference, &origin, tolerance::SAME).ok()? {
+        Relation::Equal => {}
+        Relation::UpToConstant(_) if constant_ok => {}
+        _ => return None,
+    }
+    let quadratic = quadratic_about_zero(p, reference);
+    match relate(&p.system, s, quadratic, &p.points, tolerance::SAME).ok()? {
+        Relation::Equal => {}
+        Relation::UpToConstant(_) if constant_ok => {}
+        _ => return None,
+    }
+    Some(Diagnosis::new(
+        Code::SmallAngle,
+        "your answer is the small-angle (quadratic) approximation about 0, but the full expression is asked: keep cos θ and sin θ as they are",
+    ))
 }

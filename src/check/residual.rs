@@ -8,7 +8,6 @@ use super::points::PointSet;
 use super::prepare::Prepared;
 use super::tolerance;
 use crate::expr::Id;
-use crate::mechanics::accel::Dynamics;
 
 /// An equation's affine form at one point: the coefficients of q'' and the rest.
 pub(super) type AffineRow = (Vec<f64>, f64);
@@ -90,16 +89,4 @@ pub(super) fn miss(
 pub(super) fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
     let tol = p.tolerance;
     miss(p, r, pts, acc, tol).is_none()
-}
-
-/// True accelerations at arbitrary points.
-pub(super) fn accelerations_at(p: &Prepared, pts: &PointSet) -> Vec<Option<Vec<f64>>> {
-    let Ok(d) = Dynamics::new(&p.system, &p.derivation) else {
-        return vec![None; pts.points.len()];
-    };
-    let mut scratch = d.scratch();
-    pts.points
-        .iter()
-        .map(|x| d.accelerations(x, &mut scratch).ok())
-        .collect()
 }
