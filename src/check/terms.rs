@@ -324,7 +324,13 @@ fn describe(
             ),
         ),
         Difference::Pair(i, j, ratio) => {
-            return pair(p, (student, reference), (i, j), &ratio, how);
+            // In a system, say which equation ("sign error in equation 2: …").
+            let place = if which.starts_with("equation") {
+                format!(" in {which}")
+            } else {
+                String::new()
+            };
+            return pair(p, (student, reference), (i, j), &ratio, (how, &place));
         }
     };
     Some((found, true))
@@ -337,7 +343,7 @@ fn pair(
     (student, reference): (&Terms, &Terms),
     (i, j): (usize, usize),
     ratio: &[f64],
-    how: Scaling,
+    (how, place): (Scaling, &str),
 ) -> Option<(Diagnosis, bool)> {
     let pool = &p.system.pool;
     let yours = pool.unicode(student.shown[i]);
@@ -356,7 +362,7 @@ fn pair(
             return Some((
                 Diagnosis::new(
                     Code::SignError,
-                    format!("sign error: your term {yours} should have the opposite sign"),
+                    format!("sign error{place}: your term {yours} should have the opposite sign"),
                 ),
                 true,
             ));
@@ -366,7 +372,7 @@ fn pair(
                 Diagnosis::new(
                     Code::RoundedConstant,
                     format!(
-                        "the coefficient of your term {yours} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
+                        "the coefficient of your term {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
                         (f - 1.0).abs() * 100.0
                     ),
                 ),
@@ -384,11 +390,12 @@ fn pair(
         return Some((
             Diagnosis::new(
                 Code::ConstantFactor,
-                format!("your term {yours} is off by a constant factor: {text}"),
+                format!("your term {yours}{place} is off by a constant factor: {text}"),
             ),
             true,
         ));
     }
+    let yours = format!("{yours}{place}");
     wrong_factor(p, student.signed[i], reference.signed[j], &yours, how)
 }
 

@@ -401,7 +401,10 @@ fn the_misleading_messages_of_issue_12_are_gone() {
         "x'' + 2*Omega*y' - Omega^2*x = 0; y'' + 2*Omega*x' - Omega^2*y = 0",
     );
     assert!(!m.contains("swapped"), "{m}");
-    assert!(m.contains("sign error: your term 2·Ω·"), "{m}");
+    assert!(
+        m.contains("sign error in equation 1: your term 2·Ω·"),
+        "{m}"
+    );
     // not-equal shows the variables the answers use, velocities included, and no others.
     let m = message("double-pendulum", "kinetic", "m1*l1^2*theta1'^2");
     // (a velocity is printed with a combining dot above, U+0307)
