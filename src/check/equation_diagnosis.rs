@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
 use super::compare::values;
-use super::diagnose::swapped;
+use super::diagnose::{has_decimal, swapped};
 use super::limits;
 use super::prepare::Prepared;
 use super::residual::{holds, miss};
@@ -150,7 +150,7 @@ pub(super) fn diagnose_equation(
         return;
     }
     let truth = truth.to_vec();
-    if miss(p, r, &pts, &truth, tolerance::ROUNDED).is_none() {
+    if has_decimal(p, r) && miss(p, r, &pts, &truth, tolerance::ROUNDED).is_none() {
         v.diagnoses.push(Diagnosis::new(
             Code::RoundedConstant,
             format!("{which} holds only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"),

@@ -5,7 +5,7 @@
 use std::f64::consts::TAU;
 
 use super::compare::{close, values};
-use super::diagnose::nice_fraction;
+use super::diagnose::{has_decimal, nice_fraction};
 use super::prepare::Prepared;
 use super::prepare::same_coordinate_within;
 use super::terms::{Scaling, Terms, one_term};
@@ -167,12 +167,13 @@ pub(super) struct Lists<'v> {
     pub(super) reference_ids: &'v [Vec<Id>],
 }
 
-/// For a frequency that matches nothing: ω² for ω, ω for ω², or rounded constants. Takes the
+/// For a frequency that matches nothing: ω² for ω, ω for ω², rounded constants (only for an
+/// item with a decimal), f = ω/2π, a period. Takes the
 /// reference item it explains out of `free`.
 fn frequency_slip(
     part: &Part,
     p: &Prepared,
-    s: &[Option<Vec<f64>>],
+    (s, decimal): (&[Option<Vec<f64>>], bool),
     rv: &[Vec<Option<Vec<f64>>>],
     free: &mut Vec<usize>,
     label: &str,
@@ -202,7 +203,7 @@ fn frequency_slip(
         (k, ItemFinding::Root { label, squared })
     } else if let Some(k) = free
         .iter()
-        .position(|&j| same_item(part, p, s, &rv[j], tolerance::ROUNDED))
+        .position(|&j| decimal && same_item(part, p, s, &rv[j], tolerance::ROUNDED))
     {
         (k, ItemFinding::Rounded { label })
     } else if let Some(k) = (!squared)
@@ -233,19 +234,28 @@ pub(super) fn classify_unmatched(
     free: &mut Vec<usize>,
 ) -> ItemFinding {
     let (i, first, label) = item;
+    let decimal = has_decimal(p, first);
     if part.kind == PartKind::Frequencies
-        && let Some(f) = frequency_slip(part, p, &lists.student[i], lists.reference, free, &label)
+        && let Some(f) = frequency_slip(
+            part,
+            p,
+            (&lists.student[i], decimal),
+            lists.reference,
+            free,
+            &label,
+        )
     {
         return f;
     }
     if let Some(k) = free.iter().position(|&j| {
-        same_item(
-            part,
-            p,
-            &lists.student[i],
-            &lists.reference[j],
-            tolerance::ROUNDED,
-        )
+        decimal
+            && same_item(
+                part,
+                p,
+                &lists.student[i],
+                &lists.reference[j],
+                tolerance::ROUNDED,
+            )
     }) {
         free.remove(k);
         return ItemFinding::Rounded { label };

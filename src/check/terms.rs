@@ -8,7 +8,7 @@
 //! and matchings never builds or evaluates an expression, so it stays cheap.
 
 use super::compare::{close, values};
-use super::diagnose::{MAX_SEARCH_TERMS, nice_fraction};
+use super::diagnose::{MAX_SEARCH_TERMS, has_decimal, nice_fraction};
 use super::prepare::Prepared;
 use super::tolerance;
 use super::verdict::{Code, Diagnosis};
@@ -367,7 +367,7 @@ fn pair(
                 true,
             ));
         }
-        if (f - 1.0).abs() < tolerance::ROUNDED {
+        if (f - 1.0).abs() < tolerance::ROUNDED && has_decimal(p, student.signed[i]) {
             return Some((
                 Diagnosis::new(
                     Code::RoundedConstant,
