@@ -461,8 +461,13 @@ fn wrong_factor(
     let pool = &p.system.pool;
     let (message, named) = match (wrong.as_slice(), lacking.as_slice()) {
         ([w], _) => {
-            let why = if matches!(pool.node(*w), Node::Func(..)) {
+            let why = if matches!(
+                pool.node(*w),
+                Node::Func(crate::expr::Func::Sin | crate::expr::Func::Cos, _)
+            ) {
                 "check sin against cos, and the angle inside"
+            } else if matches!(pool.node(*w), Node::Func(..)) {
+                "check the function and what is inside it"
             } else if is_state(p, *w) {
                 "check its power and what is inside"
             } else {
