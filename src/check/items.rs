@@ -223,6 +223,18 @@ fn frequency_slip(
     Some(finding)
 }
 
+/// Whether an item is the same as a reference item already matched (not in `free`).
+fn listed_twice(
+    part: &Part,
+    p: &Prepared,
+    s: &[Option<Vec<f64>>],
+    reference: &[Vec<Option<Vec<f64>>>],
+    free: &[usize],
+) -> bool {
+    (0..reference.len())
+        .any(|j| !free.contains(&j) && same_item(part, p, s, &reference[j], part.tolerance))
+}
+
 /// Classifies student item `i`, which matched no reference item; `free` holds the reference
 /// items not yet matched or explained.
 pub(super) fn classify_unmatched(
@@ -261,16 +273,7 @@ pub(super) fn classify_unmatched(
         return ItemFinding::Rounded { label };
     }
     // The same as an item already matched: not wrong, only listed twice.
-    if (0..lists.reference.len()).any(|j| {
-        !free.contains(&j)
-            && same_item(
-                part,
-                p,
-                &lists.student[i],
-                &lists.reference[j],
-                part.tolerance,
-            )
-    }) {
+    if listed_twice(part, p, &lists.student[i], lists.reference, free) {
         let periodic =
             part.kind == PartKind::Equilibria && p.system.coordinates.iter().any(|c| c.periodic);
         return ItemFinding::Twice { label, periodic };
