@@ -4,11 +4,13 @@
 
 use rustc_hash::FxHashMap;
 
-use super::common::{at_rest, invalid_reading, point_text, undefined_everywhere, verdict};
+use super::common::{invalid_reading, point_text, state_text, undefined_everywhere, verdict};
 use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{factor_in_term, nice_fraction, rounded, sign_in_term, swapped};
 use super::error::CheckError;
+use super::limits;
 use super::prepare::{Prepared, prepare};
+use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use super::{equations, lists};
@@ -361,12 +363,16 @@ enum Mistake {
     GaveLagrangian { what: &'static str },
     /// Found by one of the shared searches (rounding, swapped symbols, a term).
     Found(Diagnosis),
-    /// Right at rest: a velocity-dependent term is wrong.
-    VelocityTerm,
     /// Off by the constant `c`.
     Constant(f64),
-    /// Yours is `yours` at sample `point` where it should be `want`.
-    DiffersAt { point: usize, yours: f64, want: f64 },
+    /// Yours is `yours` at sample `point` where it should be `want`; `vars` are the variables
+    /// the two expressions use (the only ones worth showing).
+    DiffersAt {
+        point: usize,
+        yours: f64,
+        want: f64,
+        vars: Vec<(crate::expr::Sym, u8)>,
+    },
     /// No more to say.
     NotEqual,
 }
@@ -387,10 +393,6 @@ impl Mistake {
                 format!("that is the Lagrangian L; this part asks for {what}"),
             ),
             Mistake::Found(d) => d,
-            Mistake::VelocityTerm => Diagnosis::new(
-                Code::VelocityTerm,
-                "your answer is right when nothing moves, so the mistake is in a velocity-dependent term (a missing or wrong q'² or q'₁q'₂ term)",
-            ),
             Mistake::Constant(c) => Diagnosis::new(
                 Code::NotEqual,
                 format!(
@@ -398,11 +400,16 @@ impl Mistake {
                     fmt_value(c)
                 ),
             ),
-            Mistake::DiffersAt { point, yours, want } => Diagnosis::new(
+            Mistake::DiffersAt {
+                point,
+                yours,
+                want,
+                vars,
+            } => Diagnosis::new(
                 Code::NotEqual,
                 format!(
                     "not equal to the expected answer: at {}, yours is {} but it should be {}",
-                    point_text(p, point),
+                    state_text(p, &p.points.points[point], Some(&vars)),
                     fmt_value(yours),
                     fmt_value(want)
                 ),
@@ -443,14 +450,31 @@ fn wrong_quantity(part: &Part, p: &mut Prepared, s: Id) -> Vec<Mistake> {
     out
 }
 
-/// Rounded constants, swapped symbols, a sign or a factor in one term.
+/// Rounded constants, one term that differs (a sign, a factor, a wrong factor inside, a term
+/// missing or extra), swapped symbols. A sign error in one term is said before a swap that
+/// happens to repair it; the older whole-expression searches run only when the term matching
+/// found nothing.
 fn term_mistakes(p: &mut Prepared, s: Id, reference: Id) -> Vec<Mistake> {
     let eq = |p: &mut Prepared, cand: Id| {
         relate(&p.system, cand, reference, &p.points, tolerance::SAME).ok() == Some(Relation::Equal)
     };
+    if let Some(d) = rounded(p, s, reference) {
+        return vec![Mistake::Found(d)];
+    }
+    let (st, rt) = (
+        Terms::of_expression(p, s),
+        Terms::of_expression(p, reference),
+    );
+    let term = one_term(p, &st, &rt, Scaling::None, "your answer");
+    if let Some(d) = term.as_ref().filter(|d| d.code == Code::SignError) {
+        return vec![Mistake::Found(d.clone())];
+    }
     let mut found = Vec::new();
-    found.extend(rounded(p, s, reference));
     found.extend(swapped(p, s, &mut |p, c| eq(p, c)));
+    if let Some(d) = term {
+        found.push(d);
+        return found.into_iter().map(Mistake::Found).collect();
+    }
     found.extend(sign_in_term(p, s, &mut |p, c| eq(p, c)));
     let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
         let vals = values(&p.system, &[s, reference, t], &p.points).ok()?;
@@ -464,13 +488,6 @@ fn term_mistakes(p: &mut Prepared, s: Id, reference: Id) -> Vec<Mistake> {
     found.into_iter().map(Mistake::Found).collect()
 }
 
-/// Velocity-dependent terms: equal when every velocity is zero.
-fn velocity_term(p: &mut Prepared, s: Id, reference: Id) -> bool {
-    at_rest(p).is_some_and(|still| {
-        relate(&p.system, s, reference, &still, tolerance::SAME).ok() == Some(Relation::Equal)
-    }) && !p.system.pool.variables(reference).iter().all(|x| x.1 == 0)
-}
-
 /// What is left to say when no mistake was found.
 fn unexplained(p: &Prepared, s: Id, reference: Id, rel: Relation) -> Mistake {
     match rel {
@@ -478,11 +495,16 @@ fn unexplained(p: &Prepared, s: Id, reference: Id, rel: Relation) -> Mistake {
         Relation::Different { point } => {
             let vals = values(&p.system, &[s, reference], &p.points).ok();
             match vals.and_then(|x| x.get(point).cloned().flatten()) {
-                Some(x) => Mistake::DiffersAt {
-                    point,
-                    yours: x[0],
-                    want: x[1],
-                },
+                Some(x) => {
+                    let mut vars = p.system.pool.variables(s);
+                    vars.extend(p.system.pool.variables(reference));
+                    Mistake::DiffersAt {
+                        point,
+                        yours: x[0],
+                        want: x[1],
+                        vars,
+                    }
+                }
                 None => Mistake::NotEqual,
             }
         }
@@ -500,9 +522,16 @@ fn diagnose_expression(
     v: &mut Verdict,
 ) {
     let mut mistakes = wrong_quantity(part, p, s);
-    mistakes.extend(term_mistakes(p, s, reference));
-    if mistakes.is_empty() && velocity_term(p, s, reference) {
-        mistakes.push(Mistake::VelocityTerm);
+    match limits::small_angle(part, p, s, reference) {
+        Some(d) => mistakes.push(Mistake::Found(d)),
+        None => mistakes.extend(term_mistakes(p, s, reference)),
+    }
+    // The one call site for the literature's detectors (`super::misconception`, issue 12):
+    // they add to `mistakes` here, after the term-level search and before the limits.
+    if mistakes.is_empty()
+        && let Some(d) = limits::right_in_limit(p, s, reference)
+    {
+        mistakes.push(Mistake::Found(d));
     }
     if mistakes.is_empty() {
         mistakes.push(unexplained(p, s, reference, rel));

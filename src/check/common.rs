@@ -1,9 +1,8 @@
 //! What the expression, equation and list checks share, kept in a leaf so that they do not
-//! import each other: the verdict skeleton, the verdict on unreadable input, a sample point as
-//! text, and the sample points at rest.
+//! import each other: the verdict skeleton, the verdict on unreadable input, and a sample point as
+//! text.
 
 use super::compare::fmt_value;
-use super::points::PointSet;
 use super::prepare::Prepared;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{ParseErrorKind, Sym};
@@ -96,23 +95,4 @@ pub(super) fn state_text(p: &Prepared, x: &[f64], only: Option<&[(Sym, u8)]>) ->
         })
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// The sample points with every velocity (and acceleration) set to zero.
-pub(super) fn at_rest(p: &Prepared) -> Option<PointSet> {
-    let at = p.system.state_layout();
-    let points = p
-        .points
-        .points
-        .iter()
-        .map(|x| {
-            let mut y = x.clone();
-            for i in 0..at.coordinates() {
-                y[at.qdot(i)] = 0.0;
-                y[at.qddot(i)] = 0.0;
-            }
-            y
-        })
-        .collect();
-    Some(PointSet { points })
 }

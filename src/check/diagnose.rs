@@ -179,9 +179,43 @@ pub fn swapped(
     None
 }
 
-/// Agreement to only a few digits: `a` is within [`tolerance::ROUNDED`] of `b` everywhere but
-/// not within the tolerance.
+/// Whether `e` holds an approximate number the student typed: a decimal (a denominator that
+/// is a multiple of 10: 0.333, 3.14, 1.01 are 333/1000, 157/50, 101/100) or a fraction past
+/// the simple ones (355/113; ½, ⅕ and 2/3 are exact). Only such an answer can have "rounded"
+/// constants: agreement to 1% without one is a different mistake (a velocity term small at
+/// the sample points, not a rounding).
+/// Walks the expression without recursion, each node once.
+pub fn has_decimal(p: &Prepared, e: Id) -> bool {
+    let pool = &p.system.pool;
+    let ten = num_bigint::BigInt::from(10);
+    let mut stack = vec![e];
+    let mut seen = rustc_hash::FxHashSet::default();
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        match pool.node(x) {
+            Node::Num(q) => {
+                let d = q.denom();
+                if (d % &ten) == num_bigint::BigInt::from(0) || *d > num_bigint::BigInt::from(12) {
+                    return true;
+                }
+            }
+            Node::Add(t) | Node::Mul(t) => stack.extend(t.iter().copied()),
+            Node::Pow(b, x) => stack.extend([*b, *x]),
+            Node::Func(_, a) => stack.push(*a),
+            Node::Var(..) | Node::Pi => {}
+        }
+    }
+    false
+}
+
+/// Agreement to only a few digits: `a` (which holds a decimal) is within
+/// [`tolerance::ROUNDED`] of `b` everywhere but not within the tolerance.
 pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
+    if !has_decimal(p, a) {
+        return None;
+    }
     let r = relate(&p.system, a, b, &p.points, tolerance::ROUNDED).ok()?;
     if r != Relation::Equal {
         return None;

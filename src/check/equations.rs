@@ -1,21 +1,23 @@
 //! Equations compared through the accelerations they imply: an answer's equations must hold
-//! at the true accelerations (one equation), or determine exactly them (a system). Also the
-//! diagnosis of a wrong equation: linearized, a sign or factor in one term, swapped symbols, a
-//! velocity term; and conditions without accelerations, compared up to a factor.
+//! at the true accelerations (one equation), or determine exactly them (a system); conditions
+//! without accelerations are compared up to a factor. Why a wrong equation is wrong is
+//! `equation_diagnosis.rs`'s business.
 
-use nalgebra::{DMatrix, DVector};
-use rustc_hash::FxHashMap;
+use nalgebra::DMatrix;
 
-use super::common::{at_rest, point_text, undefined_everywhere, verdict};
-use super::compare::{Relation, relate, values};
+use super::common::{point_text, undefined_everywhere, verdict};
+use super::compare::{Relation, relate};
 use super::degenerate::degeneracy;
-use super::diagnose::{factor_in_term, sign_in_term, swapped};
+use super::diagnose::{sign_in_term, swapped};
+use super::equation_diagnosis::diagnose_equation;
 use super::error::CheckError;
 use super::points::PointSet;
 use super::prepare::Prepared;
+use super::residual::{Miss, affine, holds, miss};
+use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, Reading};
+use crate::expr::{Id, Reading, Style};
 use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
 
@@ -93,144 +95,6 @@ pub(crate) fn equations_hold(
         ));
     }
     Ok(degeneracy(p, res, None).map(|d| d.details().message))
-}
-
-/// An equation's affine form at one point: the coefficients of q'' and the rest.
-type AffineRow = (Vec<f64>, f64);
-
-/// One equation's affine form at each point: the row A (coefficients of q'') and b (the rest).
-fn affine(p: &mut Prepared, r: Id, pts: &PointSet) -> Result<Vec<Option<AffineRow>>, CheckError> {
-    let coords = p.system.coordinate_syms();
-    let mut roots: Vec<Id> = coords
-        .iter()
-        .map(|&c| p.system.pool.diff(r, c, 2))
-        .collect();
-    roots.push(r);
-    let vals = values(&p.system, &roots, pts)?;
-    let n = coords.len();
-    let at = p.system.state_layout();
-    Ok(vals
-        .into_iter()
-        .zip(&pts.points)
-        .map(|(v, x)| {
-            let v = v?;
-            let a: Vec<f64> = v[..n].to_vec();
-            let b = v[n] - (0..n).map(|j| a[j] * x[at.qddot(j)]).sum::<f64>();
-            Some((a, b))
-        })
-        .collect())
-}
-
-/// Why an equation fails at given accelerations.
-enum Miss {
-    /// The residual at the first point where it does not vanish.
-    Residual(f64),
-    /// It contains no acceleration.
-    NoAcceleration,
-    /// It could not be evaluated anywhere.
-    Unevaluable,
-}
-
-/// `None` when equation `r` holds at accelerations `acc` (per point), to the relative
-/// tolerance `tol`, and involves them.
-fn miss(
-    p: &mut Prepared,
-    r: Id,
-    pts: &PointSet,
-    acc: &[Option<Vec<f64>>],
-    tol: f64,
-) -> Option<Miss> {
-    let Ok(rows) = affine(p, r, pts) else {
-        return Some(Miss::Unevaluable);
-    };
-    let mut any_acc = false;
-    let mut checked = 0;
-    for (row, a) in rows.iter().zip(acc) {
-        let (Some((coef, b)), Some(a)) = (row, a) else {
-            continue;
-        };
-        let lhs: f64 = coef.iter().zip(a).map(|(c, x)| c * x).sum();
-        let scale = coef.iter().zip(a).map(|(c, x)| (c * x).abs()).sum::<f64>() + b.abs();
-        if coef.iter().any(|c| *c != 0.0) {
-            any_acc = true;
-        }
-        if (lhs + b).abs() > tol * (scale + tolerance::TINY) {
-            return Some(Miss::Residual(lhs + b));
-        }
-        checked += 1;
-    }
-    match (any_acc, checked) {
-        (_, 0) => Some(Miss::Unevaluable),
-        (false, _) => Some(Miss::NoAcceleration),
-        _ => None,
-    }
-}
-
-/// Whether equation `r` holds at accelerations `acc` (per point), to the part's tolerance,
-/// and involves them.
-fn holds(p: &mut Prepared, r: Id, pts: &PointSet, acc: &[Option<Vec<f64>>]) -> bool {
-    let tol = p.tolerance;
-    miss(p, r, pts, acc, tol).is_none()
-}
-
-/// True accelerations at arbitrary points.
-fn accelerations_at(p: &Prepared, pts: &PointSet) -> Vec<Option<Vec<f64>>> {
-    let Ok(d) = Dynamics::new(&p.system, &p.derivation) else {
-        return vec![None; pts.points.len()];
-    };
-    let mut scratch = d.scratch();
-    pts.points
-        .iter()
-        .map(|x| d.accelerations(x, &mut scratch).ok())
-        .collect()
-}
-
-/// Accelerations of the equations linearized about q = 0, q' = 0.
-fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
-    let n = p.system.n();
-    let coords = p.system.coordinate_syms();
-    let zero = p.system.pool.zero();
-    let rest: FxHashMap<_, _> = coords
-        .iter()
-        .flat_map(|&c| [((c, 0), zero), ((c, 1), zero), ((c, 2), zero)])
-        .collect();
-    let mut roots = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            roots.push(p.system.pool.substitute(p.derivation.mass[i][j], &rest));
-        }
-    }
-    for i in 0..n {
-        let f = p.derivation.forcing[i];
-        roots.push(p.system.pool.substitute(f, &rest));
-        for &c in &coords {
-            let dq = p.system.pool.diff(f, c, 0);
-            roots.push(p.system.pool.substitute(dq, &rest));
-            let dv = p.system.pool.diff(f, c, 1);
-            roots.push(p.system.pool.substitute(dv, &rest));
-        }
-    }
-    let Ok(vals) = values(&p.system, &roots, &p.points) else {
-        return vec![None; p.points.points.len()];
-    };
-    let at = p.system.state_layout();
-    vals.into_iter()
-        .zip(&p.points.points)
-        .map(|(v, x)| {
-            let v = v?;
-            let m = DMatrix::from_fn(n, n, |i, j| v[i * n + j]);
-            let mut rhs = DVector::zeros(n);
-            for i in 0..n {
-                let base = n * n + i * (1 + 2 * n);
-                let mut s = v[base];
-                for (j, _) in coords.iter().enumerate() {
-                    s += v[base + 1 + 2 * j] * x[at.q(j)] + v[base + 2 + 2 * j] * x[at.qdot(j)];
-                }
-                rhs[i] = s;
-            }
-            m.lu().solve(&rhs).map(|s| s.iter().copied().collect())
-        })
-        .collect()
 }
 
 /// The equations of a reading (a bare expression e read as e = 0, which sets `bare`), or
@@ -323,8 +187,13 @@ impl ConditionFinding {
 }
 
 /// Compares a condition with the reference up to a nonzero factor.
-fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> ConditionFinding {
-    let [r0] = res else {
+fn judge_condition(
+    part: &Part,
+    p: &mut Prepared,
+    (eqs, res): (&[(Id, Id)], &[Id]),
+    reference: Id,
+) -> ConditionFinding {
+    let ([r0], [(lhs, rhs)]) = (res, eqs) else {
         return ConditionFinding::Count(res.len());
     };
     let r0 = *r0;
@@ -335,9 +204,15 @@ fn judge_condition(part: &Part, p: &mut Prepared, res: &[Id], reference: Id) -> 
         Ok(Relation::Equal | Relation::Factor(_)) => ConditionFinding::Equivalent,
         _ if eq(p, r0) => ConditionFinding::Equivalent,
         Ok(Relation::Undefined { point }) => ConditionFinding::Undefined { point },
-        _ => sign_in_term(p, r0, &mut |p, c| eq(p, c))
-            .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
-            .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found),
+        // One term as the student wrote it first; the whole-residual searches after.
+        _ => {
+            let st = Terms::of_equation(p, *lhs, *rhs);
+            let rt = Terms::of_expression(p, reference);
+            one_term(p, &st, &rt, Scaling::Common, "your equation")
+                .or_else(|| sign_in_term(p, r0, &mut |p, c| eq(p, c)))
+                .or_else(|| swapped(p, r0, &mut |p, c| eq(p, c)))
+                .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found)
+        }
     }
 }
 
@@ -370,7 +245,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
     // A condition (a reference equation without accelerations, such as an equilibrium
     // condition) is compared with the reference up to a nonzero factor.
     if let Some(reference) = condition_of(part, p) {
-        let finding = judge_condition(part, p, &res, reference);
+        let finding = judge_condition(part, p, (&eqs, &res), reference);
         if matches!(finding, ConditionFinding::Equivalent) {
             v.status = Status::Correct;
             v.score = 1.0;
@@ -378,21 +253,13 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
         v.diagnoses.extend(finding.details(p));
         return v;
     }
-    let shown: Vec<String> = eqs
-        .iter()
-        .map(|&(l, r)| {
-            p.system
-                .pool
-                .display_equation(l, r, crate::expr::Style::Unicode)
-        })
-        .collect();
-    check_motion(part, p, &res, &shown, &mut v);
+    check_motion(part, p, (&eqs, &res), &mut v);
     v
 }
 
 /// Equations of motion: each must hold at the true accelerations and together (for a
 /// system) determine them. Adds the diagnoses and score to `v`.
-fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: &mut Verdict) {
+fn check_motion(part: &Part, p: &mut Prepared, (eqs, res): (&[(Id, Id)], &[Id]), v: &mut Verdict) {
     let truth = match true_accelerations(p) {
         Ok(t) => t,
         Err(e) => {
@@ -454,10 +321,15 @@ fn check_motion(part: &Part, p: &mut Prepared, res: &[Id], shown: &[String], v: 
         if res.len() > 1 || part.kind == PartKind::Equations {
             v.diagnoses.push(Diagnosis::new(
                 Code::WrongEquation,
-                format!("{which} ({}) does not hold for the true motion", shown[i]),
+                format!(
+                    "{which} ({}) does not hold for the true motion",
+                    p.system
+                        .pool
+                        .display_equation(eqs[i].0, eqs[i].1, Style::Unicode)
+                ),
             ));
         }
-        diagnose_equation(p, r, &which, &truth, v);
+        diagnose_equation(part, p, (eqs[i], r), &which, &truth, v);
     }
     super::misconception::equations(part, p, res, v);
     if v.status != Status::Correct && v.diagnoses.is_empty() {
@@ -530,66 +402,4 @@ fn rank_of(p: &mut Prepared, rows: &[Id]) -> usize {
         .iter()
         .filter(|s| **s > tolerance::RANK * scale)
         .count()
-}
-
-fn diagnose_equation(
-    p: &mut Prepared,
-    r: Id,
-    which: &str,
-    truth: &[Option<Vec<f64>>],
-    v: &mut Verdict,
-) {
-    let pts = p.points.clone();
-    let lin = linearized_accelerations(p);
-    if holds(p, r, &pts, &lin) {
-        v.diagnoses.push(Diagnosis::new(Code::SmallAngle,
-            format!("{which} is the small-angle (linearized) equation, but the full equation is asked: keep sin θ and cos θ, and the velocity terms"),
-        ));
-        return;
-    }
-    let truth = truth.to_vec();
-    if miss(p, r, &pts, &truth, tolerance::ROUNDED).is_none() {
-        v.diagnoses.push(Diagnosis::new(
-            Code::RoundedConstant,
-            format!("{which} holds only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"),
-        ));
-        return;
-    }
-    let mut holds_true = |p: &mut Prepared, c: Id| holds(p, c, &pts, &truth);
-    if let Some(d) = swapped(p, r, &mut holds_true) {
-        v.diagnoses.push(d);
-        return;
-    }
-    if let Some(d) = sign_in_term(p, r, &mut holds_true) {
-        v.diagnoses.push(d);
-        return;
-    }
-    let mut factor_at = |p: &mut Prepared, t: Id| -> Option<f64> {
-        // c with R + (c − 1)·T = 0 at the first defined point.
-        let ar = affine(p, r, &pts).ok()?;
-        let at = affine(p, t, &pts).ok()?;
-        for ((rr, tt), acc) in ar.iter().zip(&at).zip(&truth) {
-            let (Some((ca, cb)), Some((ta, tb)), Some(acc)) = (rr, tt, acc) else {
-                continue;
-            };
-            let rv: f64 = ca.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + cb;
-            let tv: f64 = ta.iter().zip(acc).map(|(c, x)| c * x).sum::<f64>() + tb;
-            if tv.abs() > tolerance::ZERO {
-                return Some(1.0 - rv / tv);
-            }
-        }
-        None
-    };
-    if let Some(d) = factor_in_term(p, r, &mut factor_at, &mut holds_true) {
-        v.diagnoses.push(d);
-        return;
-    }
-    if let Some(still) = at_rest(p) {
-        let acc = accelerations_at(p, &still);
-        if holds(p, r, &still, &acc) {
-            v.diagnoses.push(Diagnosis::new(Code::VelocityTerm,
-                format!("{which} is right when nothing moves, so a velocity term is missing or wrong (a q'² or q'₁q'₂ term)"),
-            ));
-        }
-    }
 }

@@ -1,13 +1,13 @@
 //! Unordered lists — equilibria, frequencies, values — matched item by item across every
-//! sample point, with partial credit and the items named: missing, extra, wrong, ω² for ω.
+//! sample point, with partial credit; why an unmatched item is wrong is `items.rs`'s business.
 
 use super::common::{invalid_reading, verdict};
-use super::compare::{close, values};
+use super::compare::values;
 use super::error::CheckError;
-use super::prepare::{Prepared, read_frequency, read_one, read_point, same_coordinate_within};
-use super::tolerance;
+use super::items::{ItemFinding, Lists, classify_unmatched, same_item, what_of};
+use super::prepare::{Prepared, read_frequency, read_one, read_point};
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Dimension, Id, ParseError, Reading, Style, read, read_expr};
+use crate::expr::{Id, ParseError, Reading, Style, read, read_expr};
 use crate::problem::{Part, PartKind, Problem};
 
 /// Splits at top-level `,` and `;` (outside parentheses): (text, byte offset) per item.
@@ -147,223 +147,6 @@ fn item_values(p: &Prepared, items: &[Vec<Id>]) -> Vec<Vec<Option<Vec<f64>>>> {
         .collect()
 }
 
-fn same_item(
-    part: &Part,
-    p: &Prepared,
-    a: &[Option<Vec<f64>>],
-    b: &[Option<Vec<f64>>],
-    tol: f64,
-) -> bool {
-    let mut checked = 0;
-    for (x, y) in a.iter().zip(b) {
-        let Some(y) = y else { continue };
-        let Some(x) = x else { return false };
-        for (i, (u, w)) in x.iter().zip(y).enumerate() {
-            let periodic = part.kind == PartKind::Equilibria && p.system.coordinates[i].periodic;
-            // One relative tolerance for every kind: the part's (π + 1e-6 is not π).
-            let ok = if periodic {
-                same_coordinate_within(true, *u, *w, tol)
-            } else {
-                close(*u, *w, 0.0, tol)
-            };
-            if !ok {
-                return false;
-            }
-        }
-        checked += 1;
-    }
-    checked > 0
-}
-
-/// An item (or the lack of one) that matched no reference item, with its label
-/// (`item 2 (…)`).
-enum ItemFinding {
-    /// ω² for ω (`squared`: the square of an ω² for ω²).
-    Squared { label: String, squared: bool },
-    /// ω for ω² (`squared`), or √ω for ω.
-    Root { label: String, squared: bool },
-    /// Agreement to a few digits only.
-    Rounded { label: String },
-    /// A frequency of the wrong dimension.
-    Dimension {
-        label: String,
-        have: Dimension,
-        want: Dimension,
-    },
-    /// Matches nothing while a reference item is unmatched.
-    Wrong { label: String },
-    /// One item too many (`equilibrium`: the part asks for equilibria).
-    Extra {
-        label: String,
-        equilibrium: bool,
-        what: &'static str,
-    },
-    /// `count` reference items were not given.
-    Missing { count: usize, what: &'static str },
-}
-
-impl ItemFinding {
-    /// The sentence for a finding.
-    fn details(self) -> Diagnosis {
-        match self {
-            ItemFinding::Squared { label, squared } => Diagnosis::new(
-                Code::OmegaSquared,
-                if squared {
-                    format!("{label} is the square of an ω²: this part asks for ω², square it back")
-                } else {
-                    format!("{label} is ω², but this part asks for ω: take the square root")
-                },
-            ),
-            ItemFinding::Root { label, squared } => Diagnosis::new(
-                Code::OmegaRoot,
-                if squared {
-                    format!("{label} is ω, but this part asks for ω²: square it")
-                } else {
-                    format!("{label} is √ω: square it")
-                },
-            ),
-            ItemFinding::Rounded { label } => Diagnosis::new(
-                Code::RoundedConstant,
-                format!(
-                    "{label} agrees only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3"
-                ),
-            ),
-            ItemFinding::Dimension { label, have, want } => Diagnosis::new(
-                Code::Dimension,
-                format!("{label} has dimension {have}, but a frequency is {want}"),
-            ),
-            ItemFinding::Wrong { label } => {
-                Diagnosis::new(Code::WrongItem, format!("{label} is wrong"))
-            }
-            ItemFinding::Extra {
-                label,
-                equilibrium: true,
-                ..
-            } => Diagnosis::new(
-                Code::ExtraItem,
-                format!("one extra item: {label} is not an equilibrium"),
-            ),
-            ItemFinding::Extra { label, what, .. } => Diagnosis::new(
-                Code::ExtraItem,
-                format!("one extra item: {label} is not one of the {what} values asked for"),
-            ),
-            ItemFinding::Missing { count: 1, what } => {
-                Diagnosis::new(Code::MissingItem, format!("one {what} is missing"))
-            }
-            ItemFinding::Missing { count, what } => Diagnosis::new(
-                Code::MissingItem,
-                format!("{count} {what} values are missing"),
-            ),
-        }
-    }
-}
-
-/// The values of a list: the student's and the reference's items at every point.
-struct Lists<'v> {
-    student: &'v [Vec<Option<Vec<f64>>>],
-    reference: &'v [Vec<Option<Vec<f64>>>],
-}
-
-/// For a frequency that matches nothing: ω² for ω, ω for ω², or rounded constants. Takes the
-/// reference item it explains out of `free`.
-fn frequency_slip(
-    part: &Part,
-    p: &Prepared,
-    s: &[Option<Vec<f64>>],
-    rv: &[Vec<Option<Vec<f64>>>],
-    free: &mut Vec<usize>,
-    label: &str,
-) -> Option<ItemFinding> {
-    let tol = part.tolerance;
-    // ω² for ω, or ω for ω².
-    let squared_of = |a: &[Option<Vec<f64>>], b: &[Option<Vec<f64>>]| {
-        let sq: Vec<Option<Vec<f64>>> = b
-            .iter()
-            .map(|x| x.as_ref().map(|v| v.iter().map(|y| y * y).collect()))
-            .collect();
-        same_item(part, p, a, &sq, tol)
-    };
-    let label = label.to_string();
-    let squared = part.squared;
-    let (k, finding) = if let Some(k) = free.iter().position(|&j| squared_of(s, &rv[j])) {
-        (k, ItemFinding::Squared { label, squared })
-    } else if let Some(k) = free.iter().position(|&j| squared_of(&rv[j], s)) {
-        (k, ItemFinding::Root { label, squared })
-    } else if let Some(k) = free
-        .iter()
-        .position(|&j| same_item(part, p, s, &rv[j], tolerance::ROUNDED))
-    {
-        (k, ItemFinding::Rounded { label })
-    } else {
-        return None;
-    };
-    free.remove(k);
-    Some(finding)
-}
-
-/// Classifies student item `i`, which matched no reference item; `free` holds the reference
-/// items not yet matched or explained.
-fn classify_unmatched(
-    problem: &Problem,
-    part: &Part,
-    p: &Prepared,
-    lists: &Lists,
-    item: (usize, Id, String),
-    free: &mut Vec<usize>,
-) -> ItemFinding {
-    let (i, first, label) = item;
-    if part.kind == PartKind::Frequencies
-        && let Some(f) = frequency_slip(part, p, &lists.student[i], lists.reference, free, &label)
-    {
-        return f;
-    }
-    if let Some(k) = free.iter().position(|&j| {
-        same_item(
-            part,
-            p,
-            &lists.student[i],
-            &lists.reference[j],
-            tolerance::ROUNDED,
-        )
-    }) {
-        free.remove(k);
-        return ItemFinding::Rounded { label };
-    }
-    // An item of the wrong dimension says so.
-    let want = match part.kind {
-        PartKind::Frequencies if part.squared => Some(Dimension::new(0, 0, -2)),
-        PartKind::Frequencies => Some(Dimension::new(0, 0, -1)),
-        _ => None,
-    };
-    let have = p.system.pool.dimension(first, &problem.dims).ok().flatten();
-    if let (Some(want), Some(have)) = (want, have)
-        && want != have
-    {
-        if !free.is_empty() {
-            free.remove(0);
-        }
-        return ItemFinding::Dimension { label, have, want };
-    }
-    if !free.is_empty() {
-        free.remove(0);
-        return ItemFinding::Wrong { label };
-    }
-    ItemFinding::Extra {
-        label,
-        equilibrium: part.kind == PartKind::Equilibria,
-        what: what_of(part),
-    }
-}
-
-/// What the items of a part are called.
-fn what_of(part: &Part) -> &'static str {
-    match part.kind {
-        PartKind::Equilibria => "equilibrium",
-        PartKind::Frequencies => "frequency",
-        _ => "item",
-    }
-}
-
 /// An item as text: `θ = π` for an equilibrium, the value otherwise.
 fn show_item(part: &Part, p: &Prepared, coords: &[Id], it: &[Id], style: Style) -> String {
     if part.kind == PartKind::Equilibria {
@@ -460,6 +243,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     let lists = Lists {
         student: &sv,
         reference: &rv,
+        reference_ids: &refs,
     };
     let (matched_ref, matched_stu) = match_items(part, p, &lists);
     let matched = matched_stu.iter().filter(|m| **m).count();

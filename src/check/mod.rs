@@ -11,13 +11,18 @@ mod common;
 pub(crate) mod compare;
 mod degenerate;
 mod diagnose;
+mod equation_diagnosis;
 pub(crate) mod equations;
 pub mod error;
 mod fingerprint;
+mod items;
+mod limits;
 mod lists;
 mod misconception;
 pub(crate) mod points;
 pub(crate) mod prepare;
+mod residual;
+mod terms;
 pub mod tolerance;
 pub mod verdict;
 

@@ -1,5 +1,7 @@
 //! Every parse-error kind: a table of `input => code` and one snapshot of all the rendered
-//! diagnostics (message, caret under the span, help).
+//! diagnostics (message, caret under the span, help). And the checker's diagnoses of issue 12
+//! (term level, limits, list items): a table of `answer => code`, the regressions of the
+//! misleading messages it removed, and one snapshot of the new messages.
 
 use lagrange::diagnostic::render_parse_error;
 use lagrange::expr::error::{MAX_DEPTH, MAX_INPUT_BYTES};
@@ -153,4 +155,289 @@ fn suggestions_name_the_fix() {
     assert!(e.help().contains("m*g*l"), "{}", e.help());
     let e = error_of("m*g*l*sinn(theta)", &Want::Any, &ctx);
     assert_eq!(e.help(), "did you mean `sin`?");
+}
+
+// ── Issue 12: naming the actual mistake ─────────────────────────────────────────────────
+
+use lagrange::check::{Checker, Code, Status, Verdict};
+use lagrange::problem::Problem;
+
+/// A puck on a turntable, seen in the turning frame: Coriolis terms ±2Ω·q̇.
+const ROTATING_FRAME: &str = r#"
+id = "rotating-frame"
+title = "A puck in a rotating frame"
+source = "issue 12 regression"
+statement = "A puck of mass $m$ on a frictionless turntable turning at the rate $\\Omega$."
+coordinates = [{ name = "x" }, { name = "y" }]
+lagrangian = "1/2*m*((x' - Omega*y)^2 + (y' + Omega*x)^2)"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+Omega = { dimension = "T^-1", range = [0.5, 2.0] }
+
+[[parts]]
+id = "eom"
+kind = "equations"
+prompt = "Write the equations of motion."
+answer = ["x'' - 2*Omega*y' - Omega^2*x = 0", "y'' + 2*Omega*x' - Omega^2*y = 0"]
+hints = ["Differentiate."]
+"#;
+
+/// A rotor whose inertia 1 + x² a slider changes: the ψ equation linearizes to ψ'' = 0.
+const SLIDING_ROTOR: &str = r#"
+id = "sliding-rotor"
+title = "A slider that loads a rotor"
+source = "issue 12 regression"
+statement = "A slider on a spring changes the inertia of a rotor."
+coordinates = [{ name = "x" }, { name = "psi", periodic = true }]
+lagrangian = "1/2*m*x'^2 + 1/2*m*(1 + x^2)*psi'^2 - 1/2*k*x^2"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+k = { dimension = "M T^-2", range = [0.5, 2.0] }
+
+[[parts]]
+id = "eom"
+kind = "equation"
+prompt = "Write the equation of motion for psi."
+answer = "(1 + x^2)*psi'' + 2*x*x'*psi' = 0"
+hints = ["Differentiate."]
+"#;
+
+fn problem_of(id: &str) -> Problem {
+    match id {
+        "rotating-frame" => lagrange::bank::load_str("rotating-frame.toml", ROTATING_FRAME)
+            .unwrap_or_else(|f| panic!("{f}")),
+        "sliding-rotor" => lagrange::bank::load_str("sliding-rotor.toml", SLIDING_ROTOR)
+            .unwrap_or_else(|f| panic!("{f}")),
+        id => lagrange::embedded::problem(id).unwrap_or_else(|| panic!("no problem {id}")),
+    }
+}
+
+fn checked(problem: &str, part: &str, answer: &str) -> Verdict {
+    let p = problem_of(problem);
+    Checker::new(&p)
+        .check(part, answer)
+        .unwrap_or_else(|e| panic!("{problem}/{part}: {e}"))
+}
+
+/// `(problem, part, answer) => the code naming the mistake`.
+fn mistakes() -> Vec<((&'static str, &'static str, &'static str), Code)> {
+    vec![
+        (
+            ("simple-pendulum", "eom", "θ'' = g/l*sin(θ)"),
+            Code::SignError,
+        ),
+        (
+            ("spring-incline", "eom", "m*x'' = -2*k*x + m*g*sin(alpha)"),
+            Code::ConstantFactor,
+        ),
+        (
+            ("simple-pendulum", "eom", "θ'' + 1.01*g/l*sin(θ) = 0"),
+            Code::RoundedConstant,
+        ),
+        (
+            (
+                "double-pendulum",
+                "kinetic",
+                "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2",
+            ),
+            Code::MissingTerm,
+        ),
+        (
+            (
+                "double-pendulum",
+                "eom",
+                "(m1+m2)*l1*theta1'' + m2*l2*theta2''*cos(theta1-theta2) + (m1+m2)*g*sin(theta1) = 0; l2*theta2'' + l1*theta1''*cos(theta1-theta2) - l1*theta1'^2*sin(theta1-theta2) + g*sin(theta2) = 0",
+            ),
+            Code::MissingTerm,
+        ),
+        (("spring-incline", "eom", "m*x'' = -k*x"), Code::MissingTerm),
+        (
+            ("simple-pendulum", "eom", "θ'' + g/l*sin(θ) + g/l*θ = 0"),
+            Code::ExtraTerm,
+        ),
+        (
+            ("simple-pendulum", "eom", "θ'' + g/l*cos(θ) = 0"),
+            Code::WrongFactor,
+        ),
+        (
+            ("spring-incline", "potential", "1/2*k*x^2 - m*g*x"),
+            Code::WrongFactor,
+        ),
+        (
+            (
+                "double-pendulum",
+                "kinetic",
+                "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + m2*l1*l2*theta1'*theta2'*cos(theta1 + theta2)",
+            ),
+            Code::WrongFactor,
+        ),
+        (
+            ("simple-pendulum", "momentum", "m*l^2*theta'*cos(theta)"),
+            Code::WrongFactor,
+        ),
+        (
+            ("bead-parabola", "eom", "m*r'' - m*omega^2*r = 0"),
+            Code::RightInLimit,
+        ),
+        (
+            (
+                "bead-parabola",
+                "lagrangian",
+                "1/2*m*r'^2 + 1/2*m*omega^2*r^2 + m*g*a*r^2",
+            ),
+            Code::RightInLimit,
+        ),
+        (
+            (
+                "double-pendulum",
+                "lagrangian",
+                "(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + 2*m2*l1*l2*theta1'*theta2'*cos(theta1-theta2) + (m1+m2)*g*l1*cos(theta1) + m2*g*l2*cos(theta2)",
+            ),
+            Code::VelocityTerm,
+        ),
+        (
+            ("simple-pendulum", "potential", "1/2*m*g*l*θ^2"),
+            Code::SmallAngle,
+        ),
+        (
+            (
+                "simple-pendulum",
+                "lagrangian",
+                "1/2*m*l^2*θ'^2 - 1/2*m*g*l*θ^2",
+            ),
+            Code::SmallAngle,
+        ),
+        (
+            ("simple-pendulum", "frequencies", "sqrt(g/l)/(2*pi)"),
+            Code::OrdinaryFrequency,
+        ),
+        (
+            ("simple-pendulum", "frequencies", "2*pi*sqrt(l/g)"),
+            Code::Period,
+        ),
+        (
+            ("simple-pendulum", "frequencies", "sqrt(2*g/l)"),
+            Code::ConstantFactor,
+        ),
+        (
+            (
+                "double-pendulum",
+                "frequencies",
+                "sqrt((2 - sqrt(2))*g/l), sqrt((sqrt(2) - 2)*g/l)",
+            ),
+            Code::SignError,
+        ),
+        (
+            ("simple-pendulum", "equilibria", "0, pi, -pi"),
+            Code::ExtraItem,
+        ),
+        (
+            ("simple-pendulum", "equilibria", "0, 3.14"),
+            Code::RoundedConstant,
+        ),
+        (
+            ("simple-pendulum", "equilibria", "0, 3.14159"),
+            Code::RoundedConstant,
+        ),
+        (
+            (
+                "rotating-frame",
+                "eom",
+                "x'' + 2*Omega*y' - Omega^2*x = 0; y'' + 2*Omega*x' - Omega^2*y = 0",
+            ),
+            Code::SignError,
+        ),
+        (("sliding-rotor", "eom", "psi'' = 0"), Code::MissingTerm),
+        (("bead-wire", "momentum", "m*omega*r"), Code::NotEqual),
+    ]
+}
+
+#[test]
+fn each_mistake_gets_the_code_that_names_it() {
+    for ((problem, part, answer), code) in mistakes() {
+        let v = checked(problem, part, answer);
+        assert_eq!(v.status, Status::Incorrect, "{answer}: {v:#?}");
+        let codes: Vec<Code> = v.diagnoses.iter().map(|d| d.code).collect();
+        assert!(
+            codes.contains(&code),
+            "{answer}: expected {code}, got {v:#?}"
+        );
+    }
+}
+
+#[test]
+fn the_misleading_messages_of_issue_12_are_gone() {
+    let message = |problem, part, answer| -> String {
+        let v = checked(problem, part, answer);
+        v.diagnoses
+            .iter()
+            .map(|d| format!("[{}] {}\n", d.code, d.message))
+            .collect()
+    };
+    // The sign error names the term the student typed (not −g·sin(θ)/l).
+    let m = message("simple-pendulum", "eom", "θ'' = g/l*sin(θ)");
+    assert!(m.contains("your term g·sin(θ)/l "), "{m}");
+    // A momentum or T is never "right when nothing moves": every term depends on velocity.
+    for (problem, part, answer) in [
+        ("atwood", "momentum", "m1*x'"),
+        ("bead-parabola", "momentum", "m*r'"),
+        ("simple-pendulum", "kinetic", "1/2*m*l*theta'^2"),
+    ] {
+        let m = message(problem, part, answer);
+        assert!(
+            !m.contains("velocity-term") && !m.contains("nothing moves"),
+            "{m}"
+        );
+    }
+    // ψ'' = 0 holds in every approximation: it is no small-angle slip.
+    let m = message("sliding-rotor", "eom", "psi'' = 0");
+    assert!(!m.contains("small-angle"), "{m}");
+    // A Coriolis sign error is a sign error, not "x and y are swapped".
+    let m = message(
+        "rotating-frame",
+        "eom",
+        "x'' + 2*Omega*y' - Omega^2*x = 0; y'' + 2*Omega*x' - Omega^2*y = 0",
+    );
+    assert!(!m.contains("swapped"), "{m}");
+    assert!(
+        m.contains("sign error in equation 1: your term 2·Ω·"),
+        "{m}"
+    );
+    // not-equal shows the variables the answers use, velocities included, and no others.
+    let m = message("double-pendulum", "kinetic", "m1*l1^2*theta1'^2");
+    // (a velocity is printed with a combining dot above, U+0307)
+    assert!(
+        m.contains("θ\u{307}₂ = ") && m.contains("θ\u{307}₁ = "),
+        "{m}"
+    );
+    assert!(
+        !m.contains(" m = ") && !m.contains(" l = ") && !m.contains("g = "),
+        "{m}"
+    );
+    // θ = −π after θ = π is π listed twice, not "not an equilibrium".
+    let m = message("simple-pendulum", "equilibria", "0, pi, -pi");
+    assert!(
+        m.contains("listed twice") && !m.contains("not an equilibrium"),
+        "{m}"
+    );
+    // Decimals for π: one rule, whatever the number of digits; exact enough is right.
+    assert_eq!(
+        checked("simple-pendulum", "equilibria", "0, 3.14159265358979").status,
+        Status::Correct
+    );
+}
+
+#[test]
+fn term_level_messages() {
+    let mut all = String::new();
+    for ((problem, part, answer), _) in mistakes() {
+        let v = checked(problem, part, answer);
+        all.push_str(&format!("── {problem} / {part}: {answer}\n"));
+        for d in &v.diagnoses {
+            all.push_str(&format!("  [{}] {}\n", d.code, d.message));
+        }
+    }
+    insta::assert_snapshot!("term_level_messages", all);
 }

@@ -1,0 +1,526 @@
+//! Term-level diagnosis: the student's answer and the reference are split into terms, the
+//! terms matched numerically at every sample point (for equations after the best common
+//! scaling), and when exactly one term differs — missing, extra, with the wrong sign, off by a
+//! constant factor, or with a wrong factor inside — the diagnosis names it in the student's own
+//! terms (the term as they wrote it, on the side where they wrote it).
+//!
+//! All the work is arithmetic on the terms' values, evaluated once: the search over scalings
+//! and matchings never builds or evaluates an expression, so it stays cheap.
+
+use super::compare::{close, values};
+use super::diagnose::{MAX_SEARCH_TERMS, has_decimal, nice_fraction};
+use super::prepare::Prepared;
+use super::tolerance;
+use super::verdict::{Code, Diagnosis};
+use crate::expr::{Id, Node, Style, Sym};
+
+/// Most terms on either side for the all-pairs scaling search of an equation.
+const MAX_SCALED_TERMS: usize = 16;
+
+/// Terms of a sum with their sign in it: `shown` is the term as written on its side, `signed`
+/// its contribution (the negative of `shown` for a term on the right of `=`).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Terms {
+    shown: Vec<Id>,
+    signed: Vec<Id>,
+}
+
+/// The top-level terms of `e` (a sum's terms, or `e` itself; none for 0).
+fn top_terms(p: &Prepared, e: Id) -> Vec<Id> {
+    if p.system.pool.is_zero(e) {
+        return Vec::new();
+    }
+    match p.system.pool.node(e) {
+        Node::Add(t) => t.to_vec(),
+        _ => vec![e],
+    }
+}
+
+impl Terms {
+    /// The terms of an expression, as written.
+    pub(super) fn of_expression(p: &Prepared, e: Id) -> Terms {
+        let t = top_terms(p, e);
+        Terms {
+            shown: t.clone(),
+            signed: t,
+        }
+    }
+
+    /// The terms of an equation `lhs = rhs`, each shown on its own side.
+    pub(super) fn of_equation(p: &mut Prepared, lhs: Id, rhs: Id) -> Terms {
+        let mut out = Terms::of_expression(p, lhs);
+        for t in top_terms(p, rhs) {
+            out.shown.push(t);
+            let n = p.system.pool.neg(t);
+            out.signed.push(n);
+        }
+        out
+    }
+
+    /// Each term expanded into its own terms (`(m₁ + m₂)·g` gives two), keeping its side.
+    fn expanded(&self, p: &mut Prepared) -> Terms {
+        let mut out = Terms::default();
+        for (&s, &g) in self.shown.iter().zip(&self.signed) {
+            let flip = s != g;
+            let x = p.system.pool.expand(s);
+            for t in top_terms(p, x) {
+                out.shown.push(t);
+                out.signed.push(if flip { p.system.pool.neg(t) } else { t });
+            }
+        }
+        out
+    }
+
+    /// Number of terms.
+    pub(super) fn len(&self) -> usize {
+        self.shown.len()
+    }
+}
+
+/// How the student's terms may be scaled to the reference's.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Scaling {
+    /// Not at all (expressions).
+    None,
+    /// By a common factor, which may vary from point to point (equations: m·l²·θ'' + … and
+    /// θ'' + … are the same equation).
+    Common,
+}
+
+/// The one difference found between the matched terms.
+enum Difference {
+    /// Reference term `j` has no counterpart.
+    Missing(usize),
+    /// Student term `i` has no counterpart.
+    Extra(usize),
+    /// Student term `i` differs from reference term `j` by the ratio at each point.
+    Pair(usize, usize, Vec<f64>),
+}
+
+/// The values of the student's and the reference's terms at the points where all are defined.
+struct Table {
+    student: Vec<Vec<f64>>,
+    reference: Vec<Vec<f64>>,
+}
+
+fn table(p: &Prepared, student: &Terms, reference: &Terms) -> Option<Table> {
+    let ids: Vec<Id> = student
+        .signed
+        .iter()
+        .chain(&reference.signed)
+        .copied()
+        .collect();
+    let vals = values(&p.system, &ids, &p.points).ok()?;
+    let rows: Vec<Vec<f64>> = vals
+        .into_iter()
+        .flatten()
+        .filter(|r| r.iter().all(|x| x.is_finite()))
+        .collect();
+    // Verified at most points, never at one or two that happen to be defined.
+    if rows.len() < 3 || rows.len() * 2 < p.points.points.len() {
+        return None;
+    }
+    let n = student.len();
+    let col = |i: usize| rows.iter().map(|r| r[i]).collect::<Vec<f64>>();
+    Some(Table {
+        student: (0..n).map(col).collect(),
+        reference: (n..ids.len()).map(col).collect(),
+    })
+}
+
+/// Whether `s = c·r` at every point.
+fn proportional(s: &[f64], r: &[f64], c: &[f64]) -> bool {
+    s.iter()
+        .zip(r)
+        .zip(c)
+        .all(|((x, y), k)| close(*x, k * y, 0.0, tolerance::SAME))
+}
+
+/// Matches the terms under the scaling `c`; `Some` when exactly one term differs.
+fn match_with(t: &Table, c: &[f64]) -> Option<Difference> {
+    let mut used = vec![false; t.reference.len()];
+    let mut unmatched = Vec::new();
+    for (i, s) in t.student.iter().enumerate() {
+        match (0..t.reference.len()).find(|&j| !used[j] && proportional(s, &t.reference[j], c)) {
+            Some(j) => used[j] = true,
+            None => unmatched.push(i),
+        }
+    }
+    let left: Vec<usize> = (0..used.len()).filter(|&j| !used[j]).collect();
+    match (unmatched.as_slice(), left.as_slice()) {
+        ([], [j]) => Some(Difference::Missing(*j)),
+        ([i], []) => Some(Difference::Extra(*i)),
+        ([i], [j]) => {
+            let ratio = t.student[*i]
+                .iter()
+                .zip(&t.reference[*j])
+                .zip(c)
+                .map(|((x, y), k)| x / (k * y))
+                .collect();
+            Some(Difference::Pair(*i, *j, ratio))
+        }
+        _ => None,
+    }
+}
+
+/// The common scalings to try: 1 for expressions; for equations the ratio of a student term
+/// to a reference term of the same shape (the same state variables) at each point. A ratio
+/// of acceleration terms may depend on the parameters (θ'' + g/l·sin θ is m·l²·θ'' + … over
+/// m·l²); any other ratio must be a plain number, or terms of one shape (ω²·r, 2·a·g·r) could
+/// be "matched" through a scaling that means nothing.
+fn scalings(
+    p: &Prepared,
+    student: &Terms,
+    reference: &Terms,
+    t: &Table,
+    how: Scaling,
+) -> Vec<Vec<f64>> {
+    let k = t
+        .student
+        .first()
+        .or(t.reference.first())
+        .map_or(0, Vec::len);
+    if how == Scaling::None {
+        return vec![vec![1.0; k]];
+    }
+    if student.len() > MAX_SCALED_TERMS || reference.len() > MAX_SCALED_TERMS {
+        return Vec::new();
+    }
+    let accel = |e: Id| p.system.pool.variables(e).iter().any(|v| v.1 == 2);
+    let mut pairs: Vec<(bool, usize, usize)> = Vec::new();
+    // (not both accelerations, student term, reference term), in the order tried.
+    for i in 0..student.len() {
+        for j in 0..reference.len() {
+            let (si, rj) = (student.signed[i], reference.signed[j]);
+            let both = accel(si) && accel(rj);
+            // Acceleration terms pair by their accelerations (a mass matrix entry may depend
+            // on the state: ψ'' and (1 + x²)·ψ''); other terms by all their state variables.
+            let shape = |e: Id| -> Vec<(Sym, u8)> {
+                let v = state_vars(p, e);
+                if both {
+                    v.into_iter().filter(|x| x.1 == 2).collect()
+                } else {
+                    v
+                }
+            };
+            if shape(si) != shape(rj) {
+                continue;
+            }
+            pairs.push((!both, i, j));
+        }
+    }
+    // Acceleration pairs first, then a scaling of 1 (the student's equation as written), then
+    // the other numbers: among equally true readings, the plainest.
+    let mut found: Vec<(bool, bool, usize, Vec<f64>)> = pairs
+        .into_iter()
+        .enumerate()
+        .filter_map(|(rank, (numeric_only, i, j))| {
+            let c: Vec<f64> = t.student[i]
+                .iter()
+                .zip(&t.reference[j])
+                .map(|(x, y)| x / y)
+                .collect();
+            let c0 = *c.first()?;
+            let constant = c.iter().all(|x| close(*x, c0, 0.0, tolerance::NUMBER));
+            let usable =
+                c.iter().all(|x| x.is_finite() && *x != 0.0) && (!numeric_only || constant);
+            let one = constant && (c0 - 1.0).abs() < tolerance::NUMBER;
+            usable.then_some((numeric_only, !one, rank, c))
+        })
+        .collect();
+    found.sort_by_key(|&(numeric_only, not_one, rank, _)| (numeric_only, not_one, rank));
+    found.into_iter().map(|(_, _, _, c)| c).collect()
+}
+
+/// The one term that differs between `student` and `reference`, as a diagnosis about
+/// `which` ("your answer", "equation 2"), or `None` when not exactly one term differs at
+/// every sample point. Tries the terms as written, then expanded.
+pub(super) fn one_term(
+    p: &mut Prepared,
+    student: &Terms,
+    reference: &Terms,
+    how: Scaling,
+    which: &str,
+) -> Option<Diagnosis> {
+    if student.len() > MAX_SEARCH_TERMS || reference.len() > MAX_SEARCH_TERMS {
+        return None;
+    }
+    let given = one_term_as_given(p, student, reference, how, which);
+    if let Some((d, true)) = &given
+        && d.code != Code::WrongFactor
+    {
+        return Some(d.clone());
+    }
+    // A wrong factor in a term as written may be a sign or a factor in one of its terms once
+    // expanded (½(m₁ − m₂)ẋ² for ½(m₁ + m₂)ẋ²), or a vaguer finding a plain missing term.
+    let (se, re) = (student.expanded(p), reference.expanded(p));
+    let expanded = if se.len() > MAX_SEARCH_TERMS
+        || re.len() > MAX_SEARCH_TERMS
+        || (se.shown == student.shown && re.shown == reference.shown)
+    {
+        None
+    } else {
+        one_term_as_given(p, &se, &re, how, which)
+    };
+    match (given, expanded) {
+        (Some((g, true)), Some((e, _)))
+            if !matches!(
+                e.code,
+                Code::SignError | Code::ConstantFactor | Code::RoundedConstant
+            ) =>
+        {
+            Some(g)
+        }
+        (_, Some((e, _))) => Some(e),
+        (g, None) => g.map(|(d, _)| d),
+    }
+}
+
+/// The one differing term of the terms as given, and whether the finding is specific (a
+/// wrong factor named, not only "a wrong factor").
+fn one_term_as_given(
+    p: &mut Prepared,
+    student: &Terms,
+    reference: &Terms,
+    how: Scaling,
+    which: &str,
+) -> Option<(Diagnosis, bool)> {
+    let t = table(p, student, reference)?;
+    for c in scalings(p, student, reference, &t, how) {
+        let Some(d) = match_with(&t, &c) else {
+            continue;
+        };
+        if let Some(found) = describe(p, (student, reference), d, how, which) {
+            return Some(found);
+        }
+    }
+    None
+}
+
+/// The sentence for a difference, or `None` when it would not be telling.
+fn describe(
+    p: &Prepared,
+    (student, reference): (&Terms, &Terms),
+    d: Difference,
+    how: Scaling,
+    which: &str,
+) -> Option<(Diagnosis, bool)> {
+    let pool = &p.system.pool;
+    let found = match d {
+        Difference::Missing(j) => Diagnosis::new(
+            Code::MissingTerm,
+            match content(p, reference.signed[j]) {
+                Some(what) => format!("{which} has no term in {what}"),
+                None => format!(
+                    "{which} lacks a term that does not depend on the coordinates or velocities"
+                ),
+            },
+        ),
+        Difference::Extra(i) => Diagnosis::new(
+            Code::ExtraTerm,
+            format!(
+                "{which} has a term too many: your term {} should not be there",
+                pool.unicode(student.shown[i])
+            ),
+        ),
+        Difference::Pair(i, j, ratio) => {
+            // In a system, say which equation ("sign error in equation 2: …").
+            let place = if which.starts_with("equation") {
+                format!(" in {which}")
+            } else {
+                String::new()
+            };
+            return pair(p, (student, reference), (i, j), &ratio, (how, &place));
+        }
+    };
+    Some((found, true))
+}
+
+/// One student term against one reference term: a sign, a constant factor, rounding, or a
+/// wrong factor inside.
+fn pair(
+    p: &Prepared,
+    (student, reference): (&Terms, &Terms),
+    (i, j): (usize, usize),
+    ratio: &[f64],
+    (how, place): (Scaling, &str),
+) -> Option<(Diagnosis, bool)> {
+    let pool = &p.system.pool;
+    let yours = pool.unicode(student.shown[i]);
+    // 0/0 (both terms vanish at a point) says nothing about the ratio; x/0 is infinite and
+    // never constant.
+    let known: Vec<f64> = ratio.iter().copied().filter(|r| !r.is_nan()).collect();
+    let f = known.first().copied()?;
+    let constant = known.len() >= 2
+        && known
+            .iter()
+            .all(|r| r.is_finite() && close(*r, f, 0.0, tolerance::NUMBER));
+    if constant {
+        // Yours is f times the right term: it should be 1/f times what you wrote.
+        let want = 1.0 / f;
+        if (f + 1.0).abs() < tolerance::NUMBER {
+            return Some((
+                Diagnosis::new(
+                    Code::SignError,
+                    format!("sign error{place}: your term {yours} should have the opposite sign"),
+                ),
+                true,
+            ));
+        }
+        if (f - 1.0).abs() < tolerance::ROUNDED && has_decimal(p, student.signed[i]) {
+            return Some((
+                Diagnosis::new(
+                    Code::RoundedConstant,
+                    format!(
+                        "the coefficient of your term {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
+                        (f - 1.0).abs() * 100.0
+                    ),
+                ),
+                true,
+            ));
+        }
+        let text = nice_fraction(want)
+            .map(|n| format!("it should be {n} times what you wrote"))
+            .unwrap_or_else(|| {
+                format!(
+                    "it should be about {} times what you wrote",
+                    super::compare::fmt_value(want)
+                )
+            });
+        return Some((
+            Diagnosis::new(
+                Code::ConstantFactor,
+                format!("your term {yours}{place} is off by a constant factor: {text}"),
+            ),
+            true,
+        ));
+    }
+    let yours = format!("{yours}{place}");
+    wrong_factor(p, student.signed[i], reference.signed[j], &yours, how)
+}
+
+/// The state variables (coordinates at any order, and time) a term depends on.
+fn state_vars(p: &Prepared, e: Id) -> Vec<(Sym, u8)> {
+    let time = p.system.pool.time();
+    let coords = p.system.coordinate_syms();
+    let mut v: Vec<(Sym, u8)> = p
+        .system
+        .pool
+        .variables(e)
+        .into_iter()
+        .filter(|(s, _)| *s == time || coords.contains(s))
+        .collect();
+    v.sort();
+    v.dedup();
+    v
+}
+
+/// The non-numeric factors of a term.
+fn factors(p: &Prepared, e: Id) -> Vec<Id> {
+    match p.system.pool.node(e) {
+        Node::Mul(f) => f
+            .iter()
+            .copied()
+            .filter(|&x| !matches!(p.system.pool.node(x), Node::Num(_)))
+            .collect(),
+        Node::Num(_) => Vec::new(),
+        _ => vec![e],
+    }
+}
+
+/// Whether `e` depends on the state (a coordinate at any order, or time).
+fn is_state(p: &Prepared, e: Id) -> bool {
+    !state_vars(p, e).is_empty()
+}
+
+/// A wrong factor inside one term: said only when the student's term has every state variable
+/// of the reference's (sin ↔ cos, l ↔ l², θ₁ + θ₂ for θ₁ − θ₂, a missing sin α, an extra
+/// cos θ), so that it is one term with a wrong part, not a different term altogether (θ̇² for
+/// sin θ, or ½mṙ² for ½m(ṙ² + ω²r²), where a whole term is missing). Under a common scaling (equations) the
+/// parameters of a term are compared only through the numbers, so only its state factors are
+/// named (and functions of them, like sin α). The flag says whether one factor was named.
+fn wrong_factor(
+    p: &Prepared,
+    s: Id,
+    r: Id,
+    yours: &str,
+    how: Scaling,
+) -> Option<(Diagnosis, bool)> {
+    let (vs, vr) = (state_vars(p, s), state_vars(p, r));
+    let within = |a: &[(Sym, u8)], b: &[(Sym, u8)]| a.iter().all(|x| b.contains(x));
+    if vs.is_empty() != vr.is_empty() || !within(&vr, &vs) {
+        return None;
+    }
+    let keep = |x: &Id| {
+        how == Scaling::None || is_state(p, *x) || matches!(p.system.pool.node(*x), Node::Func(..))
+    };
+    let fs: Vec<Id> = factors(p, s).into_iter().filter(keep).collect();
+    let fr: Vec<Id> = factors(p, r).into_iter().filter(keep).collect();
+    let wrong: Vec<Id> = fs.iter().copied().filter(|x| !fr.contains(x)).collect();
+    let lacking: Vec<Id> = fr.iter().copied().filter(|x| !fs.contains(x)).collect();
+    let pool = &p.system.pool;
+    let (message, named) = match (wrong.as_slice(), lacking.as_slice()) {
+        ([w], _) => {
+            let why = if matches!(
+                pool.node(*w),
+                Node::Func(crate::expr::Func::Sin | crate::expr::Func::Cos, _)
+            ) {
+                "check sin against cos, and the angle inside"
+            } else if matches!(pool.node(*w), Node::Func(..)) {
+                "check the function and what is inside it"
+            } else if is_state(p, *w) {
+                "check its power and what is inside"
+            } else {
+                "check which masses and lengths this term involves, and their powers"
+            };
+            (
+                format!(
+                    "in your term {yours}, the factor {} is wrong: {why}",
+                    pool.unicode(*w)
+                ),
+                true,
+            )
+        }
+        ([], [l]) => {
+            let vars: Vec<String> = pool
+                .variables(*l)
+                .into_iter()
+                .map(|(s, o)| pool.var_name(s, o, Style::Unicode))
+                .collect();
+            (
+                format!(
+                    "your term {yours} lacks a factor (one in {})",
+                    vars.join(", ")
+                ),
+                true,
+            )
+        }
+        ([], []) if how == Scaling::Common => (
+            format!(
+                "your term {yours} has a wrong factor among its parameters, compared with your other terms"
+            ),
+            true,
+        ),
+        _ => (format!("your term {yours} has a wrong factor"), false),
+    };
+    Some((Diagnosis::new(Code::WrongFactor, message), named))
+}
+
+/// What a reference term contains, without its coefficient: the product of its factors that
+/// depend on the state, e.g. `θ̇₂²·sin(θ₁ − θ₂)`. `None` for a term without any.
+fn content(p: &Prepared, r: Id) -> Option<String> {
+    let time = p.system.pool.time();
+    let coords = p.system.coordinate_syms();
+    let state: Vec<String> = factors(p, r)
+        .into_iter()
+        .filter(|&f| {
+            p.system
+                .pool
+                .variables(f)
+                .iter()
+                .any(|(s, _)| *s == time || coords.contains(s))
+        })
+        .map(|f| p.system.pool.unicode(f))
+        .collect();
+    (!state.is_empty()).then(|| state.join("·"))
+}
