@@ -64,6 +64,12 @@ pub enum ParseErrorKind {
     PrimeWithoutName,
     #[error("an equation is expected here")]
     EquationExpected,
+    /// `sin θ²`, `sin θ/2`, `sin ωt`: a bare argument with two common readings.
+    #[error("this can be read as `{one}` or as `{other}`")]
+    AmbiguousArgument { one: String, other: String },
+    /// `sin⁻¹`, `sin^-1`: arcsin to some, 1/sin to others.
+    #[error("`{name}` with a negative power can mean the inverse function or one over `{name}`")]
+    InversePower { name: String },
 }
 
 impl ParseErrorKind {
@@ -91,6 +97,8 @@ impl ParseErrorKind {
             Self::DotNeedsName { .. } => "dot-needs-name",
             Self::PrimeWithoutName => "prime-without-name",
             Self::EquationExpected => "equation-expected",
+            Self::AmbiguousArgument { .. } => "ambiguous",
+            Self::InversePower { .. } => "ambiguous",
         }
     }
 
@@ -104,6 +112,8 @@ impl ParseErrorKind {
                 '{' | '}' => "use round parentheses `( )` for grouping".into(),
                 '\\' => "type plain syntax, not LaTeX: `sin(theta)`, `theta''`".into(),
                 '!' => "factorials are not part of the language".into(),
+                '∂' => "a partial derivative of L cannot be checked (there is no L here to refer to): work it out and write the result".into(),
+                '±' => "`±` gives two values: it is read only in a list (`±sqrt(g/l)`); otherwise write one sign".into(),
                 c if c.is_control() || invisible_name(*c).is_some() => {
                     "delete it (retype the answer if you cannot see it)".into()
                 }
@@ -150,6 +160,12 @@ impl ParseErrorKind {
             Self::DotNeedsName { name } => format!("write `{name}(theta)` for a coordinate theta"),
             Self::PrimeWithoutName => "write `theta'`, not `(…)'`".into(),
             Self::EquationExpected => "write an equation with `=`".into(),
+            Self::AmbiguousArgument { .. } => {
+                "add parentheses to say which: a function's argument without `(` is only the number and name right after it".into()
+            }
+            Self::InversePower { name } => {
+                format!("write `a{name}(x)` for the inverse, or `1/{name}(x)`")
+            }
         }
     }
 

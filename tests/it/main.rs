@@ -12,6 +12,7 @@ mod helpers;
 mod hostile;
 mod ladder;
 mod mechanics;
+mod notation;
 mod props;
 mod pty;
 mod repl;

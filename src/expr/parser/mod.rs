@@ -11,6 +11,7 @@
 //! calls, derivative marks) in `atoms`.
 
 mod atoms;
+mod calls;
 mod operators;
 
 use std::collections::BTreeSet;
@@ -52,6 +53,7 @@ pub fn parse(src: &str, ctx: &Context) -> Result<Parsed, ParseError> {
         pos: 0,
         depth: 0,
         ctx,
+        src,
         end: src.len(),
         implied: BTreeSet::new(),
     };
@@ -78,6 +80,8 @@ struct Parser<'c> {
     pos: usize,
     depth: usize,
     ctx: &'c Context,
+    /// The input, for quoting it in messages that propose readings.
+    src: &'c str,
     end: usize,
     implied: BTreeSet<String>,
 }
