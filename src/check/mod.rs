@@ -15,6 +15,7 @@ pub(crate) mod equations;
 pub mod error;
 mod fingerprint;
 mod lists;
+mod named;
 pub(crate) mod points;
 pub(crate) mod prepare;
 pub mod tolerance;

@@ -157,6 +157,10 @@ impl Context {
 
     /// The known name closest to `name`, if close enough to be a likely typo.
     pub(crate) fn suggest(&self, name: &str) -> Option<String> {
+        // `T` is the kinetic energy, not a typo for `g`: its help says so instead.
+        if super::error::quantity_name(name).is_some() {
+            return None;
+        }
         let mut candidates: Vec<String> = Vec::new();
         for c in &self.coordinates {
             candidates.push(c.clone());

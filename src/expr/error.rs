@@ -135,6 +135,10 @@ impl ParseErrorKind {
                 ),
             },
             Self::FunctionWithoutArgs { name } => format!("write `{name}(x)`"),
+            Self::UnknownName { name, .. } if quantity_name(name).is_some() => format!(
+                "`{name}` ({}) is not a symbol here: write it out in the coordinates and parameters",
+                quantity_name(name).unwrap_or_default()
+            ),
             Self::UnknownName {
                 suggestion, split, ..
             } => match (suggestion, split) {
@@ -179,6 +183,16 @@ impl ParseErrorKind {
             _ => "here".into(),
         }
     }
+}
+
+/// What `T`, `V`, `U` and `L` stand for when a student uses them undeclared (`L = T − V`).
+pub(crate) fn quantity_name(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "T" => "the kinetic energy",
+        "V" | "U" => "the potential energy",
+        "L" => "the Lagrangian",
+        _ => return None,
+    })
 }
 
 /// An error in reading an input, with its position.

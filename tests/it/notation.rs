@@ -254,3 +254,126 @@ fn time_derivative_answers_are_checked() {
         ("simple-pendulum", "potential", "-m g l cos θ", Correct, &[]),
     ]);
 }
+
+#[test]
+fn named_answers_are_the_quantity() {
+    use Status::*;
+    verdicts(&[
+        (
+            "simple-pendulum",
+            "potential",
+            "V = -m g l cos θ",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "potential",
+            "U = -m g l cos(θ)",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "kinetic",
+            "T = 1/2 m l^2 θ'^2",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "lagrangian",
+            "L = 1/2 m l^2 θ'^2 + m g l cos θ",
+            Correct,
+            &[],
+        ),
+        ("simple-pendulum", "momentum", "p = m l^2 θ'", Correct, &[]),
+        (
+            "simple-pendulum",
+            "momentum",
+            "p_θ = m l^2 θ'",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "momentum",
+            "p_theta = m l^2 θ'",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "energy-function",
+            "h = 1/2 m l^2 θ'^2 - m g l cos θ",
+            Correct,
+            &[],
+        ),
+        (
+            "simple-pendulum",
+            "energy-function",
+            "E = 1/2 m l^2 θ'^2 - m g l cos θ",
+            Correct,
+            &[],
+        ),
+        // A wrong name is told, and the value still checked.
+        (
+            "simple-pendulum",
+            "potential",
+            "T = -m g l cos θ",
+            Incorrect,
+            &["wrong-name"],
+        ),
+        (
+            "simple-pendulum",
+            "potential",
+            "T = m g l cos θ",
+            Incorrect,
+            &["wrong-name", "sign-error"],
+        ),
+        (
+            "simple-pendulum",
+            "kinetic",
+            "V = 1/2 m l^2 θ'^2",
+            Incorrect,
+            &["wrong-name"],
+        ),
+        (
+            "simple-pendulum",
+            "momentum",
+            "L = m l^2 θ'",
+            Incorrect,
+            &["wrong-name"],
+        ),
+        // An equation part keeps its equation.
+        ("simple-pendulum", "eom", "θ'' = -g/l sin θ", Correct, &[]),
+        // T and V are not symbols of the problem: said so, not "did you mean g".
+        (
+            "simple-pendulum",
+            "lagrangian",
+            "L = T - V",
+            Invalid,
+            &["unknown-symbol"],
+        ),
+    ]);
+}
+
+#[test]
+fn named_answer_messages() {
+    let bank = embedded::bank();
+    let p = bank.problem("simple-pendulum").expect("bank problem");
+    let mut c = Checker::new(p);
+    let mut shown = String::new();
+    for (part, answer) in [
+        ("potential", "T = -m g l cos θ"),
+        ("momentum", "L = m l^2 θ'"),
+        ("lagrangian", "L = T - V"),
+    ] {
+        let v = c.check(part, answer).expect("a part");
+        shown.push_str(&format!("{part}: {answer}\n"));
+        for d in &v.diagnoses {
+            shown.push_str(&format!("  [{}] {}\n", d.code, d.message));
+        }
+    }
+    insta::assert_snapshot!("notation_named", shown);
+}
