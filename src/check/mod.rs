@@ -14,10 +14,12 @@ mod diagnose;
 pub(crate) mod equations;
 pub mod error;
 mod fingerprint;
+mod items;
 mod lists;
 mod named;
 pub(crate) mod points;
 pub(crate) mod prepare;
+mod stability;
 pub mod tolerance;
 pub mod verdict;
 

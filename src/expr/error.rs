@@ -70,6 +70,9 @@ pub enum ParseErrorKind {
     /// `sin⁻¹`, `sin^-1`: arcsin to some, 1/sin to others.
     #[error("`{name}` with a negative power can mean the inverse function or one over `{name}`")]
     InversePower { name: String },
+    /// A tuple point `(a, b)` with the wrong number of values.
+    #[error("a point needs {want} values, one per coordinate ({names})")]
+    PointSize { want: usize, names: String },
 }
 
 impl ParseErrorKind {
@@ -99,6 +102,7 @@ impl ParseErrorKind {
             Self::EquationExpected => "equation-expected",
             Self::AmbiguousArgument { .. } => "ambiguous",
             Self::InversePower { .. } => "ambiguous",
+            Self::PointSize { .. } => "point-size",
         }
     }
 
@@ -167,6 +171,7 @@ impl ParseErrorKind {
             Self::AmbiguousArgument { .. } => {
                 "add parentheses to say which: a function's argument without `(` is only the number and name right after it".into()
             }
+            Self::PointSize { names, .. } => format!("write each point as ({names})"),
             Self::InversePower { name } => {
                 format!("write `a{name}(x)` for the inverse, or `1/{name}(x)`")
             }

@@ -161,5 +161,4 @@ const PENDING: &[&str] = &[
     "extra-term",
     "right-in-limit",
     "lost-root",
-    "wrong-stability",
 ];

@@ -5,9 +5,10 @@
 //! The bare-argument rule: without `(`, a function's argument is the shortest factor that
 //! follows — an optional number and one name with its derivative marks (`sin 2θ'` is
 //! sin(2θ′)); what comes after multiplies (`sin θ x` is sin(θ)·x). Where that factor is
-//! followed by something that could belong to it — an exponent (`sin θ²`), `/` (`sin θ/2`),
-//! or a name or bracket written against it (`sin ωt`) — the input is refused with both
-//! readings proposed, since readers disagree.
+//! followed by something that could belong to it — an exponent (`sin θ²`), a `/` written
+//! against it (`sin θ/2`; `sin θ / k` with a space divides the product), or a name or
+//! bracket written against it (`sin ωt`) — the input is refused with both readings proposed,
+//! since readers disagree.
 
 use num_bigint::BigInt;
 use num_traits::Signed;
@@ -135,6 +136,8 @@ impl Parser<'_> {
         };
         let (op, operand) = match next.tok {
             Tok::Super(_) => ("", next.span.clone()),
+            // `sin θ / k` (a space before `/`) divides the product; `sin θ/k` is refused.
+            Tok::Slash if next.span.start > arg.end => return Ok(()),
             Tok::Caret | Tok::Slash => match self.tokens.get(self.pos + 1) {
                 Some(t) => (self.text(&next.span), t.span.clone()),
                 None => return Ok(()),
