@@ -1,4 +1,5 @@
 //! Named answers: `T = …`, `V = …`, `L = …`, `p = …`, `p_θ = …`, `h = …`, `E = …`, `θ'' = …`
+//! (`a = …`, `λ = …`)
 //! given for a part asking for that quantity are the quantity, not an equation. The name is
 //! read off the text before the first `=`; what follows is checked as the answer, and a name
 //! of another quantity is told (`wrong-name`), the value still checked.
@@ -21,8 +22,10 @@ enum Named {
     /// The momentum of coordinate i, or `p` alone.
     Momentum(Option<usize>),
     Energy,
-    /// The acceleration of coordinate i (`θ'' = …`).
-    Acceleration(usize),
+    /// The acceleration of coordinate i (`θ'' = …`), or `a` alone.
+    Acceleration(Option<usize>),
+    /// A constraint's multiplier (`λ = …`), never judged: a tension may be called `T`.
+    Multiplier,
 }
 
 /// A name found before the answer's `=`.
@@ -60,9 +63,9 @@ fn classify(p: &Prepared, text: &str) -> Option<Named> {
         p.system.coordinates.iter().position(|c| c.name == name)
     };
     let named = match toks.as_slice() {
-        [Tok::Name { text: n, dots: 2 }] => Named::Acceleration(coordinate(n)?),
+        [Tok::Name { text: n, dots: 2 }] => Named::Acceleration(Some(coordinate(n)?)),
         [Tok::Name { text: n, dots: 0 }, Tok::Prime, Tok::Prime] => {
-            Named::Acceleration(coordinate(n)?)
+            Named::Acceleration(Some(coordinate(n)?))
         }
         [
             Tok::Name { text: p_, dots: 0 },
@@ -74,6 +77,8 @@ fn classify(p: &Prepared, text: &str) -> Option<Named> {
             "L" => Named::Lagrangian,
             "h" | "H" | "E" => Named::Energy,
             "p" => Named::Momentum(None),
+            "a" => Named::Acceleration(None),
+            "lambda" | "lambda1" | "lambda2" | "lambda3" => Named::Multiplier,
             _ => {
                 let rest = n.strip_prefix('p')?;
                 Named::Momentum(Some(coordinate(rest.strip_prefix('_').unwrap_or(rest))?))
@@ -92,14 +97,16 @@ fn asked(part: &Part) -> Option<Named> {
         Quantity::Lagrangian => Named::Lagrangian,
         Quantity::Momentum(i) => Named::Momentum(Some(i)),
         Quantity::EnergyFunction => Named::Energy,
-        Quantity::Acceleration(i) => Named::Acceleration(i),
+        Quantity::Acceleration(i) => Named::Acceleration(Some(i)),
         Quantity::Multiplier(_) | Quantity::None => return None,
     })
 }
 
 /// Whether the name said fits the quantity asked.
 fn fits(said: Named, asked: Named) -> bool {
-    said == asked || (said == Named::Momentum(None) && matches!(asked, Named::Momentum(_)))
+    said == asked
+        || (said == Named::Momentum(None) && matches!(asked, Named::Momentum(_)))
+        || (said == Named::Acceleration(None) && matches!(asked, Named::Acceleration(_)))
 }
 
 /// The quantity in words, with its symbol.
@@ -117,7 +124,9 @@ fn describe(p: &mut Prepared, q: Named) -> String {
         Named::Energy => "the energy function h".into(),
         Named::Momentum(None) => "a momentum".into(),
         Named::Momentum(Some(i)) => format!("the momentum conjugate to {}", coord(p, i, 0)),
-        Named::Acceleration(i) => format!("the acceleration {}", coord(p, i, 2)),
+        Named::Acceleration(Some(i)) => format!("the acceleration {}", coord(p, i, 2)),
+        Named::Acceleration(None) => "an acceleration".into(),
+        Named::Multiplier => "a multiplier".into(),
     }
 }
 
