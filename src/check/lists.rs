@@ -390,7 +390,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
 /// `wrong-stability` for each matched item whose stated stability the part contradicts.
 fn stated_stability(
     part: &Part,
-    p: &Prepared,
+    p: &mut Prepared,
     lists: &Lists,
     coords: &[Id],
     (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
@@ -409,7 +409,9 @@ fn stated_stability(
         });
         if let Some(j) = matched {
             let label = show_item(part, p, coords, &items[i], Style::Unicode);
-            out.extend(super::stability::judge(part, &label, said, j));
+            let engine =
+                |p: &mut Prepared| super::stability::engine_stability(p, &lists.student[i]);
+            out.extend(super::stability::judge(part, &label, said, j, || engine(p)));
         }
     }
     out

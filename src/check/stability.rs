@@ -3,6 +3,10 @@
 //! stability data: a wrong one makes the answer incorrect (`wrong-stability`, naming the
 //! point). A word that looks like a misspelt stability is a syntax error with a suggestion.
 //!
+//! Where the part gives no stability, the engine decides (the linearised equations at the
+//! point, at a few sample parameter values); when it cannot, or its answers differ between
+//! the samples, nothing is said.
+//!
 //! The words are blanked out (replaced by spaces, so byte offsets stay valid for error
 //! carets) and remembered with their position, for the item reader to attach to its items.
 
@@ -150,14 +154,48 @@ fn reference_stability(part: &crate::problem::Part, j: usize) -> Option<Stated> 
     part.stability.get(j).and_then(|s| Stated::from_word(s))
 }
 
-/// A wrong statement about student item `label`, which matched reference item `j`.
+/// Most sample points the engine is asked at (each compiles the linearised equations).
+const ENGINE_SAMPLES: usize = 3;
+
+/// The engine's stability of a point given by its values at each sample point: the one
+/// answer of every sample where it is defined, or `None`.
+pub(crate) fn engine_stability(p: &mut Prepared, point: &[Option<Vec<f64>>]) -> Option<Stated> {
+    use crate::mechanics::equilibria::{Stability, Statics};
+    let mut found: Option<Stated> = None;
+    let defined = point
+        .iter()
+        .enumerate()
+        .filter_map(|(k, q)| Some((k, q.as_ref()?)));
+    for (k, q) in defined.take(ENGINE_SAMPLES) {
+        let params = p.points.params(&p.system, k).to_vec();
+        let statics = Statics::new(&mut p.system, &p.derivation, &params).ok()?;
+        let st = match statics.stability(q).ok()?.0 {
+            Stability::Stable => Stated::Stable,
+            Stability::Unstable => Stated::Unstable,
+            Stability::Marginal => Stated::Marginal,
+        };
+        if found.is_some_and(|f| f != st) {
+            return None;
+        }
+        found = Some(st);
+    }
+    found
+}
+
+/// A wrong statement about student item `label`, which matched reference item `j`; where
+/// the part gives no stability, `engine` (computed on demand) decides.
 pub(crate) fn judge(
     part: &crate::problem::Part,
     label: &str,
     said: Stated,
     j: usize,
+    engine: impl FnOnce() -> Option<Stated>,
 ) -> Option<Diagnosis> {
-    let is = reference_stability(part, j)?;
+    let is = match reference_stability(part, j) {
+        Some(is) => is,
+        None if part.stability.is_empty() => engine()?,
+        None => return None,
+    };
     (is != said).then(|| {
         Diagnosis::new(
             Code::WrongStability,

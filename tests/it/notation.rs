@@ -542,3 +542,58 @@ fn stability_messages() {
     }
     insta::assert_snapshot!("notation_stability", shown);
 }
+
+#[test]
+fn stability_stated_where_the_part_does_not_ask_is_checked_by_the_engine() {
+    let text = include_str!("../../problems/simple-pendulum.toml")
+        .replace("stability = [\"stable\", \"unstable\"]\n", "");
+    let problem =
+        lagrange::bank::load_str("simple-pendulum.toml", &text).unwrap_or_else(|f| panic!("{f}"));
+    assert!(
+        problem
+            .part("equilibria")
+            .is_some_and(|p| p.stability.is_empty())
+    );
+    let mut c = Checker::new(&problem);
+    let cases: &[(&str, Status)] = &[
+        ("0, π", Status::Correct),
+        ("0 (stable), π (unstable)", Status::Correct),
+        ("θ = 0 stable, θ = π", Status::Correct),
+        ("0 (unstable), π", Status::Incorrect),
+        ("0, π (stable)", Status::Incorrect),
+    ];
+    for (answer, status) in cases {
+        let v = c.check("equilibria", answer).expect("a part");
+        assert_eq!(v.status, *status, "{answer:?}: {:?}", v.diagnoses);
+        if *status == Status::Incorrect {
+            assert_eq!(
+                v.diagnoses[0].code.as_str(),
+                "wrong-stability",
+                "{answer:?}"
+            );
+        }
+    }
+    // The double pendulum (no stability data): only the bottom is stable.
+    let text = include_str!("../../problems/double-pendulum.toml").to_string()
+        + r#"
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "List every equilibrium (θ₁, θ₂)."
+answer = ["theta1 = 0, theta2 = 0", "theta1 = 0, theta2 = pi", "theta1 = pi, theta2 = 0", "theta1 = pi, theta2 = pi"]
+"#;
+    let problem =
+        lagrange::bank::load_str("double-pendulum.toml", &text).unwrap_or_else(|f| panic!("{f}"));
+    let mut c = Checker::new(&problem);
+    let v = c
+        .check(
+            "equilibria",
+            "(0, 0) stable, (0, π) unstable, (π, 0) unstable, (π, π) unstable",
+        )
+        .expect("a part");
+    assert_eq!(v.status, Status::Correct, "{:?}", v.diagnoses);
+    let v = c
+        .check("equilibria", "(0, 0), (0, π), (π, 0), (π, π) (stable)")
+        .expect("a part");
+    assert_eq!(v.status, Status::Incorrect, "{:?}", v.diagnoses);
+}
