@@ -597,3 +597,22 @@ answer = ["theta1 = 0, theta2 = 0", "theta1 = 0, theta2 = pi", "theta1 = pi, the
         .expect("a part");
     assert_eq!(v.status, Status::Incorrect, "{:?}", v.diagnoses);
 }
+
+/// Fuzz finds (parse, seed 7): x^e folded exactly but x^(−e) not, at the size limit, so
+/// `1/x^e` printed from one read back as the other.
+#[test]
+fn regression_a_reciprocal_power_at_the_size_limit_reads_back_as_printed() {
+    for src in [
+        "(1e-300)^(355/113)",
+        "(1e-300)^(3.14159)",
+        "m^((1e-300)^(3.14159))",
+        "(1e300)^(355/113)",
+    ] {
+        let ctx = Context::open();
+        let mut pool = Pool::new();
+        let e = lagrange::expr::read_expr(src, &ctx, &mut pool).expect("readable");
+        let printed = pool.plain(e);
+        let back = lagrange::expr::read_expr(&printed, &ctx, &mut pool).expect("reads back");
+        assert_eq!(back, e, "{src} printed as {printed}");
+    }
+}
