@@ -13,6 +13,7 @@ mod hostile;
 mod ladder;
 mod mechanics;
 mod notation;
+mod notation_lists;
 mod props;
 mod pty;
 mod repl;
