@@ -326,6 +326,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         .collect();
     let coords: Vec<Id> = names.iter().map(|n| p.system.pool.sym(n)).collect();
     v.reading = list_reading(part, p, &coords, &items);
+    v.reading.note = stability_note(part, p, &coords, (&items, &stated));
     let refs = match cached_reference(part, p) {
         Ok(r) => r,
         Err(m) => {
@@ -415,4 +416,26 @@ fn stated_stability(
         }
     }
     out
+}
+
+/// The stability the student stated, as read (`stated: θ = 0 stable, θ = π unstable`).
+fn stability_note(
+    part: &Part,
+    p: &Prepared,
+    coords: &[Id],
+    (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
+) -> Option<String> {
+    let said: Vec<String> = items
+        .iter()
+        .zip(stated)
+        .filter_map(|(it, s)| {
+            let s = (*s)?;
+            Some(format!(
+                "{} {}",
+                show_item(part, p, coords, it, Style::Unicode),
+                s.word()
+            ))
+        })
+        .collect();
+    (!said.is_empty()).then(|| format!("stated: {}", said.join(", ")))
 }

@@ -159,11 +159,15 @@ fn stability_messages() {
     let mut shown = String::new();
     for (problem, answer) in [
         ("bead-wire", "r = 0 (stable)"),
+        ("simple-pendulum", "θ = 0 stable, θ = π unstable"),
         ("simple-pendulum", "0 (stabel), π"),
     ] {
         let p = bank.problem(problem).expect("bank problem");
         let v = Checker::new(p).check("equilibria", answer).expect("a part");
         shown.push_str(&format!("{problem}: {answer}\n"));
+        if let Some(n) = &v.reading.note {
+            shown.push_str(&format!("  ({n})\n"));
+        }
         for d in &v.diagnoses {
             shown.push_str(&format!("  [{}] {}\n", d.code, d.message));
         }
