@@ -406,3 +406,30 @@ fn regression_a_reciprocal_power_at_the_size_limit_reads_back_as_printed() {
         assert_eq!(back, e, "{src} printed as {printed}");
     }
 }
+
+#[test]
+fn the_repl_prints_a_parse_error_once() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let home = std::env::temp_dir().join(format!("lagrange-it-notation-{}", std::process::id()));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(["repl", "--no-save", "simple-pendulum"])
+        .env("LAGRANGE_HOME", &home)
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin piped")
+        .write_all("sin θ^2\n".as_bytes())
+        .expect("input written");
+    let out = child.wait_with_output().expect("the binary ends");
+    let out = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.matches("can be read as").count(), 1, "{out}");
+    assert_eq!(out.matches("cannot check this answer").count(), 1, "{out}");
+    let _ = std::fs::remove_dir_all(&home);
+}
