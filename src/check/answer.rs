@@ -13,7 +13,7 @@ use super::prepare::{Prepared, prepare};
 use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use super::{equations, lists};
+use super::{equations, lists, named};
 use crate::expr::{Id, Reading, read, read_expr};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
@@ -91,6 +91,9 @@ pub(crate) fn check_prepared(
     p: &mut Prepared,
     input: &str,
 ) -> Verdict {
+    // `T = …` for a part asking for T: the value after the name is the answer.
+    let label = named::label(part, p, input);
+    let input = label.as_ref().map_or(input, |l| &input[l.offset..]);
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
             lists::check_list(problem, part, p, input)
@@ -105,6 +108,9 @@ pub(crate) fn check_prepared(
             },
         },
     };
+    if let Some(l) = &label {
+        named::finish(p, part, l, &mut v);
+    }
     never_correct_with_unlike_dimensions(&mut v);
     v.sort();
     v

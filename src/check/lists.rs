@@ -7,124 +7,11 @@ use super::error::CheckError;
 use super::items::{ItemFinding, Lists, classify_unmatched, same_item, what_of};
 use super::prepare::{Prepared, read_frequency, read_one, read_point};
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, ParseError, Reading, Style, read, read_expr};
+use crate::expr::{Id, Style};
 use crate::problem::{Part, PartKind, Problem};
 
-/// Splits at top-level `,` and `;` (outside parentheses): (text, byte offset) per item.
-fn split_items(input: &str) -> Vec<(&str, usize)> {
-    let mut out = Vec::new();
-    let (mut depth, mut start) = (0i32, 0usize);
-    for (i, c) in input.char_indices() {
-        match c {
-            '(' | '[' => depth += 1,
-            ')' | ']' => depth -= 1,
-            ',' | ';' if depth <= 0 => {
-                out.push((&input[start..i], start));
-                start = i + 1;
-            }
-            _ => {}
-        }
-    }
-    out.push((&input[start..], start));
-    out
-}
-
-/// `omega1 = …` → (`…`, offset of it); a bare item is returned as is.
-fn strip_label(item: &str) -> (&str, usize) {
-    if let Some(k) = item.find('=') {
-        let label = item[..k].trim();
-        if !label.is_empty()
-            && label
-                .chars()
-                .all(|c| c.is_alphanumeric() || c == '_' || "₀₁₂₃₄₅₆₇₈₉²'".contains(c))
-        {
-            return (&item[k + 1..], k + 1);
-        }
-    }
-    (item, 0)
-}
-
-fn shifted(e: ParseError, by: usize) -> ParseError {
-    ParseError::new(e.kind, e.span.start + by..e.span.end + by)
-}
-
-/// The student's items, each one value per coordinate (equilibria) or one value.
-pub(crate) fn read_items(
-    part: &Part,
-    p: &mut Prepared,
-    input: &str,
-) -> Result<Vec<Vec<Id>>, ParseError> {
-    if part.kind == PartKind::Equilibria {
-        let n = p.system.n();
-        let reading = read(input, &p.context, &mut p.system.pool)?;
-        let mut items = Vec::new();
-        let point_of = |p: &mut Prepared, r: &Reading| -> Option<Vec<Id>> {
-            match r {
-                Reading::Expr(e, _) if n == 1 => Some(vec![*e]),
-                Reading::Equation { lhs, rhs, .. }
-                    if n == 1
-                        && matches!(p.system.pool.node(*lhs), crate::expr::Node::Var(s, 0) if *s == p.system.coordinates[0].sym) =>
-                {
-                    Some(vec![*rhs])
-                }
-                Reading::List(eqs, _) if n > 1 => {
-                    let mut pt = vec![None; n];
-                    for e in eqs {
-                        let Reading::Equation { lhs, rhs, .. } = e else {
-                            return None;
-                        };
-                        let crate::expr::Node::Var(s, 0) = p.system.pool.node(*lhs) else {
-                            return None;
-                        };
-                        let i = p.system.coordinates.iter().position(|c| c.sym == *s)?;
-                        pt[i] = Some(*rhs);
-                    }
-                    pt.into_iter().collect()
-                }
-                _ => None,
-            }
-        };
-        let bad =
-            |r: &Reading| ParseError::new(crate::expr::ParseErrorKind::EquationExpected, r.span());
-        match &reading {
-            Reading::List(items_r, _) if n == 1 => {
-                for r in items_r {
-                    items.push(point_of(p, r).ok_or_else(|| bad(r))?);
-                }
-            }
-            Reading::System(items_r, _) => {
-                for r in items_r {
-                    if n == 1 {
-                        match r {
-                            Reading::List(inner, _) => {
-                                for x in inner {
-                                    items.push(point_of(p, x).ok_or_else(|| bad(x))?);
-                                }
-                            }
-                            x => items.push(point_of(p, x).ok_or_else(|| bad(x))?),
-                        }
-                    } else {
-                        items.push(point_of(p, r).ok_or_else(|| bad(r))?);
-                    }
-                }
-            }
-            r => items.push(point_of(p, r).ok_or_else(|| bad(r))?),
-        }
-        return Ok(items);
-    }
-    let mut items = Vec::new();
-    for (text, off) in split_items(input) {
-        let (body, k) = if part.kind == PartKind::Frequencies {
-            strip_label(text)
-        } else {
-            (text, 0)
-        };
-        let id =
-            read_expr(body, &p.context, &mut p.system.pool).map_err(|e| shifted(e, off + k))?;
-        items.push(vec![id]);
-    }
-    Ok(items)
-}
+pub(crate) use super::item_reading::read_items;
+use super::item_reading::read_stated_items;
 
 fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, CheckError> {
     part.answers
@@ -209,7 +96,7 @@ fn cached_reference(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, Check
 /// Checks a list answer.
 pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
     let mut v = verdict(problem, part, Status::Incorrect);
-    let items = match read_items(part, p, input) {
+    let (items, stated) = match read_stated_items(part, p, input) {
         Ok(i) => i,
         Err(e) => return invalid_reading(problem, part, e),
     };
@@ -222,6 +109,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         .collect();
     let coords: Vec<Id> = names.iter().map(|n| p.system.pool.sym(n)).collect();
     v.reading = list_reading(part, p, &coords, &items);
+    v.reading.note = stability_note(part, p, &coords, (&items, &stated));
     let refs = match cached_reference(part, p) {
         Ok(r) => r,
         Err(m) => {
@@ -265,11 +153,17 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         };
         v.diagnoses.push(missing.details());
     }
+    // Stated stability, judged on the items that matched (each wrong one loses its credit).
+    let wrong_stability = stated_stability(part, p, &lists, &coords, (&items, &stated));
+    let wrong = wrong_stability.len();
+    v.diagnoses.extend(wrong_stability);
     let total = refs.len().max(items.len()).max(1);
-    v.score = matched as f64 / total as f64;
+    v.score = matched.saturating_sub(wrong) as f64 / total as f64;
     if matched == refs.len()
         && items.len() == refs.len()
-        && v.diagnoses.iter().all(|d| d.code != Code::Dimension)
+        && v.diagnoses
+            .iter()
+            .all(|d| d.code != Code::Dimension && d.code != Code::WrongStability)
     {
         v.status = Status::Correct;
         v.score = 1.0;
@@ -277,4 +171,56 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     }
     super::misconception::list(problem, part, p, &items, &mut v);
     v
+}
+
+/// `wrong-stability` for each matched item whose stated stability the part contradicts.
+fn stated_stability(
+    part: &Part,
+    p: &mut Prepared,
+    lists: &Lists,
+    coords: &[Id],
+    (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
+) -> Vec<Diagnosis> {
+    let mut out = Vec::new();
+    for (i, said) in stated.iter().enumerate() {
+        let Some(said) = *said else { continue };
+        let matched = (0..lists.reference.len()).find(|&j| {
+            same_item(
+                part,
+                p,
+                &lists.student[i],
+                &lists.reference[j],
+                part.tolerance,
+            )
+        });
+        if let Some(j) = matched {
+            let label = show_item(part, p, coords, &items[i], Style::Unicode);
+            let engine =
+                |p: &mut Prepared| super::stability::engine_stability(p, &lists.student[i]);
+            out.extend(super::stability::judge(part, &label, said, j, || engine(p)));
+        }
+    }
+    out
+}
+
+/// The stability the student stated, as read (`stated: θ = 0 stable, θ = π unstable`).
+fn stability_note(
+    part: &Part,
+    p: &Prepared,
+    coords: &[Id],
+    (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
+) -> Option<String> {
+    let said: Vec<String> = items
+        .iter()
+        .zip(stated)
+        .filter_map(|(it, s)| {
+            let s = (*s)?;
+            Some(format!(
+                "{} {}",
+                show_item(part, p, coords, it, Style::Unicode),
+                s.word()
+            ))
+        })
+        .collect();
+    (!said.is_empty()).then(|| format!("stated: {}", said.join(", ")))
 }

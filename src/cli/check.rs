@@ -17,6 +17,7 @@ pub struct CheckArgs {
     /// The part id (`lagrange problems show PROBLEM`).
     part: String,
     /// The answer, e.g. "m*l^2*theta'' + m*g*l*sin(theta) = 0".
+    #[arg(allow_hyphen_values = true)]
     answer: String,
     /// One JSON object instead of text.
     #[arg(long)]
@@ -63,8 +64,11 @@ pub fn run(
                 writeln!(out, "         ({n})")?;
             }
         }
+        // A parse error is shown once, on stdout with the verdict it explains: the caret box
+        // replaces the one-line summary of the same error (a script reading stdout still
+        // sees the code, in the box's first line).
         if let Some(e) = &v.parse_error {
-            eprint!("{}", render_parse_error("answer", &args.answer, e, color));
+            out.push_str(&render_parse_error("answer", &args.answer, e, color));
         }
         let status = match v.status {
             Status::Correct => "correct".green().bold(),
@@ -76,7 +80,7 @@ pub fn run(
         } else {
             writeln!(out, "{status}")?;
         }
-        for d in &v.diagnoses {
+        for d in v.diagnoses.iter().filter(|d| !repeats_parse_error(&v, d)) {
             writeln!(out, "  {} {}", format!("[{}]", d.code).dimmed(), d.message)?;
         }
     }
@@ -85,4 +89,14 @@ pub fn run(
     } else {
         ExitCode::from(1)
     })
+}
+
+/// Whether `d` only restates the parse error whose caret box is already shown.
+pub(crate) fn repeats_parse_error(
+    v: &lagrange::check::Verdict,
+    d: &lagrange::check::Diagnosis,
+) -> bool {
+    v.parse_error
+        .as_ref()
+        .is_some_and(|e| d.message.starts_with(&e.kind.to_string()))
 }

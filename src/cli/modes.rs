@@ -17,13 +17,13 @@ pub struct ModesArgs {
     system: SystemArgs,
     /// Parameter values, e.g. "m=1, l=2, g=9.81"; a value may be an expression in other
     /// parameters ("m1=m, l2=l"), which then stay symbolic.
-    #[arg(long, default_value = "")]
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
     params: String,
     /// Only this equilibrium, e.g. "theta1=0, theta2=0" (values may be expressions).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     at: Option<String>,
     /// Search range of non-periodic coordinates, e.g. "x=-50:50" (default −10:10).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     range: Vec<String>,
     /// Also the characteristic polynomial and ω² in closed form (needs --at).
     #[arg(long)]

@@ -14,6 +14,7 @@ use lagrange::report::{ReadOptions, reading};
 #[derive(Args, Debug)]
 pub struct ReadArgs {
     /// The input, e.g. "m*l^2*theta'' + m*g*l*sin(theta) = 0".
+    #[arg(allow_hyphen_values = true)]
     input: String,
     /// Coordinates, comma-separated (their `dot`, `'` and combining-dot forms are then read
     /// as time derivatives).
@@ -26,7 +27,7 @@ pub struct ReadArgs {
     #[arg(long)]
     strict: bool,
     /// Also print the partial derivative with respect to this variable (e.g. theta').
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     diff: Option<String>,
     /// Also print the total time derivative.
     #[arg(long)]

@@ -17,28 +17,29 @@ pub struct SystemArgs {
     /// A problem id from the bank (`lagrange problems list`), instead of --lagrangian.
     pub problem: Option<String>,
     /// The Lagrangian, e.g. "1/2 m l^2 theta'^2 + m g l cos(theta)".
-    #[arg(long, short = 'L')]
+    #[arg(long, short = 'L', allow_hyphen_values = true)]
     pub lagrangian: Option<String>,
     /// The kinetic energy (with --potential, instead of --lagrangian).
     #[arg(
         long,
         short = 'T',
+        allow_hyphen_values = true,
         requires = "potential",
         conflicts_with = "lagrangian"
     )]
     pub kinetic: Option<String>,
     /// The potential energy (with --kinetic).
-    #[arg(long, short = 'V', requires = "kinetic")]
+    #[arg(long, short = 'V', requires = "kinetic", allow_hyphen_values = true)]
     pub potential: Option<String>,
     /// The generalized coordinates, comma-separated, e.g. "theta1,theta2".
     #[arg(long, short = 'q', default_value = "")]
     pub coords: String,
     /// Generalized non-conservative forces, one per coordinate, separated by `;`.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub force: Option<String>,
     /// A constraint f = 0 (or lhs = rhs); repeat for several. Velocity-linear constraints
     /// are nonholonomic.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub constraint: Vec<String>,
 }
 

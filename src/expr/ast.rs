@@ -33,6 +33,8 @@ pub enum AstKind {
     Product(Vec<(bool, Ast)>),
     Pow(Box<Ast>, Box<Ast>),
     Call(Call, Box<Ast>),
+    /// `d/dt(…)`: the total time derivative of the argument.
+    Dt(Box<Ast>),
 }
 
 /// What a whole input is: an expression, an equation, or lists of them.

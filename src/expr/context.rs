@@ -8,7 +8,7 @@ use super::node::Func;
 /// Function names accepted by the parser, including those rewritten on reading.
 pub const FUNCTION_NAMES: &[&str] = &[
     "sin", "cos", "tan", "sec", "csc", "cot", "asin", "acos", "atan", "sinh", "cosh", "tanh",
-    "exp", "log", "ln", "sqrt", "abs", "dot", "ddot",
+    "exp", "log", "ln", "sqrt", "abs", "dot", "ddot", "arcsin", "arccos", "arctan",
 ];
 
 /// A function as written (before `sec` → 1/cos and friends).
@@ -29,6 +29,9 @@ pub(crate) fn call_named(name: &str) -> Option<Call> {
         "cot" => Call::Cot,
         "sqrt" => Call::Sqrt,
         "ln" => Call::F(Func::Log),
+        "arcsin" => Call::F(Func::Asin),
+        "arccos" => Call::F(Func::Acos),
+        "arctan" => Call::F(Func::Atan),
         _ => Call::F(*Func::ALL.iter().find(|f| f.name() == name)?),
     })
 }
@@ -116,6 +119,13 @@ impl Context {
         self.parameters.iter().any(|c| c == name)
     }
 
+    /// Whether `name` (as typed) is a declared coordinate or parameter: such a name keeps
+    /// its meaning even where it could start a notation (`d` in `d/dt`, `sqrt2`).
+    pub(crate) fn is_declared(&self, raw: &str) -> bool {
+        let name = names::normalize(raw);
+        self.is_coordinate(&name) || self.is_parameter(&name)
+    }
+
     /// Resolves a plain name (no derivative marks). `None` means unknown.
     pub(crate) fn resolve(&self, raw: &str) -> Option<Resolved> {
         let name = names::normalize(raw);
@@ -147,6 +157,10 @@ impl Context {
 
     /// The known name closest to `name`, if close enough to be a likely typo.
     pub(crate) fn suggest(&self, name: &str) -> Option<String> {
+        // `T` is the kinetic energy, not a typo for `g`: its help says so instead.
+        if super::error::quantity_name(name).is_some() {
+            return None;
+        }
         let mut candidates: Vec<String> = Vec::new();
         for c in &self.coordinates {
             candidates.push(c.clone());

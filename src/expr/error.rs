@@ -64,6 +64,15 @@ pub enum ParseErrorKind {
     PrimeWithoutName,
     #[error("an equation is expected here")]
     EquationExpected,
+    /// `sin θ²`, `sin θ/2`, `sin ωt`: a bare argument with two common readings.
+    #[error("this can be read as `{one}` or as `{other}`")]
+    AmbiguousArgument { one: String, other: String },
+    /// `sin⁻¹`, `sin^-1`: arcsin to some, 1/sin to others.
+    #[error("`{name}` with a negative power can mean the inverse function or one over `{name}`")]
+    InversePower { name: String },
+    /// A tuple point `(a, b)` with the wrong number of values.
+    #[error("a point needs {want} values, one per coordinate ({names})")]
+    PointSize { want: usize, names: String },
 }
 
 impl ParseErrorKind {
@@ -91,6 +100,9 @@ impl ParseErrorKind {
             Self::DotNeedsName { .. } => "dot-needs-name",
             Self::PrimeWithoutName => "prime-without-name",
             Self::EquationExpected => "equation-expected",
+            Self::AmbiguousArgument { .. } => "ambiguous",
+            Self::InversePower { .. } => "ambiguous",
+            Self::PointSize { .. } => "point-size",
         }
     }
 
@@ -104,6 +116,8 @@ impl ParseErrorKind {
                 '{' | '}' => "use round parentheses `( )` for grouping".into(),
                 '\\' => "type plain syntax, not LaTeX: `sin(theta)`, `theta''`".into(),
                 '!' => "factorials are not part of the language".into(),
+                '∂' => "a partial derivative of L cannot be checked (there is no L here to refer to): work it out and write the result".into(),
+                '±' => "`±` gives two values: it is read only in a list (`±sqrt(g/l)`); otherwise write one sign".into(),
                 c if c.is_control() || invisible_name(*c).is_some() => {
                     "delete it (retype the answer if you cannot see it)".into()
                 }
@@ -125,6 +139,10 @@ impl ParseErrorKind {
                 ),
             },
             Self::FunctionWithoutArgs { name } => format!("write `{name}(x)`"),
+            Self::UnknownName { name, .. } if quantity_name(name).is_some() => format!(
+                "`{name}` ({}) is not a symbol here: write it out in the coordinates and parameters",
+                quantity_name(name).unwrap_or_default()
+            ),
             Self::UnknownName {
                 suggestion, split, ..
             } => match (suggestion, split) {
@@ -150,6 +168,13 @@ impl ParseErrorKind {
             Self::DotNeedsName { name } => format!("write `{name}(theta)` for a coordinate theta"),
             Self::PrimeWithoutName => "write `theta'`, not `(…)'`".into(),
             Self::EquationExpected => "write an equation with `=`".into(),
+            Self::AmbiguousArgument { .. } => {
+                "add parentheses to say which: a function's argument without `(` is only the number and name right after it".into()
+            }
+            Self::PointSize { names, .. } => format!("write each point as ({names})"),
+            Self::InversePower { name } => {
+                format!("write `a{name}(x)` for the inverse, or `1/{name}(x)`")
+            }
         }
     }
 
@@ -163,6 +188,16 @@ impl ParseErrorKind {
             _ => "here".into(),
         }
     }
+}
+
+/// What `T`, `V`, `U` and `L` stand for when a student uses them undeclared (`L = T − V`).
+pub(crate) fn quantity_name(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "T" => "the kinetic energy",
+        "V" | "U" => "the potential energy",
+        "L" => "the Lagrangian",
+        _ => return None,
+    })
 }
 
 /// An error in reading an input, with its position.

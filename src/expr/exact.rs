@@ -53,9 +53,12 @@ impl Pool {
         let k = ev.floor();
         let r = ev - &k;
         let n = bv.numer().clone();
-        let whole = match exact_int_pow(bv, &k) {
-            Some(v) => v,
-            None => return self.intern(Node::Pow(b, e)),
+        // Folded only if the power of the next integer in size folds too, so that x^e and
+        // x^(−e) fold alike (their floors differ by one in size) and 1/x^e reads back as the
+        // node it was printed from.
+        let (Some(whole), Some(_)) = (exact_int_pow(bv, &k), exact_int_pow(bv, &ev.abs().ceil()))
+        else {
+            return self.intern(Node::Pow(b, e));
         };
         let (root, rest) = extract_perfect_power(&n, &q);
         // A root of 1 is 1 whatever the exponent (which may be too large to raise anything

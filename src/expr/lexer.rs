@@ -89,6 +89,16 @@ pub(crate) fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
             chars.next();
             continue;
         }
+        if names::subscript_digit(c).is_some() && subscript_after_primes(&mut out, src, i) {
+            // `θ'₁` is θ₁': the subscript belongs to the name before the primes.
+            while chars
+                .peek()
+                .is_some_and(|&(_, d)| names::subscript_digit(d).is_some())
+            {
+                chars.next();
+            }
+            continue;
+        }
         let (tok, end) = if is_number_start(src, i, c) {
             let (value, end) = number(src, i)?;
             (Tok::Num(value), end)
@@ -112,6 +122,29 @@ pub(crate) fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
         }
     }
     Ok(out)
+}
+
+/// If `out` ends in a name and its primes, appends the subscript digits at byte `i` to the
+/// name and says so.
+fn subscript_after_primes(out: &mut [Token], src: &str, i: usize) -> bool {
+    let primes = out.iter().rev().take_while(|t| t.tok == Tok::Prime).count();
+    let Some(k) = out.len().checked_sub(primes + 1) else {
+        return false;
+    };
+    let Some(Token {
+        tok: Tok::Name { text, .. },
+        ..
+    }) = out.get_mut(k)
+    else {
+        return false;
+    };
+    if primes == 0 {
+        return false;
+    }
+    for d in src[i..].chars().map_while(names::subscript_digit) {
+        text.push(char::from_digit(d, 10).unwrap_or('0'));
+    }
+    true
 }
 
 fn is_number_start(src: &str, i: usize, c: char) -> bool {
@@ -166,7 +199,7 @@ fn symbol(src: &str, i: usize, c: char) -> Result<(Tok, usize), ParseError> {
         ',' => Tok::Comma,
         ';' => Tok::Semi,
         '=' => Tok::Eq,
-        '\'' | '′' | '″' => Tok::Prime,
+        '\'' | '′' | '″' | '’' => Tok::Prime,
         '√' => Tok::Root,
         'π' => Tok::Name {
             text: "pi".into(),

@@ -74,6 +74,13 @@ pub(crate) fn lower(pool: &mut Pool, ast: &Ast) -> Id {
             let e = lower(pool, e);
             pool.pow(b, e)
         }
+        AstKind::Dt(a) => {
+            let x = lower(pool, a);
+            let mut names = Vec::new();
+            coordinates_in(a, &mut names);
+            let coords: Vec<_> = names.iter().map(|n| pool.symbol(n)).collect();
+            pool.dt(x, &coords)
+        }
         AstKind::Call(call, a) => {
             let x = lower(pool, a);
             match call {
@@ -94,6 +101,27 @@ pub(crate) fn lower(pool: &mut Pool, ast: &Ast) -> Id {
                 }
             }
         }
+    }
+}
+
+/// The coordinates named in `ast` (for `d/dt`, which moves each up one order). Recursion
+/// follows the syntax tree, whose depth the parser limits.
+fn coordinates_in(ast: &Ast, out: &mut Vec<String>) {
+    match &ast.kind {
+        AstKind::Coordinate { name, .. } => {
+            if !out.contains(name) {
+                out.push(name.clone());
+            }
+        }
+        AstKind::Neg(a) | AstKind::Call(_, a) | AstKind::Dt(a) => coordinates_in(a, out),
+        AstKind::Sum(xs) | AstKind::Product(xs) => {
+            xs.iter().for_each(|(_, a)| coordinates_in(a, out));
+        }
+        AstKind::Pow(b, e) => {
+            coordinates_in(b, out);
+            coordinates_in(e, out);
+        }
+        AstKind::Num(_) | AstKind::Pi | AstKind::Time | AstKind::Parameter(_) => {}
     }
 }
 

@@ -178,7 +178,13 @@ fn verdict(
             paint.dim(&format!("(attempt {attempts})"))
         )?,
     }
-    for d in &v.diagnoses {
+    // The caret box above already says what a one-line parse diagnosis would repeat.
+    let repeats = |d: &&lagrange::check::Diagnosis| {
+        v.parse_error
+            .as_ref()
+            .is_some_and(|e| d.message.starts_with(&e.kind.to_string()))
+    };
+    for d in v.diagnoses.iter().filter(|d| !repeats(d)) {
         writeln!(o, "  {} {}", paint.dim(&format!("[{}]", d.code)), d.message)?;
     }
     Ok(())

@@ -85,7 +85,8 @@ fn escape_sequences_in_an_answer_are_shown_escaped() {
         out.contains("unexpected control character `\\u{1b}`"),
         "{out}"
     );
-    assert!(err.contains("theta\\u{1b}]0;pwned\\u{7} = 0"), "{err}");
+    // The caret box is printed once, on stdout with the verdict.
+    assert!(out.contains("theta\\u{1b}]0;pwned\\u{7} = 0"), "{out}");
 }
 
 #[test]
@@ -108,7 +109,6 @@ fn zero_width_and_bidi_characters_are_named() {
     assert_no_invisibles(&out);
     assert_no_invisibles(&err);
     assert!(out.contains("U+200B zero-width space"), "{out}");
-    assert!(err.contains("U+200B zero-width space"), "{err}");
     let (_, out, err) = lagrange(&["read", "x\u{202e} + 1"]);
     assert_no_invisibles(&out);
     assert_no_invisibles(&err);

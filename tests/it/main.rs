@@ -14,6 +14,8 @@ mod hostile;
 mod ladder;
 mod literature;
 mod mechanics;
+mod notation;
+mod notation_lists;
 mod props;
 mod pty;
 mod repl;

@@ -5,7 +5,7 @@ use super::Parser;
 use crate::expr::ast::{Ast, AstKind};
 use crate::expr::context::{Call, Context, Resolved, call_named};
 use crate::expr::error::{ParseError, ParseErrorKind};
-use crate::expr::lexer::{Span, Tok, Token};
+use crate::expr::lexer::{Span, Tok};
 
 impl Parser<'_> {
     /// Whether the next tokens are `(t)`.
@@ -125,7 +125,15 @@ impl Parser<'_> {
             return self.dot_call(&text, span);
         }
         if let Some(call) = call_named(&text) {
-            return self.function_call(call, text, span);
+            return self.function_call(call, span);
+        }
+        if dots == 0 && !self.ctx.is_declared(&text) {
+            if text == "d" && self.at_time_derivative() {
+                return self.time_derivative(span);
+            }
+            if let Some(root) = self.sqrt_of_digits(&text, &span) {
+                return Ok(root);
+            }
         }
         let resolved = self.ctx.resolve(&text);
         // `theta(t)`: a coordinate written as a function of time is the coordinate itself.
@@ -175,33 +183,9 @@ impl Parser<'_> {
         }
     }
 
-    /// `sin(…)` and the other named functions: the name must be followed by `(`.
-    fn function_call(&mut self, call: Call, text: String, span: Span) -> Result<Ast, ParseError> {
-        if self.peek() != Some(&Tok::LParen) {
-            return Err(ParseError::new(
-                ParseErrorKind::FunctionWithoutArgs { name: text },
-                span,
-            ));
-        }
-        let open = self.here();
-        self.pos += 1;
-        self.enter(&open)?;
-        let arg = self.sum();
-        self.leave();
-        let arg = arg?;
-        if !self.eat(&Tok::RParen) {
-            return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
-        }
-        let end = self.prev_end();
-        Ok(Ast {
-            kind: AstKind::Call(call, Box::new(arg)),
-            span: span.start..end,
-        })
-    }
-
     /// A name that is not a function but is followed by `(`: an unknown function (with a
     /// suggestion when it looks like a misspelt one) unless it is a declared name, which
-    /// then multiplies the parenthesis.
+    /// then multiplies the parenthesis (as does, in an open context, a name a space away).
     fn check_called_name(
         &self,
         text: &str,
@@ -212,6 +196,12 @@ impl Parser<'_> {
             resolved,
             Some(Resolved::Coordinate(..) | Resolved::Pi | Resolved::Time)
         ) || self.ctx.is_parameter(text);
+        // `m g l (1 − cos θ)` in an open context: a name a space away from `(` is a factor,
+        // even when it is one letter from a function name (`l`, `ln`); `f(x)` stays a call.
+        let spaced = self.here().start > span.end;
+        if resolved.is_some() && spaced {
+            return Ok(());
+        }
         if !declared && let Some(s) = Context::suggest_function(text) {
             return Err(ParseError::new(
                 ParseErrorKind::UnknownFunction {
@@ -231,68 +221,5 @@ impl Parser<'_> {
             ));
         }
         Ok(())
-    }
-
-    /// `dot(q)` and `ddot(q)`.
-    fn dot_call(&mut self, which: &str, span: Span) -> Result<Ast, ParseError> {
-        let order = if which == "dot" { 1 } else { 2 };
-        let bad = || {
-            ParseError::new(
-                ParseErrorKind::DotNeedsName {
-                    name: which.to_string(),
-                },
-                span.clone(),
-            )
-        };
-        if self.peek() != Some(&Tok::LParen) {
-            return Err(ParseError::new(
-                ParseErrorKind::FunctionWithoutArgs {
-                    name: which.to_string(),
-                },
-                span,
-            ));
-        }
-        let open = self.here();
-        self.pos += 1;
-        let Some(Token {
-            tok: Tok::Name { text, dots },
-            span: name_span,
-        }) = self.next()
-        else {
-            return Err(bad());
-        };
-        let mut primes = dots;
-        while self.eat(&Tok::Prime) {
-            primes = primes.saturating_add(1);
-        }
-        if !self.eat(&Tok::RParen) {
-            return Err(ParseError::new(ParseErrorKind::UnclosedParen, open));
-        }
-        let end = self.prev_end();
-        let inner = match self.ctx.resolve(&text) {
-            Some(Resolved::Coordinate(name, o)) => Ast {
-                kind: AstKind::Coordinate { name, order: o },
-                span: name_span,
-            },
-            Some(Resolved::Parameter(name)) => Ast {
-                kind: AstKind::Parameter(name),
-                span: name_span,
-            },
-            Some(_) => return Err(bad()),
-            None => {
-                return Err(ParseError::new(
-                    ParseErrorKind::UnknownName {
-                        suggestion: self.ctx.suggest(&text),
-                        split: None,
-                        name: text,
-                    },
-                    name_span,
-                ));
-            }
-        };
-        self.differentiate(inner, order + primes, end).map(|a| Ast {
-            span: span.start..end,
-            ..a
-        })
     }
 }

@@ -6,11 +6,18 @@
 //! −(x²)), postfix `'` and superscripts. Nesting is limited to [`MAX_DEPTH`], so no input can
 //! overflow the stack.
 //!
+//! A function name without `(` takes the shortest factor after it: an optional number and one
+//! name with its primes (`sin 2θ` = sin(2θ), `sin θ x` = sin(θ)·x); what could also belong
+//! to it (`sin θ²`, `sin θ/2`, `sin ωt`) is refused with both readings. A power may sit on
+//! the name (`sin²θ`, `sin^2(θ)` = (sin θ)²). `d/dt(…)` is the total time derivative. See
+//! `calls`.
+//!
 //! Here: the entry point [`parse`] and the parser's token cursor and depth guard. The
 //! operator levels (`;` down to `'`) live in `operators`, the primaries (numbers, names,
 //! calls, derivative marks) in `atoms`.
 
 mod atoms;
+mod calls;
 mod operators;
 
 use std::collections::BTreeSet;
@@ -52,6 +59,7 @@ pub fn parse(src: &str, ctx: &Context) -> Result<Parsed, ParseError> {
         pos: 0,
         depth: 0,
         ctx,
+        src,
         end: src.len(),
         implied: BTreeSet::new(),
     };
@@ -78,6 +86,8 @@ struct Parser<'c> {
     pos: usize,
     depth: usize,
     ctx: &'c Context,
+    /// The input, for quoting it in messages that propose readings.
+    src: &'c str,
     end: usize,
     implied: BTreeSet<String>,
 }

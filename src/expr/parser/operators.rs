@@ -143,7 +143,26 @@ impl Parser<'_> {
     }
 
     pub(super) fn postfix(&mut self) -> Result<Ast, ParseError> {
-        let mut a = self.primary()?;
+        let a = self.primary()?;
+        let mut a = self.primes(a)?;
+        while let Some(Tok::Super(n)) = self.peek().cloned() {
+            let sp = self.here();
+            self.pos += 1;
+            let exp = Ast {
+                kind: AstKind::Num(num_rational::BigRational::from_integer(n)),
+                span: sp.clone(),
+            };
+            let span = a.span.start..sp.end;
+            a = Ast {
+                kind: AstKind::Pow(Box::new(a), Box::new(exp)),
+                span,
+            };
+        }
+        Ok(a)
+    }
+
+    /// The derivative marks (`'`) after a primary, and a following `(t)`.
+    pub(super) fn primes(&mut self, mut a: Ast) -> Result<Ast, ParseError> {
         let mut primes = 0u8;
         let mut prime_span = a.span.clone();
         while self.peek() == Some(&Tok::Prime) {
@@ -158,19 +177,6 @@ impl Parser<'_> {
                 self.pos += 3;
                 a.span.end = self.prev_end();
             }
-        }
-        while let Some(Tok::Super(n)) = self.peek().cloned() {
-            let sp = self.here();
-            self.pos += 1;
-            let exp = Ast {
-                kind: AstKind::Num(num_rational::BigRational::from_integer(n)),
-                span: sp.clone(),
-            };
-            let span = a.span.start..sp.end;
-            a = Ast {
-                kind: AstKind::Pow(Box::new(a), Box::new(exp)),
-                span,
-            };
         }
         Ok(a)
     }
