@@ -112,8 +112,24 @@ pub(crate) fn check_prepared(
         named::finish(p, part, l, &mut v);
     }
     never_correct_with_unlike_dimensions(&mut v);
+    drop_superseded(&mut v);
     v.sort();
     v
+}
+
+/// Diagnoses a more principled one makes redundant or misleading: `h-vs-e` says all that
+/// `t-plus-v` says for an energy function; a divided-out factor (`lost-root`) can also look
+/// like two symbols swapped (`m (2ga − ω²)` for `r (2ga − ω²)`), which is not the mistake.
+fn drop_superseded(v: &mut Verdict) {
+    const SUPERSEDES: &[(Code, Code)] = &[
+        (Code::HVsE, Code::TPlusV),
+        (Code::LostRoot, Code::SwappedSymbols),
+    ];
+    for &(by, gone) in SUPERSEDES {
+        if v.diagnoses.iter().any(|d| d.code == by) {
+            v.diagnoses.retain(|d| d.code != gone);
+        }
+    }
 }
 
 /// An answer whose terms have unlike dimensions is never correct, even where its numbers
@@ -230,18 +246,31 @@ fn reference_of(part: &Part, p: &mut Prepared) -> Option<Id> {
 }
 
 /// A sum of unlike terms, or a different dimension from the reference.
-fn dimension_check(problem: &Problem, p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
-    match p.system.pool.dimension(s, &problem.dims) {
-        Err(e) => Some(Diagnosis::new(Code::Dimension, e.to_string())),
-        Ok(Some(ds)) => match p.system.pool.dimension(reference, &problem.dims) {
-            Ok(Some(dr)) if ds != dr && !p.system.pool.is_zero(s) => Some(Diagnosis::new(
-                Code::Dimension,
-                format!("your answer has dimension {ds}, but the answer must be {dr}"),
-            )),
-            _ => None,
-        },
-        Ok(None) => None,
-    }
+fn dimension_check(
+    problem: &Problem,
+    part: &Part,
+    p: &mut Prepared,
+    s: Id,
+    reference: Id,
+) -> Option<Diagnosis> {
+    let ds = match p.system.pool.dimension(s, &problem.dims) {
+        Err(e) => return Some(Diagnosis::new(Code::Dimension, e.to_string())),
+        Ok(Some(ds)) => ds,
+        Ok(None) => return None,
+    };
+    // A reference of 0 (the bead on a horizontal wire has V = 0) has every dimension: only a
+    // dimension the part states can be asked for.
+    let dr = if p.system.pool.is_zero(reference) {
+        part.dimension?
+    } else {
+        p.system.pool.dimension(reference, &problem.dims).ok()??
+    };
+    (ds != dr && !p.system.pool.is_zero(s)).then(|| {
+        Diagnosis::new(
+            Code::Dimension,
+            format!("your answer has dimension {ds}, but the answer must be {dr}"),
+        )
+    })
 }
 
 /// Classifies how the answer `s` relates to the reference.
@@ -300,7 +329,7 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         return v;
     }
     v.diagnoses
-        .extend(dimension_check(problem, p, s, reference));
+        .extend(dimension_check(problem, part, p, s, reference));
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
         Ok(r) => r,
         Err(e) => {

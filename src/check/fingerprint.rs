@@ -32,6 +32,7 @@ const ZERO: f64 = 1e-10;
 /// The canonical form of `input` read for `part` (plain style); list items sorted. `None` when
 /// the input cannot be read.
 pub(crate) fn canonical(part: &Part, p: &mut Prepared, input: &str) -> Option<String> {
+    let input = unnamed(part, p, input);
     if is_list(part) {
         let items = read_items(part, p, input).ok()?;
         let mut shown: Vec<String> = items
@@ -67,6 +68,16 @@ fn show(p: &Prepared, r: &Reading) -> String {
     }
 }
 
+/// The answer without a name the checker reads as the quantity's (`T = …` for a part asking
+/// for T): `T = ½ m v²` and `½ m v²` are one answer. A wrong name is kept, so the answer
+/// stays apart from the bare value (its verdict differs).
+fn unnamed<'i>(part: &Part, p: &mut Prepared, input: &'i str) -> &'i str {
+    match super::named::label(part, p, input) {
+        Some(l) if super::named::fits_part(part, &l) => &input[l.offset..],
+        _ => input,
+    }
+}
+
 fn is_list(part: &Part) -> bool {
     matches!(
         part.kind,
@@ -76,6 +87,7 @@ fn is_list(part: &Part) -> bool {
 
 /// The fingerprint of `input` for `part`; `None` when it cannot be read or evaluated.
 pub(crate) fn fingerprint(part: &Part, p: &mut Prepared, input: &str) -> Option<String> {
+    let input = unnamed(part, p, input);
     let pts = PointSet {
         points: p.points.points.iter().take(POINTS).cloned().collect(),
     };
@@ -367,6 +379,10 @@ mod tests {
         let b = c.canonical("equilibria", "π, 0").unwrap();
         assert_eq!(a, b);
         assert_eq!(c.canonical("eom", "m*(").unwrap(), None);
+        // A name the part asks for is not part of the answer; a wrong name is.
+        let bare = c.canonical("kinetic", "1/2*m*l^2*theta'^2").unwrap();
+        assert_eq!(c.canonical("kinetic", "T = ½ m l² θ̇²").unwrap(), bare);
+        assert_ne!(c.canonical("kinetic", "V = ½ m l² θ̇²").unwrap(), bare);
     }
 
     #[test]

@@ -328,6 +328,20 @@ fn inside_item(
         item
     };
     let mine = p.system.pool.expand(mine);
+    // The whole item (or all under its root) negated explains more than one term's sign.
+    for (k, &j) in free.iter().enumerate() {
+        let r = *lists.reference_ids.get(j)?.first()?;
+        let theirs = if root { p.system.pool.powi(r, 2) } else { r };
+        if negated(p, mine, theirs) {
+            let place = if root {
+                "everything under the square root"
+            } else {
+                "the whole value"
+            };
+            let message = format!("{label}: sign error: {place} has the wrong sign");
+            return Some((k, Diagnosis::new(Code::SignError, message)));
+        }
+    }
     let st = Terms::of_expression(p, mine);
     for (k, &j) in free.iter().enumerate() {
         let r = *lists.reference_ids.get(j)?.first()?;
@@ -350,6 +364,25 @@ fn inside_item(
         }
     }
     None
+}
+
+/// Whether `a = −b` at every sample point where both are defined (and at some point).
+fn negated(p: &Prepared, a: Id, b: Id) -> bool {
+    let Ok(vals) = values(&p.system, &[a, b], &p.points) else {
+        return false;
+    };
+    let mut seen = 0;
+    for v in vals.iter().flatten() {
+        let (x, y) = (v[0], v[1]);
+        if !x.is_finite() || !y.is_finite() {
+            continue;
+        }
+        if y.abs() <= tolerance::TINY || !close(x, -y, 0.0, tolerance::SAME) {
+            return false;
+        }
+        seen += 1;
+    }
+    seen > 0
 }
 
 /// Whether `e` is a square root.

@@ -223,18 +223,16 @@ pub(super) fn small_angle(
         part.quantity,
         Quantity::Potential | Quantity::Lagrangian | Quantity::EnergyFunction | Quantity::Kinetic
     ) || part.kind == PartKind::Lagrangian;
-    let coords = p.system.coordinate_syms();
-    let depends = p
-        .system
-        .pool
-        .variables(reference)
-        .iter()
-        .any(|(c, o)| *o == 0 && coords.contains(c));
-    // A quadratic approximation has no function of a coordinate left (cheap to rule out first).
-    if !energy || !depends || has_function_of_coordinate(p, s) {
+    // Only a reference with a function of a coordinate (cos θ) has a small-angle form to
+    // mistake for it: the quadratic truncation of a polynomial T (the bead on a parabola's
+    // 4a²r²ṙ² dropped) is a missing term, not a small-angle approximation. A quadratic
+    // approximation has no function of a coordinate left (cheap to rule out first).
+    if !energy || !has_function_of_coordinate(p, reference) || has_function_of_coordinate(p, s) {
         return None;
     }
-    let constant_ok = part.up_to_constant || part.kind == PartKind::Lagrangian;
+    // The approximation is the mistake to name even where the part fixes the constant (the
+    // expansion of −m·g·l·cos θ is −m·g·l + ½·m·g·l·θ², and the constant is often dropped).
+    let constant_ok = true;
     // At q = 0 the quadratic approximation of a T, V or L (at most quadratic in the
     // velocities) is the expression itself: a cheap numeric test before the Taylor expansion.
     let origin = points_in(p, Limit::Origin);

@@ -103,6 +103,11 @@ fn asked(part: &Part) -> Option<Named> {
 }
 
 /// Whether the name said fits the quantity asked.
+/// Whether `label` names what `part` asks for (or the part asks for nothing nameable).
+pub(super) fn fits_part(part: &Part, label: &Label) -> bool {
+    asked(part).is_none_or(|a| fits(label.named, a))
+}
+
 fn fits(said: Named, asked: Named) -> bool {
     said == asked
         || (said == Named::Momentum(None) && matches!(asked, Named::Momentum(_)))

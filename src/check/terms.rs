@@ -262,15 +262,17 @@ pub(super) fn one_term(
     } else {
         one_term_as_given(p, &se, &re, how, which)
     };
+    // A factor that is itself a sum (½m(ṙ² + ω²r²)) is better told term by term: the
+    // expanded finding (a missing 4a²r²ṙ²) names what is wrong inside it.
+    let split = se.len() > student.len();
+    let plain = |c: Code| {
+        matches!(
+            c,
+            Code::SignError | Code::ConstantFactor | Code::RoundedConstant
+        ) || (split && matches!(c, Code::MissingTerm | Code::ExtraTerm))
+    };
     match (given, expanded) {
-        (Some((g, true)), Some((e, _)))
-            if !matches!(
-                e.code,
-                Code::SignError | Code::ConstantFactor | Code::RoundedConstant
-            ) =>
-        {
-            Some(g)
-        }
+        (Some((g, true)), Some((e, _))) if !plain(e.code) => Some(g),
         (_, Some((e, _))) => Some(e),
         (g, None) => g.map(|(d, _)| d),
     }
@@ -307,15 +309,29 @@ fn describe(
 ) -> Option<(Diagnosis, bool)> {
     let pool = &p.system.pool;
     let found = match d {
-        Difference::Missing(j) => Diagnosis::new(
-            Code::MissingTerm,
-            match content(p, reference.signed[j]) {
-                Some(what) => format!("{which} has no term in {what}"),
-                None => format!(
-                    "{which} lacks a term that does not depend on the coordinates or velocities"
+        Difference::Missing(j) => {
+            let what = content(p, reference.signed[j]);
+            // "no term in ẍ" would be false when the student has one: then the coefficient
+            // of that term is what is incomplete ((m₁ + m₂)·ẍ written m₁·ẍ).
+            let shared = what.is_some() && student.signed.iter().any(|&t| content(p, t) == what);
+            match what {
+                Some(what) if shared => Diagnosis::new(
+                    Code::WrongFactor,
+                    format!(
+                        "the coefficient of {which}'s term in {what} is incomplete: part of it is missing"
+                    ),
                 ),
-            },
-        ),
+                Some(what) => {
+                    Diagnosis::new(Code::MissingTerm, format!("{which} has no term in {what}"))
+                }
+                None => Diagnosis::new(
+                    Code::MissingTerm,
+                    format!(
+                        "{which} lacks a term that does not depend on the coordinates or velocities"
+                    ),
+                ),
+            }
+        }
         Difference::Extra(i) => Diagnosis::new(
             Code::ExtraTerm,
             format!(
