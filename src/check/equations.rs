@@ -251,6 +251,7 @@ pub fn check_equations(problem: &Problem, part: &Part, p: &mut Prepared, r: Read
             v.score = 1.0;
         }
         v.diagnoses.extend(finding.details(p));
+        super::misconception::condition(p, &res, &mut v);
         return v;
     }
     check_motion(part, p, (&eqs, &res), &mut v);

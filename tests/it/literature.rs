@@ -111,6 +111,26 @@ const FIRES: &[(&str, &str, &str, Code)] = &[
         "theta = acos(g/(R*omega^2)), theta = -acos(g/(R*omega^2))",
         Code::LostRoot,
     ),
+    // The uncoupled value in place of a right frequency.
+    (
+        "double-pendulum",
+        "frequencies",
+        "sqrt(g/l), sqrt((2 + sqrt(2))*g/l)",
+        Code::EffectiveMass,
+    ),
+    // The equilibrium condition divided by r (the factor m is harmless).
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "m*(2*g*a - omega^2) = 0",
+        Code::LostRoot,
+    ),
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "2*g*a = omega^2",
+        Code::LostRoot,
+    ),
 ];
 
 #[test]
@@ -188,6 +208,46 @@ const SILENT: &[(&str, &str, &str)] = &[
         "sqrt((2 - sqrt(2))*g/l), sqrt((2 + sqrt(2))*g/l)",
     ),
     ("spring-incline", "frequencies", "sqrt(k/m)"),
+    // Nobody divides sin θ = 0 by θ: an angle is no divisor, and dividing by sin θ would lose
+    // both 0 and π, not one of them.
+    ("simple-pendulum", "equilibria", "theta = pi"),
+    (
+        "rotating-hoop",
+        "equilibria",
+        "theta = pi, theta = acos(g/(R*omega^2)), theta = -acos(g/(R*omega^2))",
+    ),
+    (
+        "rotating-hoop",
+        "equilibria",
+        "theta = 0, theta = acos(g/(R*omega^2)), theta = -acos(g/(R*omega^2))",
+    ),
+    // Every right frequency and an extra one: not the wrong inertia.
+    (
+        "double-pendulum",
+        "frequencies",
+        "sqrt(g/l), sqrt((2 - sqrt(2))*g/l), sqrt((2 + sqrt(2))*g/l)",
+    ),
+    // The condition right (up to a factor), or wrong in another way.
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "r*(2*g*a - omega^2) = 0",
+    ),
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "m*r*(omega^2 - 2*g*a) = 0",
+    ),
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "r*(2*g*a + omega^2) = 0",
+    ),
+    (
+        "bead-parabola",
+        "equilibrium-condition",
+        "m*(2*g*a + omega^2) = 0",
+    ),
 ];
 
 #[test]

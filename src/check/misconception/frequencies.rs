@@ -35,14 +35,17 @@ fn frequency(
     refs: &[Vec<Id>],
 ) -> Option<Diagnosis> {
     let q0 = at_point(part, p)?;
-    let mut cands = effective_mass(part, p, &q0);
+    // The wrong inertia replaces a right frequency; with every right one listed, an extra
+    // item is a different slip, so effective-mass would mislead.
+    let mut cands = if all_listed(p, items, refs) {
+        Vec::new()
+    } else {
+        effective_mass(part, p, &q0)
+    };
     cands.extend(expansion_point(problem, p, &q0));
     for it in items {
         let &[s] = it.as_slice() else { continue };
-        if refs
-            .iter()
-            .any(|r| r.len() == 1 && equal(p, s, r[0], false))
-        {
+        if is_reference(p, s, refs) {
             continue;
         }
         if let Some(c) = cands.iter().find(|c| follows(part, p, s, c.answer)) {
@@ -50,6 +53,22 @@ fn frequency(
         }
     }
     None
+}
+
+/// Whether the single-value item `s` is one of the reference items.
+fn is_reference(p: &Prepared, s: Id, refs: &[Vec<Id>]) -> bool {
+    refs.iter()
+        .any(|r| r.len() == 1 && equal(p, s, r[0], false))
+}
+
+/// Whether every reference item is among the student's items.
+fn all_listed(p: &Prepared, items: &[Vec<Id>], refs: &[Vec<Id>]) -> bool {
+    refs.iter().all(|r| {
+        let &[r] = r.as_slice() else { return false };
+        items
+            .iter()
+            .any(|it| matches!(it.as_slice(), &[s] if equal(p, s, r, false)))
+    })
 }
 
 /// The part's `at` point, one value per coordinate.

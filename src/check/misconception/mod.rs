@@ -8,9 +8,10 @@
 //! at every sample point with the checker's tolerance. Where a problem lacks what a generator
 //! needs (bodies, a gravity parameter, a cyclic coordinate), the detector stays silent.
 //!
-//! The hooks ([`expression`], [`equations`], [`list`]) run after the checker's own diagnosis of
+//! The hooks ([`expression`], [`equations`], [`condition`], [`list`]) run after the checker's own diagnosis of
 //! a wrong answer; a literature diagnosis found replaces the generic `not-equal`.
 
+mod condition;
 mod energies;
 mod frequencies;
 mod motion;
@@ -81,6 +82,16 @@ pub(crate) fn equations(part: &Part, p: &mut Prepared, res: &[Id], v: &mut Verdi
         return;
     }
     let found = motion::diagnose(part, p, res);
+    report(v, found);
+}
+
+/// Hook for a wrong condition without accelerations (an equation part such as an equilibrium
+/// condition; `res` are the student's residuals).
+pub(crate) fn condition(p: &mut Prepared, res: &[Id], v: &mut Verdict) {
+    if v.status == Status::Correct || !small(p, res) {
+        return;
+    }
+    let found = condition::lost_root(p, res);
     report(v, found);
 }
 

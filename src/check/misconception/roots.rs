@@ -6,7 +6,8 @@ use super::super::compare::values;
 use super::super::points::PointSet;
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
-use crate::expr::{Func, Id};
+use crate::expr::{Func, Id, Node, Pool, Sym};
+use rustc_hash::FxHashSet;
 
 /// Values of `e` at every sample point (`None` where undefined or on failure).
 fn at_points(p: &Prepared, e: Id) -> Vec<Option<f64>> {
@@ -29,13 +30,40 @@ fn same_angle(a: &[Option<f64>], b: &[Option<f64>]) -> bool {
     checked > 0
 }
 
-/// The factors a student may divide the condition by, for coordinate q: sin q, cos q, q.
-fn factors(p: &mut Prepared, q: Id) -> Vec<Id> {
-    vec![
+/// The factors a student may divide the condition by, for coordinate q: sin q and cos q, and
+/// q itself only for a coordinate that never appears inside a trigonometric function in L (a
+/// length such as r): nobody divides sin θ = 0 by θ.
+pub fn factors(p: &mut Prepared, sym: Sym) -> Vec<Id> {
+    let q = p.system.pool.var(sym, 0);
+    let mut out = vec![
         p.system.pool.func(Func::Sin, q),
         p.system.pool.func(Func::Cos, q),
-        q,
-    ]
+    ];
+    if !in_trig(&p.system.pool, p.system.lagrangian, sym) {
+        out.push(q);
+    }
+    out
+}
+
+/// Whether the coordinate `q` (order 0) occurs inside a sin, cos or tan anywhere in `root`
+/// (iterative, each shared node visited once, so bounded by the pool's size).
+pub fn in_trig(pool: &Pool, root: Id, q: Sym) -> bool {
+    let mut seen = FxHashSet::default();
+    let mut stack = vec![root];
+    while let Some(n) = stack.pop() {
+        if !seen.insert(n) {
+            continue;
+        }
+        match pool.node(n) {
+            Node::Func(Func::Sin | Func::Cos | Func::Tan, a) => {
+                if pool.variables(*a).contains(&(q, 0)) {
+                    return true;
+                }
+            }
+            _ => pool.push_children(n, &mut stack),
+        }
+    }
+    false
 }
 
 /// `lost-root` for a one-coordinate equilibria answer whose items are all right.
@@ -56,8 +84,7 @@ pub fn lost_root(p: &mut Prepared, items: &[Vec<Id>], refs: &[Vec<Id>]) -> Optio
         return None;
     }
     let sym = p.system.coordinates[0].sym;
-    let q = p.system.pool.var(sym, 0);
-    for f in factors(p, q) {
+    for f in factors(p, sym) {
         let zero_at = |p: &mut Prepared, vals: &[Option<f64>]| -> bool {
             value_at(p, f, vals).is_some_and(|v| v.iter().all(|x| x.abs() < 1e-9))
         };
