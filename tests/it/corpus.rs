@@ -14,19 +14,13 @@
 //! false rejects — and a correct answer its labelled codes (`up-to-constant`…); (b) the
 //! diagnosis rate: of the incorrect and invalid answers with codes, ≥ 90% get the labelled
 //! codes; (c) no misleading diagnosis: the headline (first, most specific) code is labelled,
-//! `+`-allowed or neutral, and no `!` code appears. `pending-notation.txt` holds answers in the
-//! notation issue 12 adds; it is skipped while `SKIP_PENDING_NOTATION` is true.
+//! `+`-allowed or neutral, and no `!` code appears. `notation-examiner.txt` holds answers in the
+//! notation issue 12 adds, labelled by an examiner before that notation was read.
 
 use std::collections::{BTreeSet, HashMap};
 
 use lagrange::bank::embedded;
 use lagrange::check::{Checker, Code, Status};
-
-/// True until issue 12's notation (named answers, `sin θ`, `d/dt(…)`, `±`, stability) lands.
-const SKIP_PENDING_NOTATION: bool = false;
-
-/// The file skipped while `SKIP_PENDING_NOTATION` holds.
-const PENDING_NOTATION_FILE: &str = "pending-notation.txt";
 
 /// Headline codes that never mislead: they say that something is wrong, not what.
 const NEUTRAL: &[&str] = &[
@@ -123,14 +117,13 @@ fn corpus_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus")
 }
 
-/// Every `*.txt` under `tests/corpus/`, by name, without the skipped pending file.
+/// Every `*.txt` under `tests/corpus/`, by name.
 fn files() -> Vec<(String, String)> {
     let mut names: Vec<String> = std::fs::read_dir(corpus_dir())
         .expect("tests/corpus reads")
         .map(|e| e.expect("a directory entry").file_name())
         .filter_map(|n| n.to_str().map(str::to_string))
         .filter(|n| n.ends_with(".txt"))
-        .filter(|n| !(SKIP_PENDING_NOTATION && n == PENDING_NOTATION_FILE))
         .collect();
     names.sort();
     assert!(names.iter().any(|n| n == "answers.txt"), "{names:?}");
@@ -311,7 +304,6 @@ fn corpus_diagnosis_rate_meets_the_goal() {
 }
 
 #[test]
-#[ignore = "issue 12: diagnoses being merged"]
 fn corpus_has_no_misleading_diagnosis() {
     let outcomes = outcomes();
     let misleading: Vec<String> = outcomes
@@ -340,15 +332,10 @@ fn every_diagnosis_code_is_exercised() {
             "wrong-kind" | "syntax" | "not-equal" | "equivalent-lagrangian" | "up-to-constant"
             // Needs the student's earlier answers: exercised in `follow.rs`.
             | "follows-from-earlier"
-        ) || PENDING.contains(&code)
-            || used.contains(code)
+        ) || used.contains(code)
         {
             continue;
         }
         panic!("no corpus answer triggers `{code}`");
     }
 }
-
-/// Codes declared for issue 12 whose detection is being built: each leaves this list when a
-/// corpus answer triggers it (the list must be empty when the issue is done).
-const PENDING: &[&str] = &[];
