@@ -321,6 +321,16 @@ fn describe(
                         "the coefficient of {which}'s term in {what} is incomplete: part of it is missing"
                     ),
                 ),
+                Some(what)
+                    if which == "your answer" && cross_velocities(p, reference.signed[j]) =>
+                {
+                    Diagnosis::new(
+                        Code::MissingTerm,
+                        format!(
+                            "{which} has no cross term in {what}: velocities add as vectors, so the square of a sum of velocities has a cross term"
+                        ),
+                    )
+                }
                 Some(what) => {
                     Diagnosis::new(Code::MissingTerm, format!("{which} has no term in {what}"))
                 }
@@ -524,6 +534,20 @@ fn wrong_factor(
 
 /// What a reference term contains, without its coefficient: the product of its factors that
 /// depend on the state, e.g. `θ̇₂²·sin(θ₁ − θ₂)`. `None` for a term without any.
+/// Whether `r` is a product of two different velocities (θ̇₁·θ̇₂·cos(θ₁ − θ₂)): the cross term
+/// of a kinetic energy.
+fn cross_velocities(p: &Prepared, r: Id) -> bool {
+    let coords = p.system.coordinate_syms();
+    let velocities = p
+        .system
+        .pool
+        .variables(r)
+        .iter()
+        .filter(|(s, o)| *o == 1 && coords.contains(s))
+        .count();
+    velocities >= 2
+}
+
 fn content(p: &Prepared, r: Id) -> Option<String> {
     let time = p.system.pool.time();
     let coords = p.system.coordinate_syms();
