@@ -284,35 +284,7 @@ fn check_motion(part: &Part, p: &mut Prepared, (eqs, res): (&[(Id, Id)], &[Id]),
         .map(|(r, _)| *r)
         .collect();
     let rank = rank_of(p, &holding);
-    let mut degenerate = false;
-    if res.len() != want {
-        v.diagnoses.push(Diagnosis::new(
-            Code::EquationCount,
-            format!(
-                "{want} equation{} {} asked for, but you gave {}",
-                if want == 1 { "" } else { "s" },
-                if want == 1 { "is" } else { "are" },
-                res.len()
-            ),
-        ));
-    } else if ok.iter().all(|o| *o) {
-        if rank == want {
-            // Holding at the true accelerations is not enough: the equations must determine
-            // them everywhere, not only away from where a factor vanishes.
-            let reference = single_reference(part, p);
-            match degeneracy(p, res, reference) {
-                None => v.status = Status::Correct,
-                Some(d) => {
-                    v.diagnoses.push(d.details());
-                    degenerate = true;
-                }
-            }
-        } else {
-            v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
-                "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
-            ));
-        }
-    }
+    let degenerate = judge_together(part, p, res, (&ok, rank, want), v);
     for (i, &r) in res.iter().enumerate().filter(|(i, _)| !ok[*i]) {
         let which = if res.len() > 1 {
             format!("equation {}", i + 1)
@@ -345,6 +317,48 @@ fn check_motion(part: &Part, p: &mut Prepared, (eqs, res): (&[(Id, Id)], &[Id]),
         ));
     }
     v.score = score(v.status, degenerate, rank, want, res.len());
+}
+
+/// The equations as a whole: their number, whether those that hold determine the
+/// accelerations, and (all holding) whether a factor makes them vanish somewhere. Sets the
+/// status when they are right; returns whether they degenerate (a vanishing factor).
+fn judge_together(
+    part: &Part,
+    p: &mut Prepared,
+    res: &[Id],
+    (ok, rank, want): (&[bool], usize, usize),
+    v: &mut Verdict,
+) -> bool {
+    let mut degenerate = false;
+    if res.len() != want {
+        v.diagnoses.push(Diagnosis::new(
+            Code::EquationCount,
+            format!(
+                "{want} equation{} {} asked for, but you gave {}",
+                if want == 1 { "" } else { "s" },
+                if want == 1 { "is" } else { "are" },
+                res.len()
+            ),
+        ));
+    } else if ok.iter().all(|o| *o) {
+        if rank == want {
+            // Holding at the true accelerations is not enough: the equations must determine
+            // them everywhere, not only away from where a factor vanishes.
+            let reference = single_reference(part, p);
+            match degeneracy(p, res, reference) {
+                None => v.status = Status::Correct,
+                Some(d) => {
+                    v.diagnoses.push(d.details());
+                    degenerate = true;
+                }
+            }
+        } else {
+            v.diagnoses.push(Diagnosis::new(Code::DependentEquations,
+                "each of your equations holds, but together they do not determine the accelerations: one is a multiple or combination of the others",
+            ));
+        }
+    }
+    degenerate
 }
 
 /// Partial credit for equations: the share of the asked equations that hold independently,
