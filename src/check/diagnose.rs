@@ -186,28 +186,11 @@ pub fn swapped(
 /// the sample points, not a rounding).
 /// Walks the expression without recursion, each node once.
 pub fn has_decimal(p: &Prepared, e: Id) -> bool {
-    let pool = &p.system.pool;
     let ten = num_bigint::BigInt::from(10);
-    let mut stack = vec![e];
-    let mut seen = rustc_hash::FxHashSet::default();
-    while let Some(x) = stack.pop() {
-        if !seen.insert(x) {
-            continue;
-        }
-        match pool.node(x) {
-            Node::Num(q) => {
-                let d = q.denom();
-                if (d % &ten) == num_bigint::BigInt::from(0) || *d > num_bigint::BigInt::from(12) {
-                    return true;
-                }
-            }
-            Node::Add(t) | Node::Mul(t) => stack.extend(t.iter().copied()),
-            Node::Pow(b, x) => stack.extend([*b, *x]),
-            Node::Func(_, a) => stack.push(*a),
-            Node::Var(..) | Node::Pi => {}
-        }
-    }
-    false
+    let twelve = num_bigint::BigInt::from(12);
+    p.system.pool.any_node(e, |n| {
+        matches!(n, Node::Num(q) if (q.denom() % &ten) == num_bigint::BigInt::from(0) || *q.denom() > twelve)
+    })
 }
 
 /// Agreement to only a few digits: `a` (which holds a decimal) is within

@@ -178,24 +178,9 @@ pub(super) fn quadratic_about_zero(p: &mut Prepared, e: Id) -> Id {
 pub(super) fn has_function_of_coordinate(p: &Prepared, e: Id) -> bool {
     let coords = p.system.coordinate_syms();
     let pool = &p.system.pool;
-    let mut stack = vec![e];
-    let mut seen = rustc_hash::FxHashSet::default();
-    while let Some(x) = stack.pop() {
-        if !seen.insert(x) {
-            continue;
-        }
-        match pool.node(x) {
-            Node::Func(_, a) => {
-                if pool.variables(*a).iter().any(|(s, _)| coords.contains(s)) {
-                    return true;
-                }
-            }
-            Node::Add(t) | Node::Mul(t) => stack.extend(t.iter().copied()),
-            Node::Pow(b, x) => stack.extend([*b, *x]),
-            Node::Num(_) | Node::Var(..) | Node::Pi => {}
-        }
-    }
-    false
+    pool.any_node(e, |n| {
+        matches!(n, Node::Func(_, a) if pool.variables(*a).iter().any(|(s, _)| coords.contains(s)))
+    })
 }
 
 /// The most telling limit (at rest, a parameter zero) in which the answer is right, said as

@@ -112,7 +112,7 @@ pub fn run() -> anyhow::Result<ExitCode> {
 }
 
 /// Writes a command's output; a closed pipe (`lagrange … | head`) is not an error.
-fn emit(text: &str) -> std::io::Result<()> {
+pub(crate) fn emit(text: &str) -> std::io::Result<()> {
     use std::io::Write;
     let mut stdout = std::io::stdout().lock();
     match stdout

@@ -292,6 +292,23 @@ impl Pool {
         }
     }
 
+    /// Whether `pred` holds for any node of `root` (itself included). Walks without
+    /// recursion, each shared node once, so bounded by the pool's size.
+    pub fn any_node(&self, root: Id, mut pred: impl FnMut(&Node) -> bool) -> bool {
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut stack = vec![root];
+        while let Some(n) = stack.pop() {
+            if !seen.insert(n) {
+                continue;
+            }
+            if pred(self.node(n)) {
+                return true;
+            }
+            self.push_children(n, &mut stack);
+        }
+        false
+    }
+
     /// Every distinct variable (symbol with derivative order) occurring in `id`, sorted by
     /// symbol then order.
     pub fn variables(&self, id: Id) -> Vec<(Sym, u8)> {

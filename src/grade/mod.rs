@@ -97,7 +97,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     } else {
         table_text(&summary, table.format, &written)
     };
-    emit(&text)?;
+    crate::cli::emit(&text)?;
     let errors = summary.status.get("error").copied().unwrap_or(0);
     if errors > 0 {
         let what = if errors == 1 {
@@ -108,19 +108,6 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("{what}, see {}", shown(&dir.join("results.csv")));
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// Writes to stdout; a closed pipe (`lagrange grade … | head`) is not an error.
-fn emit(text: &str) -> std::io::Result<()> {
-    use std::io::Write;
-    let mut stdout = std::io::stdout().lock();
-    match stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-    {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        other => other,
-    }
 }
 
 /// A path as shown to the user (`-` is standard input).

@@ -7,7 +7,6 @@ use super::super::points::PointSet;
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
 use crate::expr::{Func, Id, Node, Pool, Sym};
-use rustc_hash::FxHashSet;
 
 /// Values of `e` at every sample point (`None` where undefined or on failure).
 fn at_points(p: &Prepared, e: Id) -> Vec<Option<f64>> {
@@ -48,22 +47,9 @@ pub fn factors(p: &mut Prepared, sym: Sym) -> Vec<Id> {
 /// Whether the coordinate `q` (order 0) occurs inside a sin, cos or tan anywhere in `root`
 /// (iterative, each shared node visited once, so bounded by the pool's size).
 pub fn in_trig(pool: &Pool, root: Id, q: Sym) -> bool {
-    let mut seen = FxHashSet::default();
-    let mut stack = vec![root];
-    while let Some(n) = stack.pop() {
-        if !seen.insert(n) {
-            continue;
-        }
-        match pool.node(n) {
-            Node::Func(Func::Sin | Func::Cos | Func::Tan, a) => {
-                if pool.variables(*a).contains(&(q, 0)) {
-                    return true;
-                }
-            }
-            _ => pool.push_children(n, &mut stack),
-        }
-    }
-    false
+    pool.any_node(root, |n| {
+        matches!(n, Node::Func(Func::Sin | Func::Cos | Func::Tan, a) if pool.variables(*a).contains(&(q, 0)))
+    })
 }
 
 /// `lost-root` for a one-coordinate equilibria answer whose items are all right.
