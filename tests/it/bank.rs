@@ -274,3 +274,42 @@ fn one_embedded_problem_loads_by_id() {
     }
     assert!(embedded::problem("no-such-problem").is_none());
 }
+
+/// Regression (fuzz toml, seed 2026): one equation of a two-coordinate system stated times a
+/// factor that vanishes (ṙ, r) verified, because a lone equation without a reference was never
+/// judged for degeneracy. It is now judged against the Euler–Lagrange equation it multiplies.
+#[test]
+fn a_lone_reference_equation_times_a_vanishing_factor_is_refused() {
+    let text = include_str!("../../problems/central-force.toml");
+    let right = "m*r'' - m*r*phi'^2 + k/r^2 = 0";
+    assert!(
+        text.contains(&format!("answer = \"{right}\"")),
+        "the bank's radial equation"
+    );
+    for factor in ["r'", "r"] {
+        let bad = format!("({}) * {factor} = 0", right.trim_end_matches(" = 0"));
+        let file = text.replace(
+            &format!("answer = \"{right}\""),
+            &format!("answer = \"{bad}\""),
+        );
+        let p = lagrange::bank::load_str("central-force.toml", &file).expect("still loads");
+        let findings: Vec<String> = verify(&p).iter().map(|f| f.to_string()).collect();
+        assert!(
+            findings
+                .iter()
+                .any(|f| f.contains("multiplied by") && f.contains("vanishes")),
+            "{factor}: {findings:?}"
+        );
+    }
+    // The equation itself (and a constant multiple of it) still verifies.
+    let doubled = text.replace(
+        &format!("answer = \"{right}\""),
+        "answer = \"2*m*r'' - 2*m*r*phi'^2 + 2*k/r^2 = 0\"",
+    );
+    let p = lagrange::bank::load_str("central-force.toml", &doubled).expect("loads");
+    assert!(
+        verify(&p).is_empty(),
+        "{:?}",
+        verify(&p).iter().map(|f| f.to_string()).collect::<Vec<_>>()
+    );
+}

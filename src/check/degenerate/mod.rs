@@ -31,7 +31,10 @@ use crate::expr::Id;
 ///
 /// One equation of a system with several coordinates (`res.len() == 1 < n`) is judged
 /// against `reference`, the part's own reference equation: it must be that equation times a
-/// factor that vanishes nowhere.
+/// factor that vanishes nowhere. Without a reference (the bank verifying a part's own
+/// reference equation) it is judged against the one Euler–Lagrange equation it is a multiple
+/// of, when it is one (`r·(m r̈ − m r φ̇² + k/r²) = 0` against the radial equation); a
+/// genuine combination of several is not judged.
 pub(crate) fn degeneracy(
     p: &mut Prepared,
     res: &[Id],
@@ -41,8 +44,52 @@ pub(crate) fn degeneracy(
     let det = match (res, reference) {
         _ if res.len() == n => DetC::new(p, res)?,
         ([r], Some(reference)) => DetC::projection(p, *r, reference)?,
+        ([r], None) => {
+            let e = multiple_of(p, *r)?;
+            DetC::projection(p, *r, e)?
+        }
         _ => return None,
     };
     let found = probe(p, &det)?;
     Some(explain(p, res, found))
+}
+
+/// The Euler–Lagrange equation whose acceleration row is parallel to `r`'s at every sample
+/// point where both are defined (so `r` is a function times that equation), if exactly one is.
+fn multiple_of(p: &mut Prepared, r: Id) -> Option<Id> {
+    let coords = p.system.coordinate_syms();
+    let equations = p.derivation.equations();
+    let n = coords.len();
+    let mut roots = Vec::with_capacity((equations.len() + 1) * n);
+    for &e in std::iter::once(&r).chain(&equations) {
+        for &c in &coords {
+            roots.push(p.system.pool.diff(e, c, 2));
+        }
+    }
+    let vals = super::compare::values(&p.system, &roots, &p.points).ok()?;
+    let parallel = |v: &[f64], i: usize| -> bool {
+        let a = &v[..n];
+        let m = &v[(i + 1) * n..(i + 2) * n];
+        let dot: f64 = a.iter().zip(m).map(|(x, y)| x * y).sum();
+        let aa: f64 = a.iter().map(|x| x * x).sum();
+        let mm: f64 = m.iter().map(|x| x * x).sum();
+        // |a|²|m|² − (a·m)² is the squared area between the rows: zero when parallel (a zero
+        // row of `r` is parallel to anything, which is what a vanishing factor looks like).
+        (aa * mm - dot * dot).abs() <= 1e-9 * (aa * mm).max(f64::MIN_POSITIVE)
+    };
+    let mut found = None;
+    for i in 0..equations.len() {
+        let mut seen = 0;
+        let all = vals.iter().flatten().all(|v| {
+            seen += 1;
+            parallel(v, i)
+        });
+        if all && seen > 0 {
+            if found.is_some() {
+                return None;
+            }
+            found = Some(equations[i]);
+        }
+    }
+    found
 }
