@@ -78,7 +78,7 @@ fn multiple_of(p: &mut Prepared, r: Id) -> Option<Id> {
         (aa * mm - dot * dot).abs() <= 1e-9 * (aa * mm).max(f64::MIN_POSITIVE)
     };
     let mut found = None;
-    for i in 0..equations.len() {
+    for (i, &e) in equations.iter().enumerate() {
         let mut seen = 0;
         let all = vals.iter().flatten().all(|v| {
             seen += 1;
@@ -88,7 +88,7 @@ fn multiple_of(p: &mut Prepared, r: Id) -> Option<Id> {
             if found.is_some() {
                 return None;
             }
-            found = Some(equations[i]);
+            found = Some(e);
         }
     }
     found
