@@ -18,6 +18,7 @@ pub mod modes;
 pub mod naming;
 pub(crate) mod sample;
 pub mod state;
+pub mod steady;
 pub mod symbolic_modes;
 pub mod system;
 

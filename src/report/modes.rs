@@ -33,6 +33,9 @@ pub struct ModesOptions {
     pub at: Option<Vec<(String, String)>>,
     /// Also the characteristic polynomial and ω² in closed form (needs `at`).
     pub symbolic: bool,
+    /// Steady motions: fixed momenta `p_phi = value` of cyclic coordinates; the analysis is
+    /// of the Routhian (see [`steady`](super::steady)).
+    pub steady: Vec<(String, String)>,
 }
 
 /// Why the modes could not be reported.
@@ -72,6 +75,9 @@ pub enum ModesError {
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
+    /// The steady-motion reduction failed.
+    #[error(transparent)]
+    Steady(#[from] crate::mechanics::steady::SteadyError),
 }
 
 /// A `name=value` item that is not one.
@@ -105,6 +111,9 @@ pub struct ModesReport {
     /// ω² in closed form, when closed forms were asked for (empty: not given for this size).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_squared: Option<Vec<Formula>>,
+    /// The Routhian and the cyclic velocities, for steady motions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady: Option<super::steady::SteadyNote>,
     /// How the text shows each coordinate.
     #[serde(skip)]
     pub coordinate_labels: Vec<Formula>,
@@ -147,8 +156,10 @@ fn stability_name<S: Serializer>(s: &Stability, ser: S) -> Result<S::Ok, S::Erro
 pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesError> {
     let mut sys = sys.clone();
     set_ranges(&mut sys, opts)?;
-    let values = sys.substitute_parameters(&opts.params)?;
-    check_values(&sys, &values, &opts.params)?;
+    let (mut sys, steady) = super::steady::reduce(sys, &opts.steady)?;
+    let params: Vec<(String, String)> = opts.params.iter().chain(&opts.steady).cloned().collect();
+    let values = sys.substitute_parameters(&params)?;
+    check_values(&sys, &values, &params)?;
     // Parameters declared but not used by L (a bank problem's `l` for its equal-length
     // part) need no value.
     sys.drop_unused_parameters();
@@ -204,6 +215,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
                 .map(|w| Formula::factored(pool, w))
                 .collect()
         }),
+        steady,
         coordinate_labels,
     })
 }
@@ -332,6 +344,9 @@ impl ModesReport {
     }
 
     fn write_text(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+        if let Some(s) = &self.steady {
+            s.write_text(style, paint, o)?;
+        }
         if self.continuum {
             writeln!(
                 o,

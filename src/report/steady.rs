@@ -1,0 +1,87 @@
+//! The `steady` option of [`modes()`](super::modes()): reduces the system by the cyclic
+//! coordinates whose momenta are fixed (the Routhian), so that the equilibria found are the
+//! steady motions and the modes the small oscillations about them.
+
+use serde::Serialize;
+
+use super::Formula;
+use crate::mechanics::System;
+use crate::mechanics::steady::SteadyError;
+
+/// What a steady-motion analysis adds to the modes report.
+#[derive(Clone, Debug, Serialize)]
+pub struct SteadyNote {
+    /// The fixed momenta, `p_phi = value`, as given.
+    pub momenta: Vec<(String, String)>,
+    /// The Routhian R = L − Σ p φ', the Lagrangian of the coordinates that stay put.
+    pub routhian: Formula,
+    /// Each cyclic velocity at the fixed momenta, `phi'` and its expression.
+    pub rates: Vec<(String, Formula)>,
+}
+
+/// The coordinates named by `p_<coordinate>` keys.
+fn cyclic_names(momenta: &[(String, String)]) -> Result<Vec<String>, SteadyError> {
+    momenta
+        .iter()
+        .map(|(k, _)| {
+            let k = k.trim();
+            k.strip_prefix("p_")
+                .map(str::to_string)
+                .ok_or_else(|| SteadyError::NotMomentum { key: k.to_string() })
+        })
+        .collect()
+}
+
+/// The Routhian system for the fixed `momenta` (none: the system itself, no note).
+pub(super) fn reduce(
+    sys: System,
+    momenta: &[(String, String)],
+) -> Result<(System, Option<SteadyNote>), SteadyError> {
+    if momenta.is_empty() {
+        return Ok((sys, None));
+    }
+    let names = cyclic_names(momenta)?;
+    let mut full = sys;
+    let d = full.derive()?;
+    let reduced = full.routhian(&d, &names)?;
+    let pool = &reduced.system.pool;
+    let note = SteadyNote {
+        momenta: momenta.to_vec(),
+        routhian: Formula::new(pool, reduced.system.lagrangian),
+        rates: reduced
+            .cyclic
+            .iter()
+            .zip(&reduced.rates)
+            .map(|(n, &r)| (format!("{n}'"), Formula::new(pool, r)))
+            .collect(),
+    };
+    Ok((reduced.system, Some(note)))
+}
+
+impl SteadyNote {
+    /// The heading lines: what is fixed, the Routhian and the cyclic velocities.
+    pub(super) fn write_text(
+        &self,
+        style: crate::expr::Style,
+        paint: &dyn super::Paint,
+        o: &mut String,
+    ) -> std::fmt::Result {
+        use std::fmt::Write as _;
+        let fixed: Vec<String> = self
+            .momenta
+            .iter()
+            .map(|(k, v)| format!("{} = {}", k.trim(), v.trim()))
+            .collect();
+        writeln!(
+            o,
+            "{} {} fixed; equilibria of the Routhian R = {} are the steady motions",
+            paint.heading("steady motions:"),
+            fixed.join(", "),
+            self.routhian.get(style)
+        )?;
+        for (name, rate) in &self.rates {
+            writeln!(o, "  {name} = {}", rate.get(style))?;
+        }
+        Ok(())
+    }
+}

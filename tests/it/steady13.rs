@@ -1,0 +1,292 @@
+//! Issue 13: steady motions through the Routhian, and symbolic modes beyond two coordinates
+//! and with gyroscopic terms — each against a closed form from the textbook, not the tool's
+//! own output.
+
+use lagrange::expr::{Id, read_expr};
+use lagrange::mechanics::System;
+use lagrange::mechanics::equilibria::Stability;
+use lagrange::report::{ModesError, ModesOptions, ModesReport, modes};
+
+fn pairs(text: &[(&str, &str)]) -> Vec<(String, String)> {
+    text.iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect()
+}
+
+/// The numeric modes of `l` with fixed momenta `steady` and parameter values `params`.
+fn steady_modes(
+    l: &str,
+    coords: &[&str],
+    params: &[(&str, &str)],
+    steady: &[(&str, &str)],
+) -> ModesReport {
+    let sys = System::from_lagrangian(l, coords).unwrap();
+    let opts = ModesOptions {
+        default_range: Some((0.01, 10.0)),
+        params: pairs(params),
+        steady: pairs(steady),
+        ..ModesOptions::default()
+    };
+    modes(&sys, &opts).unwrap()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-7 * a.abs().max(b.abs()).max(1.0)
+}
+
+const CENTRAL: &str = "1/2*m*(r'^2 + r^2*phi'^2) - V";
+
+#[test]
+fn kepler_circular_orbit_has_radial_frequency_equal_to_its_angular_velocity() {
+    // V = −k/r: r₀ = p²/(m k), φ' = p/(m r₀²), and ω_r = φ' (the orbits close).
+    let (m, k, p) = (1.5, 2.0, 0.7);
+    let l = CENTRAL.replace('V', "(-k/r)");
+    let rep = steady_modes(
+        &l,
+        &["r", "phi"],
+        &[("m", "1.5"), ("k", "2")],
+        &[("p_phi", "0.7")],
+    );
+    assert_eq!(rep.equilibria.len(), 1);
+    let e = &rep.equilibria[0];
+    let r0 = p * p / (m * k);
+    assert!(close(e.coordinates[0], r0), "{:?}", e.coordinates);
+    assert_eq!(e.stability, Stability::Stable);
+    let phidot = p / (m * r0 * r0);
+    assert_eq!(e.frequencies.len(), 1);
+    assert!(
+        close(e.frequencies[0], phidot),
+        "{} vs {phidot}",
+        e.frequencies[0]
+    );
+}
+
+#[test]
+fn power_law_circular_orbit_has_radial_frequency_sqrt_n_plus_2_times_phidot() {
+    // V = k rⁿ/n (n > −2): m r₀ φ'² = k r₀ⁿ⁻¹ and ω_r² = (n + 2) φ'².
+    for (n, text) in [(2.0f64, "k*r^2/2"), (4.0, "k*r^4/4"), (1.0, "k*r")] {
+        let (m, k, p): (f64, f64, f64) = (1.0, 3.0, 1.3);
+        let l = CENTRAL.replace('V', &format!("({text})"));
+        let rep = steady_modes(
+            &l,
+            &["r", "phi"],
+            &[("m", "1"), ("k", "3")],
+            &[("p_phi", "1.3")],
+        );
+        assert_eq!(rep.equilibria.len(), 1, "n = {n}");
+        let r0: f64 = (p * p / (m * k)).powf(1.0 / (n + 2.0));
+        let e = &rep.equilibria[0];
+        assert!(
+            close(e.coordinates[0], r0),
+            "n = {n}: {:?} vs {r0}",
+            e.coordinates
+        );
+        let phidot = p / (m * r0 * r0);
+        let want = ((n + 2.0) * phidot * phidot).sqrt();
+        assert!(
+            close(e.frequencies[0], want),
+            "n = {n}: {:?} vs {want}",
+            e.frequencies
+        );
+    }
+}
+
+#[test]
+fn conical_pendulum_steady_motion_and_its_oscillation() {
+    // φ'² = g/(l cos α) on the cone θ = α; about it ω² = φ'² (1 + 3 cos² α).
+    let l = "1/2*m*l^2*(theta'^2 + sin(theta)^2*phi'^2) + m*g*l*cos(theta)";
+    let (g, len, p) = (9.81, 0.8, 0.4);
+    let rep = steady_modes(
+        l,
+        &["theta", "phi"],
+        &[("m", "1"), ("l", "0.8"), ("g", "9.81")],
+        &[("p_phi", "0.4")],
+    );
+    let e = rep
+        .equilibria
+        .iter()
+        .find(|e| e.coordinates[0] > 0.0)
+        .unwrap();
+    let a = e.coordinates[0];
+    let phidot = p / (len * len * a.sin().powi(2));
+    assert!(close(phidot * phidot, g / (len * a.cos())), "α = {a}");
+    let want = phidot * (1.0 + 3.0 * a.cos().powi(2)).sqrt();
+    assert_eq!(e.stability, Stability::Stable);
+    assert!(
+        close(e.frequencies[0], want),
+        "{:?} vs {want}",
+        e.frequencies
+    );
+}
+
+#[test]
+fn mass_on_a_table_through_a_hole() {
+    // m₁ on the table, m₂ hanging: m₁ r₀ φ'² = m₂ g and ω² = 3 m₁ φ'²/(m₁ + m₂).
+    let l = "1/2*(m1 + m2)*r'^2 + 1/2*m1*r^2*phi'^2 - m2*g*r";
+    let (m1, m2, g, p) = (1.0, 2.0, 9.81, 1.1);
+    let rep = steady_modes(
+        l,
+        &["r", "phi"],
+        &[("m1", "1"), ("m2", "2"), ("g", "9.81")],
+        &[("p_phi", "1.1")],
+    );
+    assert_eq!(rep.equilibria.len(), 1);
+    let r0 = rep.equilibria[0].coordinates[0];
+    let phidot = p / (m1 * r0 * r0);
+    assert!(close(m1 * r0 * phidot * phidot, m2 * g));
+    let want = (3.0 * m1 * phidot * phidot / (m1 + m2)).sqrt();
+    assert!(close(rep.equilibria[0].frequencies[0], want));
+}
+
+#[test]
+fn a_coordinate_that_is_not_cyclic_is_refused_with_the_reason() {
+    let sys = System::from_lagrangian(
+        "1/2*m*l^2*(theta'^2 + sin(theta)^2*phi'^2) + m*g*l*cos(theta)",
+        &["theta", "phi"],
+    )
+    .unwrap();
+    let opts = ModesOptions {
+        params: pairs(&[("m", "1"), ("l", "1"), ("g", "1")]),
+        steady: pairs(&[("p_theta", "1")]),
+        ..ModesOptions::default()
+    };
+    let err = modes(&sys, &opts).unwrap_err();
+    assert!(matches!(err, ModesError::Steady(_)), "{err:?}");
+    assert!(
+        err.to_string()
+            .contains("theta is not cyclic: L depends on it"),
+        "{err}"
+    );
+}
+
+/// Symbolic ω² of `l` at `at`, as expressions in the system's pool.
+fn symbolic(l: &str, coords: &[&str], at: &[&str]) -> (System, Result<Vec<Id>, String>) {
+    let mut sys = System::from_lagrangian(l, coords).unwrap();
+    let d = sys.derive().unwrap();
+    let ctx = sys.open_context();
+    let at: Vec<Id> = at
+        .iter()
+        .map(|a| read_expr(a, &ctx, &mut sys.pool).unwrap())
+        .collect();
+    let r = sys
+        .symbolic_modes(&d, &at)
+        .map(|s| s.omega_squared)
+        .map_err(|e| e.to_string());
+    (sys, r)
+}
+
+/// Whether the roots `got` are the expressions `want`, in some order.
+fn same_roots(sys: &mut System, got: &[Id], want: &[&str]) -> bool {
+    let ctx = sys.open_context();
+    let want: Vec<Id> = want
+        .iter()
+        .map(|w| read_expr(w, &ctx, &mut sys.pool).unwrap())
+        .collect();
+    got.len() == want.len()
+        && want.iter().all(|&w| {
+            got.iter().any(|&g| {
+                let d = sys.pool.sub(g, w);
+                sys.is_zero(d)
+            })
+        })
+}
+
+#[test]
+fn three_masses_on_two_springs_factor_as_omega_squared_times_a_quadratic() {
+    let (mut sys, r) = symbolic(
+        "1/2*m*(x1'^2 + x2'^2 + x3'^2) - 1/2*k*((x2 - x1)^2 + (x3 - x2)^2)",
+        &["x1", "x2", "x3"],
+        &["0", "0", "0"],
+    );
+    let r = r.unwrap();
+    assert!(same_roots(&mut sys, &r, &["0", "k/m", "3*k/m"]), "{r:?}");
+}
+
+#[test]
+fn elastic_pendulum_roots_are_k_over_m_and_g_over_the_stretched_length() {
+    let (mut sys, r) = symbolic(
+        "1/2*m*(r'^2 + r^2*theta'^2) + m*g*r*cos(theta) - 1/2*k*(r - l0)^2",
+        &["r", "theta"],
+        &["l0 + m*g/k", "0"],
+    );
+    let r = r.unwrap();
+    assert!(same_roots(&mut sys, &r, &["k/m", "g*k/(k*l0 + m*g)"]));
+    // No square root of a polynomial is left over: the factors divided out exactly.
+    let shown: Vec<String> = r.iter().map(|&w| sys.pool.plain(w)).collect();
+    assert!(shown.iter().all(|s| !s.contains("sqrt")), "{shown:?}");
+}
+
+#[test]
+fn rotating_trap_symbolic_frequencies_are_two_minus_and_plus_omega() {
+    // In the frame rotating at Ω, trap frequency 2: ω = 2 ∓ Ω, never ω² = 4 − Ω² twice.
+    let (mut sys, r) = symbolic(
+        "1/2*((x' - Omega*y)^2 + (y' + Omega*x)^2) - 2*x^2 - 2*y^2",
+        &["x", "y"],
+        &["0", "0"],
+    );
+    let r = r.unwrap();
+    assert!(same_roots(
+        &mut sys,
+        &r,
+        &["(2 - Omega)^2", "(2 + Omega)^2"]
+    ));
+}
+
+#[test]
+fn damping_gets_no_closed_form_but_a_reason() {
+    let mut sys = System::from_lagrangian("1/2*m*x'^2 - 1/2*k*x^2", &["x"]).unwrap();
+    sys.set_forces("-c*x'").unwrap();
+    let d = sys.derive().unwrap();
+    let zero = sys.pool.zero();
+    let err = sys.symbolic_modes(&d, &[zero]).unwrap_err();
+    assert_eq!(err.code(), "closed-form-not-gyroscopic");
+    assert!(err.to_string().contains("not gyroscopic"), "{err}");
+}
+
+#[test]
+fn conical_pendulum_symbolic_frequency_at_the_cone_angle() {
+    // With p_φ = m l² sin²α √(g/(l cos α)) the steady motion is θ = α and
+    // ω² = g (1 + 3 cos² α)/(l cos α).
+    let sys = System::from_lagrangian(
+        "1/2*m*l^2*(theta'^2 + sin(theta)^2*phi'^2) + m*g*l*cos(theta)",
+        &["theta", "phi"],
+    )
+    .unwrap();
+    let opts = ModesOptions {
+        steady: pairs(&[("p_phi", "m*l^2*sin(alpha)^2*sqrt(g/(l*cos(alpha)))")]),
+        at: Some(pairs(&[("theta", "alpha")])),
+        symbolic: true,
+        ..ModesOptions::default()
+    };
+    let rep = modes(&sys, &opts).unwrap();
+    let w = rep.omega_squared.unwrap();
+    assert_eq!(w.len(), 1);
+    let mut check = System::from_lagrangian(&w[0].plain, &["alpha"]).unwrap();
+    let ctx = check.open_context();
+    let want = read_expr(
+        "g*(1 + 3*cos(alpha)^2)/(l*cos(alpha))",
+        &ctx,
+        &mut check.pool,
+    )
+    .unwrap();
+    let d = check.pool.sub(check.lagrangian, want);
+    assert!(check.is_zero(d), "{}", w[0].plain);
+}
+
+#[test]
+fn the_conical_pendulum_bank_problem_is_proved_and_a_wrong_rate_is_not() {
+    let bank = lagrange::bank::embedded::bank();
+    let problem = bank
+        .problems
+        .iter()
+        .find(|p| p.id == "conical-pendulum")
+        .unwrap();
+    assert!(lagrange::bank::verify::verify(problem).is_empty());
+    let text = include_str!("../../problems/conical-pendulum.toml")
+        .replace("answer = \"g/(l*cos(alpha))\"", "answer = \"g/l\"")
+        .replace("wrong = [\"g/l\", ", "wrong = [");
+    let bad = lagrange::bank::load_str("bad.toml", &text).unwrap();
+    let findings = lagrange::bank::verify::verify(&bad);
+    assert_eq!(findings.len(), 1, "{findings:?}");
+    assert_eq!(findings[0].code, "not-steady");
+}
