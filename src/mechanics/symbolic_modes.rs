@@ -25,6 +25,9 @@ struct Linearized {
     mass: Vec<Vec<Id>>,
     stiffness: Vec<Vec<Id>>,
     coupling: Vec<Vec<Id>>,
+    /// Kᵢᵢ/Mᵢᵢ simplified before the point is substituted (g cos θ/r, not a ratio of
+    /// expanded polynomials), then at the point: the roots of a coordinate that decouples.
+    ratios: Vec<Id>,
 }
 
 impl System {
@@ -101,11 +104,35 @@ impl System {
                 *entry = self.simplify(c);
             }
         }
+        let ratios = self.diagonal_ratios(d, &map);
         Linearized {
             mass,
             stiffness,
             coupling,
+            ratios,
         }
+    }
+
+    /// Kᵢᵢ/Mᵢᵢ at rest, simplified with the coordinates still symbolic, then at the point
+    /// (`map` sends each q to its value and each q', q'' to 0).
+    fn diagonal_ratios(&mut self, d: &Derivation, map: &FxHashMap<(Sym, u8), Id>) -> Vec<Id> {
+        let coords = self.coordinate_syms();
+        let rest: FxHashMap<_, _> = map
+            .iter()
+            .filter(|(k, _)| k.1 > 0)
+            .map(|(k, v)| (*k, *v))
+            .collect();
+        (0..self.n())
+            .map(|i| {
+                let dfdq = self.pool.diff(d.forcing[i], coords[i], 0);
+                let k = self.pool.neg(dfdq);
+                let r = self.pool.div(k, d.mass[i][i]);
+                let r = self.pool.substitute(r, &rest);
+                let r = self.simplify(r);
+                let r = self.pool.substitute(r, map);
+                self.simplify(r)
+            })
+            .collect()
     }
 
     /// C must be antisymmetric (gyroscopic) and K symmetric, or ω² is not the root of a
@@ -217,8 +244,7 @@ impl System {
             if coeffs.len() <= 1 || self.is_zero(lin.mass[i][i]) {
                 continue;
             }
-            let c = self.pool.div(lin.stiffness[i][i], lin.mass[i][i]);
-            let c = self.simplify(c);
+            let c = lin.ratios[i];
             let value = self.horner(&coeffs, c);
             if self.is_zero(value) {
                 coeffs = self.deflate(&coeffs, c);

@@ -117,6 +117,9 @@ pub struct ModesReport {
     /// How the text shows each coordinate.
     #[serde(skip)]
     pub coordinate_labels: Vec<Formula>,
+    /// Gyroscopic terms entered the characteristic polynomial: det(K − ω²M − iωC).
+    #[serde(skip)]
+    pub gyroscopic_closed_form: bool,
 }
 
 /// One equilibrium and its small oscillations.
@@ -217,6 +220,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         }),
         steady,
         coordinate_labels,
+        gyroscopic_closed_form: symbolic.as_ref().is_some_and(|s| s.gyroscopic),
     })
 }
 
@@ -357,9 +361,14 @@ impl ModesReport {
             self.render_equilibrium(m, style, paint, o)?;
         }
         if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
+            let det = if self.gyroscopic_closed_form {
+                "det(K − ω²M − iωC)"
+            } else {
+                "det(K − ω²M)"
+            };
             writeln!(
                 o,
-                "{} det(K − ω²M) = {}",
+                "{} {det} = {}",
                 paint.heading("characteristic polynomial:"),
                 p.get(style)
             )?;

@@ -290,3 +290,80 @@ fn the_conical_pendulum_bank_problem_is_proved_and_a_wrong_rate_is_not() {
     assert_eq!(findings.len(), 1, "{findings:?}");
     assert_eq!(findings[0].code, "not-steady");
 }
+
+#[test]
+fn heavy_symmetric_top_steady_precession() {
+    // Ω (C ω₃ − A Ω cos θ₀) = M g h with ω₃ = p_ψ/C, Ω = (p_φ − p_ψ cos θ)/(A sin² θ); the
+    // nutation frequency is √(V_eff''(θ₀)/A) with V_eff = (p_φ − p_ψ cos θ)²/(2A sin² θ) + M g h cos θ.
+    let l = "1/2*A*(theta'^2 + sin(theta)^2*phi'^2) + 1/2*C*(psi' + cos(theta)*phi')^2 - M*g*h*cos(theta)";
+    let (a, c, mgh, pphi, ppsi) = (1.0f64, 2.0f64, 1.0f64, 3.0f64, 4.0f64);
+    let rep = steady_modes(
+        l,
+        &["theta", "phi", "psi"],
+        &[("A", "1"), ("C", "2"), ("M", "1"), ("g", "1"), ("h", "1")],
+        &[("p_phi", "3"), ("p_psi", "4")],
+    );
+    let e = rep
+        .equilibria
+        .iter()
+        .find(|e| e.coordinates[0] > 0.0)
+        .unwrap();
+    let th = e.coordinates[0];
+    let w3 = ppsi / c;
+    let om = (pphi - ppsi * th.cos()) / (a * th.sin().powi(2));
+    assert!(close(om * (c * w3 - a * om * th.cos()), mgh), "θ₀ = {th}");
+    let veff =
+        |t: f64| (pphi - ppsi * t.cos()).powi(2) / (2.0 * a * t.sin().powi(2)) + mgh * t.cos();
+    let hstep = 1e-4;
+    let second = (veff(th + hstep) - 2.0 * veff(th) + veff(th - hstep)) / (hstep * hstep);
+    let want = (second / a).sqrt();
+    assert!(
+        (e.frequencies[0] - want).abs() < 1e-5 * want,
+        "{:?} vs {want}",
+        e.frequencies
+    );
+}
+
+#[test]
+fn modes_steady_prints_the_routhian_the_rate_and_the_oscillation() {
+    let (code, out, err) = crate::helpers::lagrange(&[
+        "modes",
+        "-L",
+        "1/2*m*(r'^2 + r^2*phi'^2) + k/r",
+        "-q",
+        "r,phi",
+        "--params",
+        "m=1, k=1",
+        "--range",
+        "r=0.1:10",
+        "--steady",
+        "p_phi=1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    insta::assert_snapshot!("modes_steady_kepler", out);
+    let (code, out, err) = crate::helpers::lagrange(&[
+        "modes",
+        "-L",
+        "1/2*((x' - Omega*y)^2 + (y' + Omega*x)^2) - 2*x^2 - 2*y^2",
+        "-q",
+        "x,y",
+        "--at",
+        "x=0, y=0",
+        "--symbolic",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    insta::assert_snapshot!("modes_symbolic_rotating_trap", out);
+    let (code, _, err) = crate::helpers::lagrange(&[
+        "modes",
+        "-L",
+        "1/2*m*r'^2 - k*r^2",
+        "-q",
+        "r",
+        "--params",
+        "m=1, k=1",
+        "--steady",
+        "p_r=1",
+    ]);
+    assert_ne!(code, 0);
+    insta::assert_snapshot!("modes_steady_not_cyclic", err);
+}
