@@ -137,6 +137,9 @@ pub struct EquilibriumModes {
     pub omega_squared: Vec<f64>,
     /// The equilibrium, by coordinate name.
     pub point: BTreeMap<String, f64>,
+    /// For a steady motion: the velocity of each cyclic coordinate, `phi'` and its value.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rates: Vec<(String, f64)>,
     /// Stable, unstable or marginal.
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
@@ -194,6 +197,13 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
             .iter()
             .map(|m| equilibrium(m, &names, &unicode))
             .collect();
+        if let Some(note) = &steady {
+            let points: Vec<Vec<f64>> = found.iter().map(|m| m.point.clone()).collect();
+            let rates = super::steady::rates_at(note, &mut sys, &values, &points);
+            for (e, r) in equilibria.iter_mut().zip(rates) {
+                e.rates = r;
+            }
+        }
     } else if !opts.symbolic {
         return Err(MechError::MissingValue {
             name: sys.parameters[0].name.clone(),
@@ -337,6 +347,7 @@ fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumMod
         stability: m.stability,
         stable: m.stability == Stability::Stable,
         coordinates: m.point.clone(),
+        rates: Vec::new(),
         descriptions: m.describe(labels),
     }
 }
@@ -409,6 +420,9 @@ impl ModesReport {
             paint.heading("equilibrium"),
             point.join(", ")
         )?;
+        for (name, v) in &m.rates {
+            writeln!(o, "  {name} = {}", fmt_value(*v))?;
+        }
         if m.gyroscopic {
             writeln!(
                 o,

@@ -4,7 +4,10 @@
 
 use serde::Serialize;
 
+use rustc_hash::FxHashMap;
+
 use super::Formula;
+use crate::expr::{Id, Sym};
 use crate::mechanics::System;
 use crate::mechanics::steady::SteadyError;
 
@@ -17,6 +20,9 @@ pub struct SteadyNote {
     pub routhian: Formula,
     /// Each cyclic velocity at the fixed momenta, `phi'` and its expression.
     pub rates: Vec<(String, Formula)>,
+    /// The same expressions, in the reduced system's pool.
+    #[serde(skip)]
+    rate_ids: Vec<Id>,
 }
 
 /// The coordinates named by `p_<coordinate>` keys.
@@ -54,6 +60,7 @@ pub(super) fn reduce(
             .zip(&reduced.rates)
             .map(|(n, &r)| (format!("{n}'"), Formula::new(pool, r)))
             .collect(),
+        rate_ids: reduced.rates.clone(),
     };
     Ok((reduced.system, Some(note)))
 }
@@ -84,4 +91,38 @@ impl SteadyNote {
         }
         Ok(())
     }
+}
+
+/// The cyclic velocities in the steady motion at each point `q` (coordinates of the reduced
+/// system), with the parameter `values` substituted; a rate that cannot be evaluated there
+/// is left out.
+pub(super) fn rates_at(
+    note: &SteadyNote,
+    sys: &mut System,
+    values: &FxHashMap<(Sym, u8), Id>,
+    points: &[Vec<f64>],
+) -> Vec<Vec<(String, f64)>> {
+    let ids: Vec<Id> = note
+        .rate_ids
+        .iter()
+        .map(|&r| sys.pool.substitute(r, values))
+        .collect();
+    let Ok(program) = sys.compile(&ids) else {
+        return vec![Vec::new(); points.len()];
+    };
+    let layout = sys.state_layout();
+    let params = vec![0.0; sys.parameters.len()];
+    points
+        .iter()
+        .map(|q| match program.eval(&layout.at_rest(q, &params)) {
+            Ok(v) => note
+                .rates
+                .iter()
+                .map(|(n, _)| n.clone())
+                .zip(v)
+                .filter(|(_, x)| x.is_finite())
+                .collect(),
+            Err(_) => Vec::new(),
+        })
+        .collect()
 }

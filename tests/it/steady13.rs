@@ -110,6 +110,9 @@ fn conical_pendulum_steady_motion_and_its_oscillation() {
     let a = e.coordinates[0];
     let phidot = p / (len * len * a.sin().powi(2));
     assert!(close(phidot * phidot, g / (len * a.cos())), "α = {a}");
+    assert_eq!(e.rates.len(), 1);
+    assert_eq!(e.rates[0].0, "phi'");
+    assert!(close(e.rates[0].1, phidot), "{:?}", e.rates);
     let want = phidot * (1.0 + 3.0 * a.cos().powi(2)).sqrt();
     assert_eq!(e.stability, Stability::Stable);
     assert!(
