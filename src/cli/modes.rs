@@ -29,8 +29,8 @@ pub struct ModesArgs {
     #[arg(long)]
     symbolic: bool,
     /// Steady motions: fix the momenta of cyclic coordinates, e.g. "p_phi=2" (a bare "p_phi"
-    /// keeps it symbolic); the equilibria and modes are then those of the Routhian (circular
-    /// orbits, the conical pendulum, steady precession).
+    /// keeps it symbolic, taken as positive in closed forms); the equilibria and modes are then
+    /// those of the Routhian (circular orbits, the conical pendulum, steady precession).
     #[arg(long, allow_hyphen_values = true)]
     steady: Option<String>,
     /// JSON output.

@@ -3,7 +3,9 @@
 //! steady precession. Through the Routhian R = L − Σ p_φ φ' with φ' eliminated at fixed
 //! momenta p_φ: R is a Lagrangian for the other coordinates (p_φ a parameter), its equilibria
 //! are the steady motions and its modes the small oscillations about them (with −R at rest
-//! the effective potential; velocity-linear terms of R are gyroscopic).
+//! the effective potential; velocity-linear terms of R are gyroscopic). The momenta become
+//! parameters of the reduced system and so, like every parameter, are taken as positive by
+//! its simplifier: closed forms hold for p_φ > 0 (choose the sense of φ so).
 
 use rustc_hash::FxHashMap;
 
@@ -229,5 +231,50 @@ impl System {
             }
         }
         Ok(idx)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::read_expr;
+
+    #[test]
+    fn central_force_routhian_is_the_effective_potential_lagrangian() {
+        let mut sys =
+            System::from_lagrangian("1/2*m*(r'^2 + r^2*phi'^2) + k/r", &["r", "phi"]).unwrap();
+        let d = sys.derive().unwrap();
+        let mut red = sys.routhian(&d, &["phi".into()]).unwrap();
+        assert_eq!(red.momenta, vec!["p_phi".to_string()]);
+        assert_eq!(red.system.n(), 1);
+        let ctx = red.system.open_context();
+        let want = read_expr(
+            "1/2*m*r'^2 + k/r - p_phi^2/(2*m*r^2)",
+            &ctx,
+            &mut red.system.pool,
+        )
+        .unwrap();
+        let diff = red.system.pool.sub(red.system.lagrangian, want);
+        assert!(red.system.is_zero(diff));
+        let rate = read_expr("p_phi/(m*r^2)", &ctx, &mut red.system.pool).unwrap();
+        let diff = red.system.pool.sub(red.rates[0], rate);
+        assert!(red.system.is_zero(diff));
+    }
+
+    #[test]
+    fn refusals_name_their_reason() {
+        let mut sys = System::from_lagrangian("1/2*m*x'^2 - k*x^2", &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        let e = sys.routhian(&d, &["x".into()]).unwrap_err();
+        assert_eq!(e.code(), "not-cyclic");
+        let mut free = System::from_lagrangian("1/2*m*x'^2", &["x"]).unwrap();
+        let d = free.derive().unwrap();
+        let e = free.routhian(&d, &["x".into()]).unwrap_err();
+        assert_eq!(e, SteadyError::NothingLeft);
+        let mut timed =
+            System::from_lagrangian("1/2*m*(x'^2 + y'^2) - k*y^2*cos(t)", &["x", "y"]).unwrap();
+        let d = timed.derive().unwrap();
+        let e = timed.routhian(&d, &["x".into()]).unwrap_err();
+        assert!(e.to_string().contains("time"), "{e}");
     }
 }
