@@ -389,7 +389,7 @@ impl ModesReport {
             if ws.is_empty() {
                 writeln!(
                     o,
-                    "(closed-form roots are given for one or two coordinates)"
+                    "(no closed-form roots: ω² = 0 and the decoupled roots do not split the polynomial into factors of degree ≤ 2 in ω²)"
                 )?;
             }
         }

@@ -370,3 +370,19 @@ fn modes_steady_prints_the_routhian_the_rate_and_the_oscillation() {
     assert_ne!(code, 0);
     insta::assert_snapshot!("modes_steady_not_cyclic", err);
 }
+
+#[test]
+fn three_masses_between_fixed_walls_have_the_textbook_frequencies() {
+    // Four equal springs, three equal masses: ω² = (2 − √2) k/m, 2 k/m, (2 + √2) k/m.
+    let (mut sys, r) = symbolic(
+        "1/2*m*(x1'^2 + x2'^2 + x3'^2) - 1/2*k*(x1^2 + (x2 - x1)^2 + (x3 - x2)^2 + x3^2)",
+        &["x1", "x2", "x3"],
+        &["0", "0", "0"],
+    );
+    let r = r.unwrap();
+    assert!(same_roots(
+        &mut sys,
+        &r,
+        &["(2 - sqrt(2))*k/m", "2*k/m", "(2 + sqrt(2))*k/m"]
+    ));
+}
