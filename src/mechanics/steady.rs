@@ -32,9 +32,15 @@ pub enum SteadyError {
         reason: String,
     },
     /// A fixed momentum is named `p_<coordinate>`.
-    #[error("`{key}` does not name a momentum: write p_ and the cyclic coordinate, e.g. p_phi")]
+    #[error("`{key}` does not name a momentum")]
     NotMomentum {
         /// The name given.
+        key: String,
+    },
+    /// The same momentum was fixed twice.
+    #[error("{key} is given twice")]
+    GivenTwice {
+        /// The momentum.
         key: String,
     },
     /// Every coordinate was named: nothing is left to be at rest.
@@ -59,6 +65,7 @@ impl SteadyError {
             SteadyError::Mech(e) => e.code(),
             SteadyError::NotCyclic { .. } => "not-cyclic",
             SteadyError::NotMomentum { .. } => "not-a-momentum",
+            SteadyError::GivenTwice { .. } => "momentum-given-twice",
             SteadyError::NothingLeft => "nothing-left",
             SteadyError::SingularBlock { .. } => "singular-cyclic-block",
         }
@@ -71,7 +78,10 @@ impl SteadyError {
             SteadyError::NotCyclic { .. } => {
                 "name only coordinates that L does not contain (and that no force, constraint or time dependence touches)".into()
             }
-            SteadyError::NotMomentum { key } => format!("write p_{key}"),
+            SteadyError::NotMomentum { key } => {
+                format!("write p_{key}: p_ and the cyclic coordinate")
+            }
+            SteadyError::GivenTwice { key } => format!("give {key} once"),
             SteadyError::NothingLeft => "leave at least one coordinate out".into(),
             SteadyError::SingularBlock { .. } => "choose independent cyclic coordinates".into(),
         }

@@ -25,17 +25,20 @@ pub struct SteadyNote {
     rate_ids: Vec<Id>,
 }
 
-/// The coordinates named by `p_<coordinate>` keys.
+/// The coordinates named by `p_<coordinate>` keys, each once.
 fn cyclic_names(momenta: &[(String, String)]) -> Result<Vec<String>, SteadyError> {
-    momenta
-        .iter()
-        .map(|(k, _)| {
-            let k = k.trim();
-            k.strip_prefix("p_")
-                .map(str::to_string)
-                .ok_or_else(|| SteadyError::NotMomentum { key: k.to_string() })
-        })
-        .collect()
+    let mut names: Vec<String> = Vec::with_capacity(momenta.len());
+    for (k, _) in momenta {
+        let k = k.trim();
+        let name = k
+            .strip_prefix("p_")
+            .ok_or_else(|| SteadyError::NotMomentum { key: k.to_string() })?;
+        if names.iter().any(|n| n == name) {
+            return Err(SteadyError::GivenTwice { key: k.to_string() });
+        }
+        names.push(name.to_string());
+    }
+    Ok(names)
 }
 
 /// The Routhian system for the fixed `momenta` (none: the system itself, no note).

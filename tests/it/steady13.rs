@@ -386,3 +386,25 @@ fn three_masses_between_fixed_walls_have_the_textbook_frequencies() {
         &["(2 - sqrt(2))*k/m", "2*k/m", "(2 + sqrt(2))*k/m"]
     ));
 }
+
+#[test]
+fn a_momentum_given_twice_or_misnamed_is_refused() {
+    let sys = System::from_lagrangian("1/2*m*(r'^2 + r^2*phi'^2) + k/r", &["r", "phi"]).unwrap();
+    for (steady, code) in [
+        (
+            &[("p_phi", "1"), ("p_phi", "2")][..],
+            "momentum-given-twice",
+        ),
+        (&[("phi", "1")][..], "not-a-momentum"),
+    ] {
+        let opts = ModesOptions {
+            params: pairs(&[("m", "1"), ("k", "1")]),
+            steady: pairs(steady),
+            ..ModesOptions::default()
+        };
+        match modes(&sys, &opts) {
+            Err(ModesError::Steady(e)) => assert_eq!(e.code(), code),
+            other => panic!("{steady:?}: {other:?}"),
+        }
+    }
+}
