@@ -21,6 +21,14 @@ const STEADY_SAMPLES: usize = 20;
 const STEADY_TOLERANCE: f64 = 1e-9;
 
 pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
+    // With constraints the forcing alone is not the equation of motion (the multipliers'
+    // forces are missing from it): the check below would prove nothing.
+    if !p.system.constraints.is_empty() {
+        return Err(Failed::new(
+            "unprovable",
+            "a steady-motion part is proved for systems without constraints: write the system in independent coordinates".into(),
+        ));
+    }
     let c = moving_coordinate(part, p)?;
     let name = p.system.coordinates[c].name.clone();
     if !p.system.is_zero(p.derivation.steps[c].force) || !p.system.is_zero(p.system.forces[c]) {

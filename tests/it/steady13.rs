@@ -408,3 +408,58 @@ fn a_momentum_given_twice_or_misnamed_is_refused() {
         }
     }
 }
+
+/// A mass m₁ on a table tied through a hole to a hanging m₂, with one steady-motion part.
+fn table_problem(part: &str) -> String {
+    format!(
+        r#"
+id = "table-hole"
+title = "Mass on a table through a hole"
+coordinates = [
+  {{ name = "r", range = [0.5, 2.0] }},
+  {{ name = "phi", periodic = true }},
+]
+lagrangian = "1/2*(m1 + m2)*r'^2 + 1/2*m1*r^2*phi'^2 - m2*g*r"
+
+[parameters]
+m1 = {{ dimension = "M", range = [0.5, 2.0] }}
+m2 = {{ dimension = "M", range = [0.5, 2.0] }}
+g = {{ dimension = "L T^-2", range = [5.0, 15.0] }}
+R = {{ dimension = "L", range = [0.5, 2.0] }}
+
+[[parts]]
+id = "steady"
+kind = "steady-motion"
+prompt = "p"
+{part}
+"#
+    )
+}
+
+#[test]
+fn steady_motion_parts_prove_rates_and_refuse_what_they_cannot_prove() {
+    let verify = |part: &str| {
+        let p = lagrange::bank::load_str("t.toml", &table_problem(part)).unwrap();
+        lagrange::bank::verify::verify(&p)
+            .into_iter()
+            .map(|f| f.code)
+            .collect::<Vec<_>>()
+    };
+    // m₁ R φ'² = m₂ g.
+    assert!(verify("answer = \"sqrt(m2*g/(m1*R))\"\nat = { r = \"R\" }").is_empty());
+    assert!(verify("answer = \"m2*g/(m1*R)\"\nsquared = true\nat = { r = \"R\" }").is_empty());
+    assert_eq!(
+        verify("answer = \"sqrt(g/R)\"\nat = { r = \"R\" }"),
+        vec!["not-steady"]
+    );
+    // r is not cyclic: it cannot be the coordinate that moves.
+    assert_eq!(
+        verify("answer = \"1\"\nat = { phi = \"0\" }"),
+        vec!["not-cyclic"]
+    );
+    // Every coordinate named: nothing moves.
+    assert_eq!(
+        verify("answer = \"1\"\nat = { r = \"R\", phi = \"0\" }"),
+        vec!["bad-steady"]
+    );
+}
