@@ -69,6 +69,9 @@ pub enum PartKind {
     Frequencies,
     Values,
     ConstraintForce,
+    /// A steady motion: the coordinates `at` names stay put, the one it leaves out moves
+    /// uniformly at the stated rate.
+    SteadyMotion,
 }
 
 impl PartKind {
@@ -83,6 +86,7 @@ impl PartKind {
             "frequencies" => PartKind::Frequencies,
             "values" => PartKind::Values,
             "constraint-force" => PartKind::ConstraintForce,
+            "steady-motion" => PartKind::SteadyMotion,
             _ => return None,
         })
     }
@@ -98,6 +102,7 @@ impl PartKind {
             PartKind::Frequencies => "frequencies",
             PartKind::Values => "values",
             PartKind::ConstraintForce => "constraint-force",
+            PartKind::SteadyMotion => "steady-motion",
         }
     }
 }

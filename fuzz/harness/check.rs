@@ -177,9 +177,10 @@ fn wrong(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, Strin
     let made = match part.kind {
         PartKind::Equation => wrong_equation(r, p, &part.answers[0]),
         PartKind::Equations => wrong_system(r, p, &part.answers),
-        PartKind::Expression | PartKind::ConstraintForce | PartKind::Lagrangian => {
-            wrong_expression(r, p, part)
-        }
+        PartKind::Expression
+        | PartKind::ConstraintForce
+        | PartKind::Lagrangian
+        | PartKind::SteadyMotion => wrong_expression(r, p, part),
         PartKind::Equilibria => wrong_equilibria(r, &part.answers),
         PartKind::Frequencies | PartKind::Values => wrong_values(r, part),
     }?;

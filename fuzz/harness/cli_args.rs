@@ -331,6 +331,7 @@ fn modes_of(a: &Args, sys: &System) -> Result<(), String> {
         params,
         at,
         symbolic: a.symbolic,
+        steady: Vec::new(),
     };
     match modes(sys, &opts) {
         Ok(rep) => {

@@ -78,7 +78,7 @@ pub(super) fn build_part(
     sys: &System,
 ) -> Result<Part, (&'static str, String)> {
     let kind = PartKind::parse(&sp.kind).ok_or_else(|| {
-        ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force)", sp.kind))
+        ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force, steady-motion)", sp.kind))
     })?;
     let answers = match &sp.answer {
         AnswerSpec::One(s) => vec![s.clone()],

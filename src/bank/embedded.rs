@@ -45,6 +45,10 @@ pub const FILES: &[(&str, &str)] = &[
         "central-force.toml",
         include_str!("../../problems/central-force.toml"),
     ),
+    (
+        "conical-pendulum.toml",
+        include_str!("../../problems/conical-pendulum.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

@@ -14,6 +14,7 @@ mod verify_equilibria;
 mod verify_expression;
 mod verify_failed;
 mod verify_frequencies;
+mod verify_steady;
 
 pub use crate::problem::{Part, PartKind, Problem, Quantity};
 pub use finding::Finding;

@@ -9,6 +9,7 @@ use super::finding::Finding;
 use super::verify_equilibria::verify_equilibria;
 use super::verify_expression::{verify_equations, verify_expression};
 use super::verify_frequencies::verify_frequencies;
+use super::verify_steady::verify_steady;
 use crate::check::compare::{Relation, relate};
 use crate::check::points::PointSet;
 use crate::check::prepare::{POINTS, prepare};
@@ -128,6 +129,9 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
             verify_frequencies(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
         PartKind::Values => Ok(()),
+        PartKind::SteadyMotion => {
+            verify_steady(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
+        }
     };
     physics?;
     // The checker must accept the reference as written and reject every `wrong` example.

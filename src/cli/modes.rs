@@ -28,6 +28,11 @@ pub struct ModesArgs {
     /// Also the characteristic polynomial and ω² in closed form (needs --at).
     #[arg(long)]
     symbolic: bool,
+    /// Steady motions: fix the momenta of cyclic coordinates, e.g. "p_phi=2" (a bare "p_phi"
+    /// keeps it symbolic, taken as positive in closed forms); the equilibria and modes are then
+    /// those of the Routhian (circular orbits, the conical pendulum, steady precession).
+    #[arg(long, allow_hyphen_values = true)]
+    steady: Option<String>,
     /// JSON output.
     #[arg(long)]
     json: bool,
@@ -79,6 +84,8 @@ fn modes_report(
         ModesError::SymbolicNeedsPoint => {
             CliError::usage("--symbolic needs the equilibrium, given with --at")
         }
+        ModesError::Steady(lagrange::mechanics::steady::SteadyError::Mech(e)) => CliError::Mech(e),
+        ModesError::Steady(e) => CliError::Usage(format!("--steady: {e}; {}", e.help())),
     })
 }
 
@@ -101,7 +108,20 @@ fn options(args: &ModesArgs) -> Result<ModesOptions, CliError> {
             .transpose()
             .map_err(usage)?,
         symbolic: args.symbolic,
+        steady: args.steady.as_deref().map_or_else(Vec::new, steady),
     })
+}
+
+/// `p_phi=2, p_psi` as momenta and values; a bare name stands for itself (symbolic).
+fn steady(text: &str) -> Vec<(String, String)> {
+    text.split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .map(|item| match item.split_once('=') {
+            Some((a, b)) => (a.trim().to_string(), b.trim().to_string()),
+            None => (item.to_string(), item.to_string()),
+        })
+        .collect()
 }
 
 /// `x=-5:5` as a name and a nonempty interval.

@@ -66,6 +66,10 @@ pub enum MechError {
         "the characteristic polynomial is given in closed form for up to {max} coordinates, not {n}"
     )]
     ClosedFormTooLarge { n: usize, max: usize },
+    /// Velocity terms that are not gyroscopic, or circulatory forces: ω² is not the root of
+    /// a real polynomial, so no closed form is given.
+    #[error("no closed form for ω²: {reason}")]
+    ClosedFormNotGyroscopic { reason: String },
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
@@ -108,6 +112,7 @@ impl MechError {
             MechError::MassNotPositiveDefinite => "mass-not-positive-definite",
             MechError::SingularMassHere => "singular-mass-here",
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
+            MechError::ClosedFormNotGyroscopic { .. } => "closed-form-not-gyroscopic",
             MechError::DependentConstraints => "dependent-constraints",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
@@ -153,7 +158,9 @@ impl MechError {
             MechError::MassNotPositiveDefinite | MechError::SingularMassHere => {
                 "choose another state".into()
             }
-            MechError::ClosedFormTooLarge { .. } => "ask for the numeric modes instead".into(),
+            MechError::ClosedFormTooLarge { .. } | MechError::ClosedFormNotGyroscopic { .. } => {
+                "ask for the numeric modes instead".into()
+            }
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
             }

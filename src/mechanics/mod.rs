@@ -18,6 +18,8 @@ pub mod modes;
 pub mod naming;
 pub(crate) mod sample;
 pub mod state;
+pub mod steady;
+pub mod symbolic_modes;
 pub mod system;
 
 pub use bodies::{Body, Potential};

@@ -20,6 +20,7 @@ pub mod formula;
 pub mod modes;
 pub mod problems;
 pub mod read;
+pub mod steady;
 
 pub use derivation::{DerivationReport, derivation};
 pub use formula::Formula;

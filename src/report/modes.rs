@@ -33,6 +33,9 @@ pub struct ModesOptions {
     pub at: Option<Vec<(String, String)>>,
     /// Also the characteristic polynomial and ω² in closed form (needs `at`).
     pub symbolic: bool,
+    /// Steady motions: fixed momenta `p_phi = value` of cyclic coordinates; the analysis is
+    /// of the Routhian (see [`steady`](super::steady)).
+    pub steady: Vec<(String, String)>,
 }
 
 /// Why the modes could not be reported.
@@ -72,6 +75,9 @@ pub enum ModesError {
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
+    /// The steady-motion reduction failed.
+    #[error(transparent)]
+    Steady(#[from] crate::mechanics::steady::SteadyError),
 }
 
 /// A `name=value` item that is not one.
@@ -105,9 +111,15 @@ pub struct ModesReport {
     /// ω² in closed form, when closed forms were asked for (empty: not given for this size).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_squared: Option<Vec<Formula>>,
+    /// The Routhian and the cyclic velocities, for steady motions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady: Option<super::steady::SteadyNote>,
     /// How the text shows each coordinate.
     #[serde(skip)]
     pub coordinate_labels: Vec<Formula>,
+    /// Gyroscopic terms entered the characteristic polynomial: det(K − ω²M − iωC).
+    #[serde(skip)]
+    pub gyroscopic_closed_form: bool,
 }
 
 /// One equilibrium and its small oscillations.
@@ -125,6 +137,9 @@ pub struct EquilibriumModes {
     pub omega_squared: Vec<f64>,
     /// The equilibrium, by coordinate name.
     pub point: BTreeMap<String, f64>,
+    /// For a steady motion: the velocity of each cyclic coordinate, `phi'` and its value.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rates: Vec<(String, f64)>,
     /// Stable, unstable or marginal.
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
@@ -147,8 +162,10 @@ fn stability_name<S: Serializer>(s: &Stability, ser: S) -> Result<S::Ok, S::Erro
 pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesError> {
     let mut sys = sys.clone();
     set_ranges(&mut sys, opts)?;
-    let values = sys.substitute_parameters(&opts.params)?;
-    check_values(&sys, &values, &opts.params)?;
+    let (mut sys, steady) = super::steady::reduce(sys, &opts.steady)?;
+    let params: Vec<(String, String)> = opts.params.iter().chain(&opts.steady).cloned().collect();
+    let values = sys.substitute_parameters(&params)?;
+    check_values(&sys, &values, &params)?;
     // Parameters declared but not used by L (a bank problem's `l` for its equal-length
     // part) need no value.
     sys.drop_unused_parameters();
@@ -180,6 +197,13 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
             .iter()
             .map(|m| equilibrium(m, &names, &unicode))
             .collect();
+        if let Some(note) = &steady {
+            let points: Vec<Vec<f64>> = found.iter().map(|m| m.point.clone()).collect();
+            let rates = super::steady::rates_at(note, &mut sys, &values, &points);
+            for (e, r) in equilibria.iter_mut().zip(rates) {
+                e.rates = r;
+            }
+        }
     } else if !opts.symbolic {
         return Err(MechError::MissingValue {
             name: sys.parameters[0].name.clone(),
@@ -204,7 +228,9 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
                 .map(|w| Formula::factored(pool, w))
                 .collect()
         }),
+        steady,
         coordinate_labels,
+        gyroscopic_closed_form: symbolic.as_ref().is_some_and(|s| s.gyroscopic),
     })
 }
 
@@ -321,6 +347,7 @@ fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumMod
         stability: m.stability,
         stable: m.stability == Stability::Stable,
         coordinates: m.point.clone(),
+        rates: Vec::new(),
         descriptions: m.describe(labels),
     }
 }
@@ -332,6 +359,9 @@ impl ModesReport {
     }
 
     fn write_text(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+        if let Some(s) = &self.steady {
+            s.write_text(style, paint, o)?;
+        }
         if self.continuum {
             writeln!(
                 o,
@@ -342,9 +372,14 @@ impl ModesReport {
             self.render_equilibrium(m, style, paint, o)?;
         }
         if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
+            let det = if self.gyroscopic_closed_form {
+                "det(K − ω²M − iωC)"
+            } else {
+                "det(K − ω²M)"
+            };
             writeln!(
                 o,
-                "{} det(K − ω²M) = {}",
+                "{} {det} = {}",
                 paint.heading("characteristic polynomial:"),
                 p.get(style)
             )?;
@@ -354,7 +389,7 @@ impl ModesReport {
             if ws.is_empty() {
                 writeln!(
                     o,
-                    "(closed-form roots are given for one or two coordinates)"
+                    "(no closed-form roots: ω² = 0 and the decoupled roots do not split the polynomial into factors of degree ≤ 2 in ω²)"
                 )?;
             }
         }
@@ -385,6 +420,9 @@ impl ModesReport {
             paint.heading("equilibrium"),
             point.join(", ")
         )?;
+        for (name, v) in &m.rates {
+            writeln!(o, "  {name} = {}", fmt_value(*v))?;
+        }
         if m.gyroscopic {
             writeln!(
                 o,

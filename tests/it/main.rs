@@ -23,6 +23,7 @@ mod resources;
 mod scale;
 mod session;
 mod soundness;
+mod steady13;
 mod symbolic;
 mod syntax;
 mod tutor_session;
