@@ -69,6 +69,41 @@ pub enum MechError {
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
+    /// A constraint involves no coordinate and is not identically zero (`1 = 0`).
+    #[error("constraint {index} (`{text} = 0`) never holds: it involves no coordinate")]
+    ConstraintNeverHolds { index: usize, text: String },
+    /// A constraint is identically zero (`x = x`).
+    #[error("constraint {index} (`{text} = 0`) holds identically: it constrains nothing")]
+    EmptyConstraint { index: usize, text: String },
+    /// More independent constraints than coordinates.
+    #[error("{constraints} constraints on {coordinates} coordinates: at most one per coordinate")]
+    TooManyConstraints {
+        constraints: usize,
+        coordinates: usize,
+    },
+    /// A constraint's row is a combination of the earlier ones everywhere: it repeats them,
+    /// or contradicts them (`x = 0` with `x = 1`) when `contradicts`.
+    #[error(
+        "constraint {index} (`{text} = 0`) is not independent of the constraints before it: {}",
+        if *.contradicts { "it contradicts them (no state satisfies them all)" } else { "it repeats what they say" }
+    )]
+    DependentConstraint {
+        index: usize,
+        text: String,
+        contradicts: bool,
+    },
+    /// A generalized force depends on accelerations (it belongs in the mass matrix).
+    #[error("the force on {coordinate} depends on accelerations ({acceleration})")]
+    ForceWithAcceleration {
+        coordinate: String,
+        acceleration: String,
+    },
+    /// A name of the system collides with a Lagrange multiplier's name.
+    #[error(
+        "`{}` is the name of a Lagrange multiplier here, and cannot also name a parameter or coordinate",
+        crate::expr::error::visible(.name)
+    )]
+    MultiplierName { name: String },
     /// A constant part of an expression overflows: its value is beyond the largest number
     /// lagrange computes with, so nothing that contains it can be evaluated anywhere.
     #[error(
@@ -109,6 +144,15 @@ impl MechError {
             MechError::SingularMassHere => "singular-mass-here",
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
             MechError::DependentConstraints => "dependent-constraints",
+            MechError::ConstraintNeverHolds { .. } => "constraint-never-holds",
+            MechError::EmptyConstraint { .. } => "empty-constraint",
+            MechError::TooManyConstraints { .. } => "too-many-constraints",
+            MechError::DependentConstraint {
+                contradicts: true, ..
+            } => "contradictory-constraints",
+            MechError::DependentConstraint { .. } => "redundant-constraint",
+            MechError::ForceWithAcceleration { .. } => "force-with-acceleration",
+            MechError::MultiplierName { .. } => "multiplier-name",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
             MechError::TooLarge(_) => "too-large",
@@ -156,6 +200,23 @@ impl MechError {
             MechError::ClosedFormTooLarge { .. } => "ask for the numeric modes instead".into(),
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
+            }
+            MechError::ConstraintNeverHolds { .. } => {
+                "write the constraint in terms of the coordinates, or drop it".into()
+            }
+            MechError::EmptyConstraint { .. } => "drop it".into(),
+            MechError::TooManyConstraints { .. } => {
+                "drop the constraints that follow from the others, or add coordinates".into()
+            }
+            MechError::DependentConstraint {
+                contradicts: true, ..
+            } => "correct one of the contradicting constraints".into(),
+            MechError::DependentConstraint { .. } => "drop the repeated constraint".into(),
+            MechError::ForceWithAcceleration { .. } => {
+                "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
+            }
+            MechError::MultiplierName { name } => {
+                format!("rename `{name}` (the multipliers are lambda1, lambda2, …)")
             }
             MechError::Overflow { .. } => {
                 "choose units in which the quantities are moderate numbers".into()

@@ -1,0 +1,245 @@
+//! Issue 13, items 7–11 (energy, validation, input): honest energy statements (h = L₂ − L₀,
+//! "h = T + V" only when T and V are known, the sign of T + V from the textbook), cyclic
+//! coordinates under constraints and forces, constraint validation, forces with
+//! accelerations, multiplier names, `--kinetic` alone, `@FILE` inputs, and the LaTeX of
+//! `derive` with constraints, multipliers and generalized forces.
+
+use lagrange::expr::{Context, Pool, read_expr};
+use lagrange::mechanics::{Body, Conservation, Coordinate, Potential, System};
+
+use crate::helpers::lagrange;
+
+/// A point mass at `position` (y up) under gravity along y.
+fn point_mass(coords: &[&str], position: &[&str]) -> System {
+    let mut pool = Pool::new();
+    let coordinates: Vec<Coordinate> = coords
+        .iter()
+        .map(|&name| Coordinate {
+            name: name.to_string(),
+            sym: pool.symbol(name),
+            periodic: false,
+            range: (-2.0, 2.0),
+        })
+        .collect();
+    let ctx = Context::open().with_coordinates(coords.iter().copied());
+    let mut rd = |s: &str| read_expr(s, &ctx, &mut pool).unwrap();
+    let mass = rd("m");
+    let position = position.iter().map(|p| rd(p)).collect();
+    let g = rd("g");
+    System::from_bodies(
+        pool,
+        coordinates,
+        &[Body::Point { mass, position }],
+        &[Potential::Gravity { g, axis: 1 }],
+    )
+}
+
+fn equal(sys: &mut System, e: lagrange::expr::Id, text: &str) -> bool {
+    let ctx = sys.open_context();
+    let want = sys.read(text, "expected", &ctx).unwrap();
+    let diff = sys.pool.sub(e, want);
+    sys.is_zero(diff)
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = lagrange(args);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+#[test]
+fn bead_on_a_rotating_wire_from_l_alone_says_it_cannot_tell() {
+    let l = "1/2*m*(r'^2 + omega^2*r^2)";
+    let v = json(&["derive", "-L", l, "-q", "r", "--json"]);
+    assert_eq!(v["energy_is_total"], serde_json::Value::Null);
+    assert_eq!(v["energy_conserved"], true);
+    let (_, out, _) = lagrange(&["derive", "-L", l, "-q", "r"]);
+    assert!(out.contains("h = L₂ − L₀"), "{out}");
+    assert!(
+        out.contains("cannot tell from L alone"),
+        "h = T + V must not be claimed from L alone:\n{out}"
+    );
+    assert!(!out.contains("h = T + V: yes"), "{out}");
+}
+
+#[test]
+fn bead_on_a_rotating_wire_from_bodies_is_not_t_plus_v() {
+    // Inertial position on a horizontal wire turning at ω: T = ½m(ṙ² + ω²r²), V = 0, and
+    // h = ½mṙ² − ½mω²r² ≠ T + V (Goldstein §2.7; the wire's motor does work).
+    let mut sys = point_mass(&["r"], &["r*cos(omega*t)", "0", "r*sin(omega*t)"]);
+    let d = sys.derive().unwrap();
+    let e = sys.energy(&d);
+    assert_eq!(e.is_total, Some(false));
+    assert!(e.conserved);
+    assert!(equal(
+        &mut sys,
+        e.function,
+        "1/2*m*r'^2 - 1/2*m*omega^2*r^2"
+    ));
+    let total = e.total.unwrap();
+    assert!(equal(&mut sys, total, "1/2*m*r'^2 + 1/2*m*omega^2*r^2"));
+    let p = e.parts.unwrap();
+    assert!(equal(&mut sys, p.l0, "1/2*m*omega^2*r^2"));
+}
+
+#[test]
+fn driven_support_total_energy_has_the_right_sign() {
+    // A pendulum hung from a support moving as a·cos(Ωt): T = ½m|v|², V = −mgl cos θ,
+    // and T contains +½m a²Ω² sin²(Ωt) (never −).
+    let mut sys = point_mass(&["theta"], &["a*cos(W*t) + l*sin(theta)", "-l*cos(theta)"]);
+    let d = sys.derive().unwrap();
+    let e = sys.energy(&d);
+    assert_eq!(e.conservation, Conservation::ExplicitTime);
+    let total = e.total.unwrap();
+    assert!(equal(
+        &mut sys,
+        total,
+        "1/2*m*((-a*W*sin(W*t) + l*theta'*cos(theta))^2 + (l*theta'*sin(theta))^2) - m*g*l*cos(theta)"
+    ));
+}
+
+#[test]
+fn the_cartesian_pendulum_has_no_cyclic_coordinate() {
+    let v = json(&[
+        "derive",
+        "-L",
+        "1/2*m*(x'^2 + y'^2) - m*g*y",
+        "-q",
+        "x,y",
+        "--constraint",
+        "x^2 + y^2 = l^2",
+        "--json",
+    ]);
+    assert_eq!(v["cyclic"], serde_json::json!([]));
+}
+
+#[test]
+fn a_magnetic_force_keeps_the_energy_conserved() {
+    let v = json(&[
+        "derive",
+        "-L",
+        "1/2*m*(x'^2 + y'^2)",
+        "-q",
+        "x,y",
+        "--force",
+        "q*B*y'; -q*B*x'",
+        "--json",
+    ]);
+    assert_eq!(v["energy_conserved"], true);
+    // Both coordinates feel a force: neither is cyclic though L has neither.
+    assert_eq!(v["cyclic"], serde_json::json!([]));
+    let v = json(&[
+        "derive",
+        "-L",
+        "1/2*m*x'^2",
+        "-q",
+        "x",
+        "--force",
+        "-b*x'",
+        "--json",
+    ]);
+    assert_eq!(v["energy_conserved"], false);
+}
+
+fn error_code(args: &[&str]) -> String {
+    let (code, _, err) = lagrange(args);
+    assert_eq!(code, 2, "{err}");
+    err
+}
+
+#[test]
+fn invalid_constraints_are_each_a_clear_error() {
+    let free = ["derive", "-L", "1/2*m*(x'^2 + y'^2)", "-q", "x,y"];
+    let with = |cs: &[&str]| {
+        let mut a: Vec<&str> = free.to_vec();
+        for c in cs {
+            a.extend(["--constraint", c]);
+        }
+        error_code(&a)
+    };
+    assert!(with(&["1 = 0"]).contains("constraint-never-holds"));
+    let err = with(&["x = 0", "x = 1"]);
+    assert!(err.contains("contradictory-constraints"), "{err}");
+    assert!(with(&["x = y", "3*x = 3*y"]).contains("redundant-constraint"));
+    assert!(with(&["x = 0", "y = 0", "x = y"]).contains("too-many-constraints"));
+}
+
+#[test]
+fn a_force_with_an_acceleration_is_refused() {
+    let err = error_code(&[
+        "derive",
+        "-L",
+        "1/2*m*x'^2",
+        "-q",
+        "x",
+        "--force",
+        "F - m*x''",
+    ]);
+    assert!(err.contains("force-with-acceleration"), "{err}");
+}
+
+#[test]
+fn a_parameter_named_like_a_multiplier_is_refused() {
+    let err = error_code(&[
+        "derive",
+        "-L",
+        "1/2*m*(x'^2 + y'^2) - lambda1*y",
+        "-q",
+        "x,y",
+        "--constraint",
+        "x^2 + y^2 = l^2",
+    ]);
+    assert!(
+        err.contains("multiplier-name") && err.contains("lambda1"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_repeated_coordinate_is_named() {
+    let err = error_code(&["derive", "-L", "1/2*m*q'^2", "-q", "q,q"]);
+    assert!(err.contains("listed twice"), "{err}");
+}
+
+#[test]
+fn kinetic_alone_means_no_potential() {
+    let v = json(&["derive", "-T", "1/2*m*x'^2", "-q", "x", "--json"]);
+    assert_eq!(v["energy_is_total"], true);
+    assert_eq!(v["cyclic"], serde_json::json!(["x"]));
+}
+
+#[test]
+fn a_large_lagrangian_is_read_from_a_file() {
+    // Over the 20 kB limit of answers: a derivation's input may be larger.
+    let text = format!("1/2*m*x'^2 - 1/2*k*x^2{}", " + 0*x".repeat(4_000));
+    assert!(text.len() > 20_000);
+    let path = std::env::temp_dir().join(format!("lagrange-energy13-{}.txt", std::process::id()));
+    std::fs::write(&path, &text).unwrap();
+    let arg = format!("@{}", path.display());
+    let v = json(&["derive", "-L", &arg, "-q", "x", "--json"]);
+    std::fs::remove_file(&path).ok();
+    assert_eq!(v["equations"][0], "m*x'' + k*x");
+    let err = error_code(&["derive", "-L", "@/nonexistent/lagrange-l.txt", "-q", "x"]);
+    assert!(err.contains("cannot read the file"), "{err}");
+}
+
+#[test]
+fn latex_derive_shows_constraints_multipliers_and_forces() {
+    let (code, out, err) = lagrange(&[
+        "derive",
+        "-L",
+        "1/2*m*(x'^2 + y'^2) - m*g*y",
+        "-q",
+        "x,y",
+        "--constraint",
+        "x^2 + y^2 = l^2",
+        "--force",
+        "F",
+        "--format",
+        "latex",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("holonomic constraint"), "{out}");
+    assert!(out.contains("\\lambda"), "{out}");
+    assert!(out.contains("Q_{x} &= F"), "{out}");
+}
