@@ -243,3 +243,178 @@ fn latex_derive_shows_constraints_multipliers_and_forces() {
     assert!(out.contains("\\lambda"), "{out}");
     assert!(out.contains("Q_{x} &= F"), "{out}");
 }
+
+/// Loads a problem file's text and verifies it: the finding codes.
+fn verify_codes(text: &str) -> Vec<String> {
+    match lagrange::bank::load_str("energy13.toml", text) {
+        Err(f) => vec![format!("load:{}:{}", f.code, f.message)],
+        Ok(p) => lagrange::bank::verify::verify(&p)
+            .into_iter()
+            .map(|f| format!("{}:{}", f.code, f.message))
+            .collect(),
+    }
+}
+
+/// A mass on a spring along x, free along y (y is cyclic), with a part appended.
+fn spring_plane(part: &str) -> String {
+    format!(
+        r#"
+id = "spring-plane"
+title = "Mass on a spring, free sideways"
+coordinates = [{{ name = "x" }}, {{ name = "y" }}]
+lagrangian = "1/2*m*(x'^2 + y'^2) - 1/2*k*x^2"
+
+[parameters]
+m = {{ dimension = "M", range = [0.5, 2.0] }}
+k = {{ dimension = "M T^-2", range = [0.5, 2.0] }}
+g = {{ dimension = "L T^-2", range = [5.0, 15.0] }}
+
+[[parts]]
+{part}
+"#
+    )
+}
+
+#[test]
+fn a_values_part_of_cyclic_coordinates_is_verified() {
+    let right = spring_plane(
+        r#"id = "cyclic"
+kind = "values"
+prompt = "Which coordinates are cyclic?"
+answer = "y""#,
+    );
+    assert_eq!(verify_codes(&right), Vec::<String>::new());
+    let wrong = right.replace(r#"answer = "y""#, r#"answer = ["x", "y"]"#);
+    let found = verify_codes(&wrong);
+    assert!(
+        found.iter().any(|f| f.starts_with("not-cyclic")),
+        "{found:?}"
+    );
+    let missing = right.replace(r#"answer = "y""#, r#"answer = "none""#);
+    let found = verify_codes(&missing);
+    assert!(
+        found.iter().any(|f| f.starts_with("missing-cyclic")),
+        "{found:?}"
+    );
+    // A values part with nothing to prove it against is not silently "proved".
+    let unprovable = right.replace(r#"id = "cyclic""#, r#"id = "list""#);
+    let found = verify_codes(&unprovable);
+    assert!(
+        found.iter().any(|f| f.starts_with("unprovable")),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn none_states_an_empty_list() {
+    // A mass pushed by a constant force F has no equilibrium and no cyclic coordinate.
+    let text = r#"
+id = "pushed"
+title = "A pushed mass"
+coordinates = [{ name = "x" }]
+lagrangian = "1/2*m*x'^2 + F*x"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+F = { dimension = "M L T^-2", range = [0.5, 2.0] }
+
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "Find the equilibria."
+answer = "none"
+wrong = ["x = 0"]
+
+[[parts]]
+id = "cyclic"
+kind = "values"
+prompt = "Which coordinates are cyclic?"
+answer = "none"
+wrong = ["x"]
+"#;
+    assert_eq!(verify_codes(text), Vec::<String>::new());
+}
+
+#[test]
+fn assume_per_part_restricts_that_part() {
+    // The bead on a rotating parabola z = a r²: r = 0 is stable when 2 g a > ω², unstable
+    // when 2 g a < ω² (Taylor, Classical Mechanics §7.6).
+    let base = r#"
+id = "parabola"
+title = "Bead on a rotating parabola"
+coordinates = [{ name = "r" }]
+lagrangian = "1/2*m*(r'^2*(1 + 4*a^2*r^2) + omega^2*r^2) - m*g*a*r^2"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+g = { dimension = "L T^-2", range = [5.0, 15.0] }
+a = { dimension = "L^-1", range = [0.5, 2.0] }
+omega = { dimension = "T^-1", range = [0.5, 8.0] }
+
+[[parts]]
+id = "slow"
+kind = "equilibria"
+prompt = "Equilibria when 2 g a > ω²."
+answer = "r = 0"
+stability = ["stable"]
+assume = ["2*g*a > omega^2"]
+
+[[parts]]
+id = "fast"
+kind = "equilibria"
+prompt = "Equilibria when 2 g a < ω²."
+answer = "r = 0"
+stability = ["unstable"]
+assume = ["2*g*a < omega^2"]
+"#;
+    assert_eq!(verify_codes(base), Vec::<String>::new());
+    // Without the part's assumption, the stated stability fails for some samples.
+    let unassumed = base.replace("assume = [\"2*g*a < omega^2\"]\n", "");
+    assert!(!verify_codes(&unassumed).is_empty());
+}
+
+#[test]
+fn a_failed_equilibrium_names_the_parameter_values() {
+    let text = spring_plane(
+        r#"id = "equilibria"
+kind = "equilibria"
+prompt = "Find the equilibria."
+answer = "x = m*g/k, y = 0""#,
+    );
+    let found = verify_codes(&text);
+    let f = found
+        .iter()
+        .find(|f| f.starts_with("spurious-equilibrium"))
+        .unwrap_or_else(|| panic!("{found:?}"));
+    assert!(
+        f.contains("k = ") && f.contains("the generalized force on x"),
+        "{f}"
+    );
+}
+
+#[test]
+fn charge_and_symbolic_exponents_in_problem_files() {
+    // A charge in a uniform field E along x, in a power-law well k r^n along y: q E has
+    // the dimension of a force, and k y^n with symbolic n cannot be dimension-checked
+    // (its dimension depends on n), which must not be refused.
+    let text = r#"
+id = "charge"
+title = "A charge in a field"
+coordinates = [{ name = "x" }]
+lagrangian = "1/2*m*x'^2 + q*E*x - k*abs(x)^n"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+q = { dimension = "Q", range = [0.5, 2.0] }
+E = { dimension = "M L T^-2 Q^-1", range = [0.5, 2.0] }
+k = { dimension = "M L^2 T^-2", range = [0.5, 2.0] }
+n = { dimension = "1", range = [1.5, 3.0] }
+
+[[parts]]
+id = "momentum"
+kind = "expression"
+prompt = "The momentum conjugate to x."
+answer = "m*x'"
+"#;
+    assert_eq!(verify_codes(text), Vec::<String>::new());
+}
