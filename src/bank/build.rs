@@ -44,9 +44,11 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     let parameters = b.parameters(&pf, &mut pool, &mut dims)?;
     let reader = Reader {
         b: &b,
+        // The system's own text (L, positions, potentials) may be larger than an answer.
         ctx: Context::new()
             .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
-            .with_parameters(parameters.iter().map(|p| p.name.as_str())),
+            .with_parameters(parameters.iter().map(|p| p.name.as_str()))
+            .with_max_input(crate::expr::error::MAX_SYSTEM_INPUT_BYTES),
     };
     let bodies = reader.bodies(&pf, &mut pool)?;
     let potentials = reader.potentials(&pf, &bodies, &mut pool)?;

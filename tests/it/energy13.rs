@@ -418,3 +418,29 @@ answer = "m*x'"
 "#;
     assert_eq!(verify_codes(text), Vec::<String>::new());
 }
+
+#[test]
+fn a_problem_file_may_state_a_large_lagrangian() {
+    // Over the 20 kB limit of answers (a bicycle's T is 24 kB): the system's own text is
+    // read up to 1 MB.
+    let l = format!("1/2*m*x'^2 - 1/2*k*x^2{}", " + 0*x".repeat(4_000));
+    let text = format!(
+        r#"
+id = "large"
+title = "A large Lagrangian"
+coordinates = [{{ name = "x" }}]
+lagrangian = "{l}"
+
+[parameters]
+m = {{ dimension = "M", range = [0.5, 2.0] }}
+k = {{ dimension = "M T^-2", range = [0.5, 2.0] }}
+
+[[parts]]
+id = "momentum"
+kind = "expression"
+prompt = "The momentum."
+answer = "m*x'"
+"#
+    );
+    assert_eq!(verify_codes(&text), Vec::<String>::new());
+}
