@@ -44,11 +44,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     let parameters = b.parameters(&pf, &mut pool, &mut dims)?;
     let reader = Reader {
         b: &b,
-        // The system's own text (L, positions, potentials) may be larger than an answer.
-        ctx: Context::new()
-            .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
-            .with_parameters(parameters.iter().map(|p| p.name.as_str()))
-            .with_max_input(crate::expr::error::MAX_SYSTEM_INPUT_BYTES),
+        ctx: system_context(&coordinates, &parameters),
     };
     let bodies = reader.bodies(&pf, &mut pool)?;
     let potentials = reader.potentials(&pf, &bodies, &mut pool)?;
@@ -96,6 +92,15 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         stated_lagrangian: stated,
         lagrangian_line,
     })
+}
+
+/// The closed context the system's own text (L, positions, potentials) is read in: it may
+/// be larger than an answer (a bicycle's T is 24 kB).
+fn system_context(coordinates: &[Coordinate], parameters: &[Parameter]) -> Context {
+    Context::new()
+        .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
+        .with_parameters(parameters.iter().map(|p| p.name.as_str()))
+        .with_max_input(crate::expr::error::MAX_SYSTEM_INPUT_BYTES)
 }
 
 /// The line of the `lagrangian` key, else of the first body, else of the id.

@@ -60,6 +60,9 @@ pub struct Energy {
     pub is_total: Option<bool>,
     /// T + V, when T and V are known.
     pub total: Option<Id>,
+    /// T is known and is not a quadratic form in the velocities (it has parts of degree 0
+    /// or 1 in them: a moving frame or support): the usual reason h ≠ T + V.
+    pub kinetic_not_quadratic: bool,
     /// Indices of cyclic coordinates: ∂L/∂qᵢ ≡ 0, no generalized force on qᵢ and qᵢ in no
     /// constraint; their momenta are conserved.
     pub cyclic: Vec<usize>,
@@ -77,7 +80,14 @@ impl System {
         let sum = self.pool.sum(terms);
         let h = self.pool.sub(sum, l);
         let h = self.simplify(h);
-        let parts = self.velocity_parts();
+        let parts = self.velocity_parts(self.lagrangian);
+        let kinetic_not_quadratic = match self.kinetic {
+            Some(t) => match self.velocity_parts(t) {
+                Some(p) => !self.is_zero(p.l0) || !self.is_zero(p.l1),
+                None => true,
+            },
+            None => false,
+        };
         let conservation = self.conservation();
         let (is_total, total) = match (self.kinetic, self.potential) {
             (Some(t), Some(v)) => {
@@ -96,15 +106,16 @@ impl System {
             conserved: conservation.holds(),
             is_total,
             total,
+            kinetic_not_quadratic,
             cyclic,
         }
     }
 
-    /// L₂, L₁, L₀, or `None` when L is not a polynomial of degree ≤ 2 in the velocities
-    /// (then h has no such split). L₀ = L at rest, L₁ = Σ qᵢ' ∂L/∂qᵢ' at rest, L₂ the rest,
-    /// which must be homogeneous of degree 2 (Euler: Σ qᵢ' ∂L₂/∂qᵢ' = 2 L₂).
-    fn velocity_parts(&mut self) -> Option<VelocityParts> {
-        let l = self.lagrangian;
+    /// The parts of `l` (L, or T) of degree 2, 1, 0 in the velocities, or `None` when it is
+    /// not a polynomial of degree ≤ 2 in them (then h has no such split). L₀ = L at rest,
+    /// L₁ = Σ qᵢ' ∂L/∂qᵢ' at rest, L₂ the rest, which must be homogeneous of degree 2
+    /// (Euler: Σ qᵢ' ∂L₂/∂qᵢ' = 2 L₂).
+    fn velocity_parts(&mut self, l: Id) -> Option<VelocityParts> {
         let zero = self.pool.zero();
         let coords = self.coordinate_syms();
         let still: FxHashMap<_, _> = coords.iter().map(|&c| ((c, 1), zero)).collect();

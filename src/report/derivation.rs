@@ -74,6 +74,9 @@ pub struct DerivationReport {
     /// Why h is or is not conserved.
     #[serde(skip)]
     pub conservation: Conservation,
+    /// T is known and not a quadratic form in the velocities (why h ≠ T + V).
+    #[serde(skip)]
+    pub kinetic_not_quadratic: bool,
 }
 
 /// L split by degree in the velocities.
@@ -184,6 +187,7 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
             .collect(),
         total_energy: energy.total.map(f),
         conservation: energy.conservation,
+        kinetic_not_quadratic: energy.kinetic_not_quadratic,
         coordinates: names,
     })
 }
@@ -363,6 +367,10 @@ impl DerivationReport {
         writeln!(o, "  conserved: {}", conservation_text(self.conservation))?;
         let total = match (self.energy_is_total, &self.total_energy) {
             (Some(true), _) => "yes".to_string(),
+            (Some(false), Some(t)) if self.kinetic_not_quadratic => format!(
+                "no (T + V = {}): T is not a quadratic form in the velocities (a moving frame or support)",
+                t.get(style)
+            ),
             (Some(false), Some(t)) => format!("no (T + V = {})", t.get(style)),
             _ => "cannot tell from L alone: it holds if the velocity-free part of L is −V (no moving frame)".to_string(),
         };

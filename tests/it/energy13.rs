@@ -70,6 +70,8 @@ fn bead_on_a_rotating_wire_from_bodies_is_not_t_plus_v() {
     let d = sys.derive().unwrap();
     let e = sys.energy(&d);
     assert_eq!(e.is_total, Some(false));
+    // The reason: T has the velocity-free part ½mω²r².
+    assert!(e.kinetic_not_quadratic);
     assert!(e.conserved);
     assert!(equal(
         &mut sys,
@@ -206,6 +208,11 @@ fn kinetic_alone_means_no_potential() {
     let v = json(&["derive", "-T", "1/2*m*x'^2", "-q", "x", "--json"]);
     assert_eq!(v["energy_is_total"], true);
     assert_eq!(v["cyclic"], serde_json::json!(["x"]));
+    let (_, out, _) = lagrange(&["derive", "-T", "1/2*m*(r'^2 + omega^2*r^2)", "-q", "r"]);
+    assert!(
+        out.contains("T is not a quadratic form in the velocities"),
+        "{out}"
+    );
 }
 
 #[test]
