@@ -194,6 +194,17 @@ mod tests {
     }
 
     #[test]
+    fn concentric_circles_contradict_and_a_rescaled_circle_repeats() {
+        let e = derive_with(FREE, &["x", "y"], &["x^2 + y^2 = 1", "x^2 + y^2 = 4"]).unwrap_err();
+        assert_eq!(e.code(), "contradictory-constraints", "{e}");
+        let e =
+            derive_with(FREE, &["x", "y"], &["x^2 + y^2 = 1", "2*x^2 + 2*y^2 = 2"]).unwrap_err();
+        assert_eq!(e.code(), "redundant-constraint", "{e}");
+        // Independent except at special points: accepted.
+        derive_with(FREE, &["x", "y"], &["x = 0", "x^2 + y^2 = 1"]).unwrap();
+    }
+
+    #[test]
     fn repeated_constraints_are_named() {
         let e = derive_with(FREE, &["x", "y"], &["x = y", "2*x = 2*y"]).unwrap_err();
         assert_eq!(e.code(), "redundant-constraint", "{e}");
