@@ -251,6 +251,10 @@ impl Builder<'_> {
                 )
             })?;
         }
+        // The multipliers are lambda1, lambda2, …: a parameter of that name would merge with one.
+        system
+            .check_multiplier_names(system.constraints.len())
+            .map_err(|e| self.fail(self.id_line, e.code(), e.to_string()))?;
         let mut assumptions = Vec::new();
         for a in &pf.assume {
             assumptions.push(

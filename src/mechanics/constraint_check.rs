@@ -57,7 +57,7 @@ impl System {
     }
 
     /// `lambda1` … `lambdaM` name the multipliers: no coordinate or parameter may.
-    fn check_multiplier_names(&self, m: usize) -> Result<(), MechError> {
+    pub(crate) fn check_multiplier_names(&self, m: usize) -> Result<(), MechError> {
         let names = self
             .coordinates
             .iter()

@@ -451,3 +451,31 @@ answer = "m*x'"
     );
     assert_eq!(verify_codes(&text), Vec::<String>::new());
 }
+
+#[test]
+fn a_problem_file_with_a_parameter_named_like_a_multiplier_is_refused_on_loading() {
+    let text = r#"
+id = "cartesian"
+title = "Cartesian pendulum"
+coordinates = [{ name = "x" }, { name = "y" }]
+lagrangian = "1/2*m*(x'^2 + y'^2) - m*g*y + 0*lambda1"
+constraints = ["x^2 + y^2 = l^2"]
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+g = { dimension = "L T^-2", range = [5.0, 15.0] }
+l = { dimension = "L", range = [0.5, 2.0] }
+lambda1 = { dimension = "1", range = [0.5, 2.0] }
+
+[[parts]]
+id = "momentum"
+kind = "expression"
+prompt = "p_x"
+answer = "m*x'"
+"#;
+    let found = verify_codes(text);
+    assert!(
+        found.iter().any(|f| f.starts_with("load:multiplier-name")),
+        "{found:?}"
+    );
+}
