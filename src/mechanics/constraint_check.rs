@@ -14,6 +14,10 @@ use crate::expr::Id;
 const RANK_SAMPLES: usize = 8;
 /// Starts for finding a point on the earlier constraints.
 const PROJECTION_STARTS: usize = 6;
+/// Gauss–Newton steps from each start.
+const PROJECTION_STEPS: usize = 60;
+/// A coordinate past this size means the projection diverges: no state was found.
+const MAX_PROJECTED: f64 = 1e12;
 
 impl System {
     /// Checks the constraints; `rows` are their velocity rows A (m×n), as
@@ -104,12 +108,14 @@ impl System {
 
     /// Whether constraint `k` (dependent on the earlier ones) fails on states that satisfy
     /// the earlier holonomic ones: its row lies in their span, so it is constant along them,
-    /// and a nonzero constant there is a contradiction. Dependent velocity constraints are
-    /// reported as repeated: their rows alone cannot tell.
-    fn contradicts_earlier(&mut self, k: usize) -> Result<bool, MechError> {
+    /// and a nonzero constant there is a contradiction, zero a repetition — judged at the
+    /// states found from several starts. `None` when it cannot be told: a velocity constraint
+    /// (rows alone cannot tell), no state on the earlier constraints was found (`1/x = 0`
+    /// has none), or it holds at some and not at others (`x² = 1` with `x = 1`).
+    fn contradicts_earlier(&mut self, k: usize) -> Result<Option<bool>, MechError> {
         let holonomic = |c: &super::system::Constraint| c.kind == ConstraintKind::Holonomic;
         if !holonomic(&self.constraints[k]) || !self.constraints[..k].iter().all(holonomic) {
-            return Ok(false);
+            return Ok(None);
         }
         let exprs: Vec<Id> = self.constraints[..=k].iter().map(|c| c.expr).collect();
         let n = self.n();
@@ -121,36 +127,47 @@ impl System {
             }
         }
         let prog = self.compile(&roots)?;
+        // The constraints' values with the sizes of their terms: "zero" is zero up to
+        // rounding relative to those, whatever the scale (a circle of radius 1000 or 0.001).
+        let sizes = self.magnitudes(&exprs)?;
         let mut scratch = prog.scratch();
         let layout = self.state_layout();
         let mut sampler = Sampler::new(0x5eed_0c0b);
+        // Whether constraint k holds, at each state found on the earlier ones: they may have
+        // several components (x² = 1 with x = 1), so one state does not decide.
+        let mut holds = Vec::new();
         for _ in 0..PROJECTION_STARTS {
             let mut x = self.sample_point(&mut sampler);
             // Gauss–Newton onto the earlier constraints (minimum-norm steps).
-            let mut on = false;
-            for _ in 0..40 {
-                if prog.run(&x, &mut scratch).is_err() {
+            for _ in 0..PROJECTION_STEPS {
+                let Some(v) = sizes.eval(&x) else { break };
+                if v[..k].iter().all(|g| g.negligible()) {
+                    holds.push(v[k].negligible());
+                    break;
+                }
+                // Running off to infinity (1/x = 0 has no state) finds nothing.
+                if (0..n).any(|i| x[layout.q(i)].abs() > MAX_PROJECTED)
+                    || prog.run(&x, &mut scratch).is_err()
+                {
                     break;
                 }
                 let g = nalgebra::DVector::from_fn(k, |r, _| prog.output(r, &scratch));
-                if g.norm() < 1e-12 {
-                    on = true;
-                    break;
-                }
                 let j = DMatrix::from_fn(k, n, |r, c| prog.output(k + 1 + r * n + c, &scratch));
-                let Ok(step) = j.clone().svd(true, true).solve(&g, 1e-12) else {
+                let Ok(step) = j.svd(true, true).solve(&g, 1e-12) else {
                     break;
                 };
                 for i in 0..n {
                     x[layout.q(i)] -= step[i];
                 }
             }
-            if on && prog.run(&x, &mut scratch).is_ok() {
-                let gk = prog.output(k, &scratch);
-                return Ok(gk.abs() > 1e-6 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)));
-            }
         }
-        Ok(false)
+        Ok(
+            match (holds.iter().any(|&h| h), holds.iter().any(|&h| !h)) {
+                (true, false) => Some(false),
+                (false, true) => Some(true),
+                _ => None,
+            },
+        )
     }
 }
 
@@ -208,6 +225,12 @@ mod tests {
     fn repeated_constraints_are_named() {
         let e = derive_with(FREE, &["x", "y"], &["x = y", "2*x = 2*y"]).unwrap_err();
         assert_eq!(e.code(), "redundant-constraint", "{e}");
+        // No state satisfies 1/x = 0: whether x = 1 repeats or contradicts it is not claimed.
+        let e = derive_with(FREE, &["x", "y"], &["1/x = 0", "x = 1"]).unwrap_err();
+        assert_eq!(e.code(), "dependent-constraint", "{e}");
+        // x = 1 picks one of the two solutions of x² = 1: neither repeated nor contradicted.
+        let e = derive_with(FREE, &["x", "y"], &["x^2 = 1", "x = 1"]).unwrap_err();
+        assert_eq!(e.code(), "dependent-constraint", "{e}");
     }
 
     #[test]

@@ -81,16 +81,21 @@ pub enum MechError {
         constraints: usize,
         coordinates: usize,
     },
-    /// A constraint's row is a combination of the earlier ones everywhere: it repeats them,
-    /// or contradicts them (`x = 0` with `x = 1`) when `contradicts`.
+    /// A constraint's row is a combination of the earlier ones everywhere: it repeats them
+    /// (`contradicts` is `Some(false)`), contradicts them (`x = 0` with `x = 1`: `Some(true)`),
+    /// or which could not be told (`None`; `x = 1` with `x² = 1` picks a solution).
     #[error(
         "constraint {index} (`{text} = 0`) is not independent of the constraints before it: {}",
-        if *.contradicts { "it contradicts them (no state satisfies them all)" } else { "it repeats what they say" }
+        match .contradicts {
+            Some(true) => "it contradicts them (no state found satisfies them all)",
+            Some(false) => "it repeats what they say",
+            None => "it repeats them, contradicts them or picks some of their solutions",
+        }
     )]
     DependentConstraint {
         index: usize,
         text: String,
-        contradicts: bool,
+        contradicts: Option<bool>,
     },
     /// A generalized force depends on accelerations (it belongs in the mass matrix).
     #[error("the force on {coordinate} depends on accelerations ({acceleration})")]
@@ -148,9 +153,14 @@ impl MechError {
             MechError::EmptyConstraint { .. } => "empty-constraint",
             MechError::TooManyConstraints { .. } => "too-many-constraints",
             MechError::DependentConstraint {
-                contradicts: true, ..
+                contradicts: Some(true),
+                ..
             } => "contradictory-constraints",
-            MechError::DependentConstraint { .. } => "redundant-constraint",
+            MechError::DependentConstraint {
+                contradicts: Some(false),
+                ..
+            } => "redundant-constraint",
+            MechError::DependentConstraint { .. } => "dependent-constraint",
             MechError::ForceWithAcceleration { .. } => "force-with-acceleration",
             MechError::MultiplierName { .. } => "multiplier-name",
             MechError::Overflow { .. } => "overflow",
@@ -209,9 +219,16 @@ impl MechError {
                 "drop the constraints that follow from the others, or add coordinates".into()
             }
             MechError::DependentConstraint {
-                contradicts: true, ..
+                contradicts: Some(true),
+                ..
             } => "correct one of the contradicting constraints".into(),
-            MechError::DependentConstraint { .. } => "drop the repeated constraint".into(),
+            MechError::DependentConstraint {
+                contradicts: Some(false),
+                ..
+            } => "drop the repeated constraint".into(),
+            MechError::DependentConstraint { .. } => {
+                "drop the dependent constraint, or correct it if it contradicts the others".into()
+            }
             MechError::ForceWithAcceleration { .. } => {
                 "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
             }
