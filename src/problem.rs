@@ -120,8 +120,18 @@ pub enum Quantity {
     Multiplier(usize),
     /// The acceleration of coordinate i.
     Acceleration(usize),
+    /// The cyclic coordinates (a `values` part listing their names).
+    Cyclic,
     /// Nothing the engine derives (checked against the reference answer only).
     None,
+}
+
+/// The answer that states an empty list (no equilibrium, no cyclic coordinate).
+pub const NONE_ANSWER: &str = "none";
+
+/// Whether `text` is the explicit empty answer `none`.
+pub fn is_none_answer(text: &str) -> bool {
+    text.trim().eq_ignore_ascii_case(NONE_ANSWER)
 }
 
 /// A part of a problem.
@@ -144,13 +154,20 @@ pub struct Part {
     pub dimension: Option<Dimension>,
     /// For frequencies: the answers are ω² rather than ω.
     pub squared: bool,
+    /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
+    /// the stated equilibria are the ones).
+    pub assumptions: Vec<Assumption>,
     /// Line of the part in its file.
     pub line: usize,
 }
 
 impl Part {
-    /// The reference answer as a student would type it in one line.
+    /// The reference answer as a student would type it in one line (`none` for an
+    /// explicitly empty list).
     pub fn reference_text(&self, coordinates: usize) -> String {
+        if self.answers.is_empty() {
+            return NONE_ANSWER.to_string();
+        }
         let sep = match self.kind {
             PartKind::Equations => "; ",
             PartKind::Equilibria if coordinates > 1 => "; ",

@@ -44,9 +44,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     let parameters = b.parameters(&pf, &mut pool, &mut dims)?;
     let reader = Reader {
         b: &b,
-        ctx: Context::new()
-            .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
-            .with_parameters(parameters.iter().map(|p| p.name.as_str())),
+        ctx: system_context(&coordinates, &parameters),
     };
     let bodies = reader.bodies(&pf, &mut pool)?;
     let potentials = reader.potentials(&pf, &bodies, &mut pool)?;
@@ -80,7 +78,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     }
     system.parameters = declared;
     let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
-    let parts = b.parts(&pf, &system)?;
+    let parts = b.parts(&pf, &mut system)?;
     Ok(Problem {
         file: file.to_string(),
         id: b.id,
@@ -94,6 +92,15 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         stated_lagrangian: stated,
         lagrangian_line,
     })
+}
+
+/// The closed context the system's own text (L, positions, potentials) is read in: it may
+/// be larger than an answer (a bicycle's T is 24 kB).
+fn system_context(coordinates: &[Coordinate], parameters: &[Parameter]) -> Context {
+    Context::new()
+        .with_coordinates(coordinates.iter().map(|c| c.name.as_str()))
+        .with_parameters(parameters.iter().map(|p| p.name.as_str()))
+        .with_max_input(crate::expr::error::MAX_SYSTEM_INPUT_BYTES)
 }
 
 /// The line of the `lagrangian` key, else of the first body, else of the id.
@@ -133,7 +140,7 @@ impl Builder<'_> {
                 None if c.periodic => Dimension::NONE,
                 None => Dimension::new(0, 1, 0),
             };
-            dims.set(&name, d);
+            dims.set_coordinate(&name, d);
             let range = match c.range.as_deref() {
                 Some(&[a, b]) if a < b && a.is_finite() && b.is_finite() => (a, b),
                 Some(r) => {
@@ -244,6 +251,10 @@ impl Builder<'_> {
                 )
             })?;
         }
+        // The multipliers are lambda1, lambda2, …: a parameter of that name would merge with one.
+        system
+            .check_multiplier_names(system.constraints.len())
+            .map_err(|e| self.fail(self.id_line, e.code(), e.to_string()))?;
         let mut assumptions = Vec::new();
         for a in &pf.assume {
             assumptions.push(
@@ -255,19 +266,25 @@ impl Builder<'_> {
     }
 
     /// The parts, each a finding of its own on error; two parts may not share an id.
-    fn parts(&self, pf: &ProblemFile, system: &System) -> Result<Vec<Part>, Finding> {
+    fn parts(&self, pf: &ProblemFile, system: &mut System) -> Result<Vec<Part>, Finding> {
         let mut parts = Vec::new();
+        let ctx = system.context();
         for sp in &pf.parts {
             let line = line_of(self.text, sp.span().start);
             if let Err(why) = check_id(&sp.get_ref().id, "part") {
                 return Err(self.fail(line, "bad-id", why));
             }
-            parts.push(
-                build_part(sp.get_ref(), line, system).map_err(|(code, m)| Finding {
-                    part: Some(sp.get_ref().id.clone()),
-                    ..self.fail(line, code, m)
-                })?,
-            );
+            let in_part = |(code, m)| Finding {
+                part: Some(sp.get_ref().id.clone()),
+                ..self.fail(line, code, m)
+            };
+            let mut part = build_part(sp.get_ref(), line, system).map_err(in_part)?;
+            for a in &sp.get_ref().assume {
+                let a = Assumption::parse(a, &ctx, system)
+                    .map_err(|e| in_part(("bad-assumption", e)))?;
+                part.assumptions.push(a);
+            }
+            parts.push(part);
         }
         let mut seen = std::collections::BTreeSet::new();
         for p in &parts {

@@ -3,7 +3,7 @@
 
 use crate::expr::Dimension;
 use crate::mechanics::System;
-use crate::problem::{Part, PartKind, Quantity};
+use crate::problem::{Part, PartKind, Quantity, is_none_answer};
 
 use super::schema::{AnswerSpec, PartSpec};
 
@@ -80,13 +80,7 @@ pub(super) fn build_part(
     let kind = PartKind::parse(&sp.kind).ok_or_else(|| {
         ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force, steady-motion)", sp.kind))
     })?;
-    let answers = match &sp.answer {
-        AnswerSpec::One(s) => vec![s.clone()],
-        AnswerSpec::Many(v) => v.clone(),
-    };
-    if answers.is_empty() {
-        return Err(("no-answer", "the part has an empty answer".into()));
-    }
+    let answers = answers_of(sp, kind)?;
     let quantity = quantity_of(sp, sys)?;
     let (tolerance, points) = tolerance_and_points(sp)?;
     let up_to_constant = match sp.up_to.as_deref() {
@@ -133,8 +127,39 @@ pub(super) fn build_part(
         quantity,
         dimension,
         squared: sp.squared,
+        // Read by the builder, which holds the system mutably.
+        assumptions: Vec::new(),
         line,
     })
+}
+
+/// The reference answers; `none` (alone) states an empty list, for a list part only.
+fn answers_of(sp: &PartSpec, kind: PartKind) -> Result<Vec<String>, (&'static str, String)> {
+    let mut answers = match &sp.answer {
+        AnswerSpec::One(s) => vec![s.clone()],
+        AnswerSpec::Many(v) => v.clone(),
+    };
+    if answers.is_empty() {
+        return Err((
+            "no-answer",
+            "the part has an empty answer (an empty list is written `none`)".into(),
+        ));
+    }
+    // `none` states an empty list, explicitly: an omission is never read as one.
+    let list = matches!(
+        kind,
+        PartKind::Equilibria | PartKind::Frequencies | PartKind::Values
+    );
+    if answers.len() == 1 && is_none_answer(&answers[0]) {
+        if !list {
+            return Err((
+                "no-answer",
+                format!("`none` answers a list part, not a {} part", kind.name()),
+            ));
+        }
+        answers.clear();
+    }
+    Ok(answers)
 }
 
 /// The quantity an expression part asks for: stated, or implied by the part's id.
@@ -154,6 +179,7 @@ fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, S
         "momentum" => "momentum",
         "energy-function" => "energy-function",
         "tension" | "constraint-force" => "multiplier",
+        "cyclic" => "cyclic",
         _ => "none",
     });
     let quantity = match q {
@@ -164,6 +190,14 @@ fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, S
         "energy-function" => Quantity::EnergyFunction,
         "multiplier" => Quantity::Multiplier(sp.multiplier.unwrap_or(1).saturating_sub(1)),
         "acceleration" => Quantity::Acceleration(coordinate),
+        "cyclic" if sp.kind == "values" => Quantity::Cyclic,
+        "cyclic" => {
+            return Err((
+                "bad-quantity",
+                "`cyclic` is the quantity of a `values` part (the names of the cyclic coordinates)"
+                    .into(),
+            ));
+        }
         "none" => Quantity::None,
         other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
     };

@@ -49,6 +49,10 @@ pub const FILES: &[(&str, &str)] = &[
         "conical-pendulum.toml",
         include_str!("../../problems/conical-pendulum.toml"),
     ),
+    (
+        "charge-magnetic.toml",
+        include_str!("../../problems/charge-magnetic.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

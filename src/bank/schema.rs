@@ -191,4 +191,7 @@ pub struct PartSpec {
     /// For frequencies: the answers are ω² rather than ω.
     #[serde(default)]
     pub squared: bool,
+    /// Inequalities on the parameters for this part only, besides the problem's.
+    #[serde(default)]
+    pub assume: Vec<String>,
 }

@@ -7,7 +7,7 @@
 
 use super::finding::Finding;
 use super::verify_equilibria::verify_equilibria;
-use super::verify_expression::{verify_equations, verify_expression};
+use super::verify_expression::{verify_equations, verify_expression, verify_values};
 use super::verify_frequencies::verify_frequencies;
 use super::verify_steady::verify_steady;
 use crate::check::compare::{Relation, relate};
@@ -100,19 +100,8 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         message,
     };
     // A part the engine derives nothing for would be "proved" without any check.
-    if part.quantity == Quantity::None
-        && matches!(
-            part.kind,
-            PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce
-        )
-    {
-        return Err(fail(
-            "unprovable",
-            format!(
-                "verification cannot prove this {} part: say what it is with `quantity` (kinetic, potential, lagrangian, momentum, energy-function, multiplier, acceleration)",
-                part.kind.name()
-            ),
-        ));
+    if let Some(why) = unprovable(part) {
+        return Err(fail("unprovable", why));
     }
     let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
     let physics = match part.kind {
@@ -128,7 +117,7 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         PartKind::Frequencies => {
             verify_frequencies(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
-        PartKind::Values => Ok(()),
+        PartKind::Values => verify_values(part, &mut p).map_err(|f| fail(f.code, f.message)),
         PartKind::SteadyMotion => {
             verify_steady(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
         }
@@ -168,4 +157,24 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         }
     }
     Ok(())
+}
+
+/// Why a part the engine derives nothing for cannot be proved (it would pass unchecked).
+fn unprovable(part: &Part) -> Option<String> {
+    let needs_quantity = matches!(
+        part.kind,
+        PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce | PartKind::Values
+    );
+    if part.quantity != Quantity::None || !needs_quantity {
+        return None;
+    }
+    let known = if part.kind == PartKind::Values {
+        "cyclic"
+    } else {
+        "kinetic, potential, lagrangian, momentum, energy-function, multiplier, acceleration"
+    };
+    Some(format!(
+        "verification cannot prove this {} part: say what it is with `quantity` ({known})",
+        part.kind.name()
+    ))
 }

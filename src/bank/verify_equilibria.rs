@@ -80,10 +80,13 @@ fn stated_equilibria(
             .verify_equilibrium(&p.derivation, point)
             .map_err(|e| Failed::new("unusable", e.to_string()))?
         {
+            let at = super::verify_failed::equilibrium_failure(p, point)
+                .map(|w| format!(" ({w})"))
+                .unwrap_or_default();
             return Err(Failed::new(
                 "spurious-equilibrium",
                 format!(
-                    "`{item}` is not an equilibrium: the generalized forces do not vanish there"
+                    "`{item}` is not an equilibrium: the generalized forces do not vanish there{at}"
                 ),
             ));
         }
@@ -109,10 +112,16 @@ fn compare_equilibria(
     params: &[f64],
     stated_pts: &[&[f64]],
 ) -> Result<Option<EquilibriumFinding>, Failed> {
-    let found = p
-        .system
-        .equilibria(&p.derivation, params)
-        .map_err(|e| Failed::new("unusable", e.to_string()))?;
+    let found = match p.system.equilibria(&p.derivation, params) {
+        // No equilibrium found: right for an answer of `none`; otherwise each stated point
+        // in range is spurious.
+        Err(crate::mechanics::MechError::NoEquilibrium) => {
+            return Ok(stated_pts.first().map(|_| EquilibriumFinding::Spurious {
+                item: part.answers[0].clone(),
+            }));
+        }
+        other => other.map_err(|e| Failed::new("unusable", e.to_string()))?,
+    };
     if found.continuum {
         return Ok(Some(EquilibriumFinding::Continuum));
     }

@@ -57,7 +57,7 @@ fn truth(part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
                 .collect();
             Truth::Numbers(nums)
         }
-        Quantity::None => return Ok(None),
+        Quantity::Cyclic | Quantity::None => return Ok(None),
     }))
 }
 
@@ -200,4 +200,67 @@ pub(super) fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
         }
     }
     Ok(())
+}
+
+/// A `values` part listing the cyclic coordinates (or `none`): exactly the coordinates the
+/// engine finds cyclic (∂L/∂q ≡ 0, no generalized force, in no constraint).
+pub(super) fn verify_values(part: &Part, p: &mut Prepared) -> Check {
+    if part.quantity != Quantity::Cyclic {
+        return Ok(());
+    }
+    let names: Vec<String> = p
+        .system
+        .coordinates
+        .iter()
+        .map(|c| c.name.clone())
+        .collect();
+    let mut stated = Vec::new();
+    for a in &part.answers {
+        let name = crate::expr::names::normalize(a.trim());
+        match names.iter().position(|n| *n == name) {
+            Some(i) => stated.push(i),
+            None => {
+                return Err(Failed::new(
+                    "unreadable",
+                    format!("`{a}` is not a coordinate: list the cyclic coordinates by name"),
+                ));
+            }
+        }
+    }
+    let cyclic = p.system.energy(&p.derivation).cyclic;
+    if let Some(&i) = stated.iter().find(|i| !cyclic.contains(i)) {
+        return Err(Failed::new(
+            "not-cyclic",
+            format!("`{}` is not cyclic: {}", names[i], why_not_cyclic(p, i)),
+        ));
+    }
+    if let Some(&i) = cyclic.iter().find(|i| !stated.contains(i)) {
+        return Err(Failed::new(
+            "missing-cyclic",
+            format!(
+                "`{}` is cyclic (L does not depend on it, no force acts on it, and it is in no constraint), but the answer does not list it",
+                names[i]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Why coordinate `i` is not cyclic, for the finding.
+fn why_not_cyclic(p: &Prepared, i: usize) -> String {
+    let sys = &p.system;
+    let sym = sys.coordinates[i].sym;
+    if !sys.is_zero(p.derivation.steps[i].force) {
+        "L depends on it (∂L/∂q ≠ 0)".into()
+    } else if !sys.is_zero(sys.forces[i]) {
+        "a generalized force acts on it".into()
+    } else if sys
+        .constraints
+        .iter()
+        .any(|c| sys.pool.variables(c.expr).iter().any(|&(s, _)| s == sym))
+    {
+        "it appears in a constraint, whose force acts on it".into()
+    } else {
+        "the engine does not find it cyclic".into()
+    }
 }

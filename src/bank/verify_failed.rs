@@ -69,3 +69,42 @@ pub(super) fn check_dimension(
         _ => Ok(()),
     }
 }
+
+/// Where a stated equilibrium fails, for the finding: the parameter values of the first
+/// sample at which a generalized force at `point` (velocities and accelerations zero) does
+/// not vanish, and that force (`for m = 1.3, g = 9.8: the force on θ is 0.53`).
+pub(super) fn equilibrium_failure(p: &mut Prepared, point: &[Id]) -> Option<String> {
+    use rustc_hash::FxHashMap;
+    let zero = p.system.pool.zero();
+    let mut map: FxHashMap<_, _> = FxHashMap::default();
+    for (c, &v) in p.system.coordinates.iter().zip(point) {
+        map.insert((c.sym, 0), v);
+        map.insert((c.sym, 1), zero);
+        map.insert((c.sym, 2), zero);
+    }
+    let forces: Vec<Id> = p
+        .derivation
+        .forcing
+        .iter()
+        .map(|&f| p.system.pool.substitute(f, &map))
+        .collect();
+    let vals = crate::check::compare::values(&p.system, &forces, &p.points).ok()?;
+    // (sample, coordinate, force) for every finite force; the first sample (the samples in
+    // the ranges come first) with a force that is not round-off of the largest.
+    let all: Vec<(usize, usize, f64)> = vals
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.as_ref().map(|v| (k, v)))
+        .flat_map(|(k, v)| v.iter().enumerate().map(move |(i, x)| (k, i, *x)))
+        .filter(|(_, _, x)| x.is_finite())
+        .collect();
+    let largest = all.iter().fold(0.0f64, |m, x| m.max(x.2.abs()));
+    let &(k, i, v) = all.iter().find(|x| x.2.abs() > 1e-6 * largest)?;
+    let params = p.points.params(&p.system, k).to_vec();
+    let at = crate::check::compare::parameter_text(&p.system, &params);
+    Some(format!(
+        "for {at}, the generalized force on {} there is {}",
+        p.system.coordinates[i].name,
+        crate::check::compare::fmt_value(v)
+    ))
+}

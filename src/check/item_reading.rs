@@ -72,6 +72,10 @@ pub(crate) fn read_stated_items(
     p: &mut Prepared,
     input: &str,
 ) -> Result<StatedItems, ParseError> {
+    // `none`: the empty list, stated.
+    if crate::problem::is_none_answer(input) {
+        return Ok((Vec::new(), Vec::new()));
+    }
     if part.kind != PartKind::Equilibria {
         let items = read_values(part, p, input)?;
         let n = items.len();

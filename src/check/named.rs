@@ -98,7 +98,7 @@ fn asked(part: &Part) -> Option<Named> {
         Quantity::Momentum(i) => Named::Momentum(Some(i)),
         Quantity::EnergyFunction => Named::Energy,
         Quantity::Acceleration(i) => Named::Acceleration(Some(i)),
-        Quantity::Multiplier(_) | Quantity::None => return None,
+        Quantity::Multiplier(_) | Quantity::Cyclic | Quantity::None => return None,
     })
 }
 

@@ -37,9 +37,11 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
     let map = system
         .substitute_parameters(&part.substitute)
         .map_err(|error| CheckError::Substitution { error })?;
+    // The problem's assumptions and the part's own.
     let assumptions: Vec<Assumption> = problem
         .assumptions
         .iter()
+        .chain(&part.assumptions)
         .map(|a| Assumption {
             lhs: system.pool.substitute(a.lhs, &map),
             rhs: system.pool.substitute(a.rhs, &map),

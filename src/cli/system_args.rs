@@ -16,15 +16,15 @@ use lagrange::report::Paint;
 pub struct SystemArgs {
     /// A problem id from the bank (`lagrange problems list`), instead of --lagrangian.
     pub problem: Option<String>,
-    /// The Lagrangian, e.g. "1/2 m l^2 theta'^2 + m g l cos(theta)".
+    /// The Lagrangian, e.g. "1/2 m l^2 theta'^2 + m g l cos(theta)", or @FILE to read it
+    /// from a file (as every expression flag here accepts).
     #[arg(long, short = 'L', allow_hyphen_values = true)]
     pub lagrangian: Option<String>,
-    /// The kinetic energy (with --potential, instead of --lagrangian).
+    /// The kinetic energy (instead of --lagrangian; without --potential, V = 0).
     #[arg(
         long,
         short = 'T',
         allow_hyphen_values = true,
-        requires = "potential",
         conflicts_with = "lagrangian"
     )]
     pub kinetic: Option<String>,
@@ -69,23 +69,62 @@ impl SystemArgs {
             return Err(CliError::usage("--coords names no coordinate"));
         }
         lagrange::mechanics::system::check_coordinate_names(&coords).map_err(CliError::Name)?;
-        let mut sys = match (&self.lagrangian, &self.kinetic, &self.potential) {
-            (Some(l), _, _) => System::from_lagrangian(l, &coords)?,
-            (None, Some(t), Some(v)) => System::from_energies(t, v, &coords)?,
+        let text =
+            |flag: &str, v: &Option<String>| v.as_deref().map(|v| expression(flag, v)).transpose();
+        let lagrangian = text("--lagrangian", &self.lagrangian)?;
+        let kinetic = text("--kinetic", &self.kinetic)?;
+        let potential = text("--potential", &self.potential)?;
+        let mut sys = match (lagrangian, kinetic, potential) {
+            (Some(l), _, _) => System::from_lagrangian(&l, &coords)?,
+            // A kinetic energy alone is a free system: V = 0.
+            (None, Some(t), v) => System::from_energies(&t, v.as_deref().unwrap_or("0"), &coords)?,
             _ => {
                 return Err(CliError::usage(
-                    "give --lagrangian, or --kinetic and --potential",
+                    "give --lagrangian, or --kinetic (and --potential)",
                 ));
             }
         };
-        if let Some(f) = &self.force {
-            sys.set_forces(f)?;
+        if let Some(f) = text("--force", &self.force)? {
+            sys.set_forces(&f)?;
         }
         for c in &self.constraint {
-            sys.add_constraint(c)?;
+            sys.add_constraint(&expression("--constraint", c)?)?;
         }
         Ok(sys)
     }
+}
+
+/// The largest file an expression flag reads with `@FILE` (a derivation's input may be
+/// large, a bicycle's T is 24 kB, but stays bounded).
+const MAX_EXPRESSION_FILE: u64 = 1_000_000;
+
+/// The text of an expression flag: the value itself, or the contents of FILE for `@FILE`.
+fn expression(flag: &str, value: &str) -> Result<String, CliError> {
+    let Some(path) = value.strip_prefix('@') else {
+        return Ok(value.to_string());
+    };
+    let too_big = |n: u64| {
+        CliError::Usage(format!(
+            "{flag} @{path}: the file is {n} bytes, over the limit of {MAX_EXPRESSION_FILE}"
+        ))
+    };
+    let unreadable =
+        |e: std::io::Error| CliError::Usage(format!("{flag} @{path}: cannot read the file: {e}"));
+    let meta = std::fs::metadata(path).map_err(unreadable)?;
+    if meta.len() > MAX_EXPRESSION_FILE {
+        return Err(too_big(meta.len()));
+    }
+    let mut text = String::new();
+    use std::io::Read as _;
+    std::fs::File::open(path)
+        .map_err(unreadable)?
+        .take(MAX_EXPRESSION_FILE + 1)
+        .read_to_string(&mut text)
+        .map_err(unreadable)?;
+    if text.len() as u64 > MAX_EXPRESSION_FILE {
+        return Err(too_big(text.len() as u64));
+    }
+    Ok(text.trim().to_string())
 }
 
 /// What `derive` and `modes` can fail with: the face's own argument errors, or the

@@ -56,6 +56,9 @@ pub struct Context {
     coordinates: Vec<String>,
     parameters: Vec<String>,
     open: bool,
+    /// The longest input read in this context, in bytes (`None`: the default limit, sized
+    /// for answers; a system's own text may be larger).
+    max_input: Option<usize>,
 }
 
 impl Context {
@@ -92,6 +95,18 @@ impl Context {
             }
         }
         self
+    }
+
+    /// Raises (or lowers) the input limit: a system's Lagrangian may be far larger than an
+    /// answer (a bicycle's T is 24 kB).
+    pub fn with_max_input(mut self, bytes: usize) -> Self {
+        self.max_input = Some(bytes);
+        self
+    }
+
+    /// The longest input read in this context, in bytes.
+    pub fn max_input(&self) -> usize {
+        self.max_input.unwrap_or(super::error::MAX_INPUT_BYTES)
     }
 
     /// Whether unknown names become parameters.

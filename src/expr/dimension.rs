@@ -1,5 +1,7 @@
-//! Physical dimensions: exponents of mass M, length L and time T, inferred for any
-//! expression from the dimensions of its symbols. A time derivative divides by T.
+//! Physical dimensions: exponents of mass M, length L, time T and charge Q, inferred for any
+//! expression from the dimensions of its symbols. A time derivative divides by T. Angles
+//! are dimensionless. A power with a symbolic exponent of parameters (`r^n`) has a dimension
+//! that depends on the exponent's value: it is reported as undecided (`None`), not refused.
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -12,12 +14,13 @@ use super::names;
 use super::node::{Func, Id, Node};
 use super::pool::Pool;
 
-/// Exponents of M, L and T.
+/// Exponents of M, L, T and Q (electric charge).
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, Default, PartialOrd, Ord)]
 pub struct Dimension {
     pub m: Rational32,
     pub l: Rational32,
     pub t: Rational32,
+    pub q: Rational32,
 }
 
 impl Dimension {
@@ -26,6 +29,7 @@ impl Dimension {
         m: Rational32::new_raw(0, 1),
         l: Rational32::new_raw(0, 1),
         t: Rational32::new_raw(0, 1),
+        q: Rational32::new_raw(0, 1),
     };
 
     /// M^m L^l T^t for integer exponents.
@@ -34,6 +38,15 @@ impl Dimension {
             m: m.into(),
             l: l.into(),
             t: t.into(),
+            q: Rational32::zero(),
+        }
+    }
+
+    /// Electric charge, Q.
+    pub fn charge() -> Self {
+        Dimension {
+            q: Rational32::from(1),
+            ..Dimension::NONE
         }
     }
 
@@ -44,7 +57,7 @@ impl Dimension {
 
     /// Whether dimensionless.
     pub fn is_none(&self) -> bool {
-        self.m.is_zero() && self.l.is_zero() && self.t.is_zero()
+        self.m.is_zero() && self.l.is_zero() && self.t.is_zero() && self.q.is_zero()
     }
 
     /// Raised to a rational power.
@@ -53,11 +66,13 @@ impl Dimension {
             m: self.m * k,
             l: self.l * k,
             t: self.t * k,
+            q: self.q * k,
         }
     }
 
-    /// Reads `"M L^2 T^-2"`, `"L T^-2"`, `"1"` or `""` (dimensionless). Also accepts `*`
-    /// between factors, `/` before a factor, and Unicode superscripts.
+    /// Reads `"M L^2 T^-2"`, `"L T^-2"`, `"Q"` (charge), `"1"`, `""`, `"rad"` or `"angle"`
+    /// (dimensionless). Also accepts `*` between factors, `/` before a factor, and Unicode
+    /// superscripts.
     pub fn parse(src: &str) -> Result<Dimension, String> {
         let text: String = src
             .chars()
@@ -70,7 +85,11 @@ impl Dimension {
             })
             .collect();
         let text = text.trim();
-        if text.is_empty() || text == "1" || text.eq_ignore_ascii_case("dimensionless") {
+        let dimensionless = ["dimensionless", "rad", "radian", "angle"];
+        if text.is_empty()
+            || text == "1"
+            || dimensionless.iter().any(|w| text.eq_ignore_ascii_case(w))
+        {
             return Ok(Dimension::NONE);
         }
         let mut d = Dimension::NONE;
@@ -120,9 +139,10 @@ impl Dimension {
                 'M' => Dimension::new(1, 0, 0),
                 'L' => Dimension::new(0, 1, 0),
                 'T' => Dimension::new(0, 0, 1),
+                'Q' => Dimension::charge(),
                 other => {
                     return Err(format!(
-                        "unknown dimension `{other}` in `{src}`: use M, L and T, e.g. \"L T^-2\""
+                        "unknown dimension `{other}` in `{src}`: use M, L, T and Q (charge), e.g. \"L T^-2\""
                     ));
                 }
             };
@@ -145,7 +165,7 @@ impl Dimension {
             };
         }
         let mut parts = Vec::new();
-        for (name, e) in [("M", self.m), ("L", self.l), ("T", self.t)] {
+        for (name, e) in [("M", self.m), ("L", self.l), ("T", self.t), ("Q", self.q)] {
             if e.is_zero() {
                 continue;
             }
@@ -183,6 +203,7 @@ impl std::ops::Mul for Dimension {
             m: self.m + o.m,
             l: self.l + o.l,
             t: self.t + o.t,
+            q: self.q + o.q,
         }
     }
 }
@@ -206,6 +227,9 @@ impl fmt::Display for Dimension {
 #[derive(Clone, Debug, Default)]
 pub struct Dimensions {
     map: BTreeMap<String, Dimension>,
+    /// Names that vary (coordinates): an exponent containing one makes a dimension that
+    /// varies, which is an error; an exponent of constants only is merely undecided.
+    varying: std::collections::BTreeSet<String>,
 }
 
 impl Dimensions {
@@ -223,6 +247,23 @@ impl Dimensions {
     pub fn with(mut self, name: &str, d: Dimension) -> Self {
         self.set(name, d);
         self
+    }
+
+    /// Sets the dimension of a coordinate (a symbol that varies in time).
+    pub fn set_coordinate(&mut self, name: &str, d: Dimension) {
+        self.set(name, d);
+        self.varying.insert(names::normalize(name));
+    }
+
+    /// With one more coordinate.
+    pub fn with_coordinate(mut self, name: &str, d: Dimension) -> Self {
+        self.set_coordinate(name, d);
+        self
+    }
+
+    /// Whether `name` varies (a coordinate, or `t`).
+    fn varies(&self, name: &str) -> bool {
+        name == super::pool::TIME || self.varying.contains(name)
     }
 
     /// The dimension of a symbol, if known (`t` is always T).
@@ -393,6 +434,16 @@ impl Pool {
                     .map(|(n, k)| Rational32::new(n, k));
                 r.map(|r| d.pow(r))
             }
+            // `r^n` with n a constant: the dimension is L^n, which no fixed exponent states
+            // and no check can refute: undecided.
+            (Some(_), None)
+                if self
+                    .variables(x)
+                    .iter()
+                    .all(|&(s, o)| o == 0 && !dims.varies(self.name(s))) =>
+            {
+                None
+            }
             (Some(d), None) => {
                 return Err(DimError::SymbolicExponent {
                     base: self.unicode(b),
@@ -448,6 +499,10 @@ mod tests {
             ("1", Dimension::NONE),
             ("", Dimension::NONE),
             ("T^-1", Dimension::new(0, 0, -1)),
+            ("Q", Dimension::charge()),
+            ("Q T^-1", Dimension::charge() / Dimension::new(0, 0, 1)),
+            ("rad", Dimension::NONE),
+            ("angle", Dimension::NONE),
         ];
         for (src, want) in cases {
             assert_eq!(Dimension::parse(src), Ok(want), "{src}");
@@ -465,5 +520,30 @@ mod tests {
         assert_eq!(Dimension::energy().to_string(), "M L² T⁻²");
         assert_eq!(Dimension::energy().plain(), "M L^2 T^-2");
         assert_eq!(Dimension::NONE.to_string(), "dimensionless");
+    }
+
+    #[test]
+    fn charge_is_shown() {
+        let e_field = Dimension::parse("M L T^-2 Q^-1").unwrap();
+        assert_eq!(e_field.plain(), "M L T^-2 Q^-1");
+        // q·E is a force.
+        assert_eq!(Dimension::charge() * e_field, Dimension::new(1, 1, -2));
+    }
+
+    #[test]
+    fn a_symbolic_exponent_of_constants_is_undecided() {
+        let mut pool = Pool::new();
+        let r = pool.sym("r");
+        let n = pool.sym("n");
+        let theta = pool.sym("theta");
+        let rn = pool.pow(r, n);
+        let rtheta = pool.pow(r, theta);
+        let dims = Dimensions::new()
+            .with_coordinate("r", Dimension::new(0, 1, 0))
+            .with_coordinate("theta", Dimension::NONE)
+            .with("n", Dimension::NONE);
+        assert_eq!(pool.dimension(rn, &dims), Ok(None));
+        // A varying exponent makes a varying dimension: an error.
+        assert!(pool.dimension(rtheta, &dims).is_err());
     }
 }

@@ -5,6 +5,9 @@ use std::ops::Range;
 
 /// Longest input accepted, in bytes.
 pub const MAX_INPUT_BYTES: usize = 20_000;
+/// The longest text a system is built from (a Lagrangian, T, V, a force, a constraint):
+/// larger than an answer, still bounded.
+pub const MAX_SYSTEM_INPUT_BYTES: usize = 1_000_000;
 /// Deepest nesting accepted (parentheses, unary signs, exponents, function calls).
 pub const MAX_DEPTH: usize = 100;
 

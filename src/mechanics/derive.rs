@@ -98,6 +98,10 @@ impl System {
             forcing,
         };
         self.check_mass_matrix(&d)?;
+        if !self.constraints.is_empty() {
+            let rows = self.constraint_rows();
+            self.validate_constraints(&rows.a)?;
+        }
         Ok(d)
     }
 

@@ -73,6 +73,46 @@ pub enum MechError {
     /// The constraint rows are dependent at the state asked for.
     #[error("the constraints are not independent at this state")]
     DependentConstraints,
+    /// A constraint involves no coordinate and is not identically zero (`1 = 0`).
+    #[error("constraint {index} (`{text} = 0`) never holds: it involves no coordinate")]
+    ConstraintNeverHolds { index: usize, text: String },
+    /// A constraint is identically zero (`x = x`).
+    #[error("constraint {index} (`{text} = 0`) holds identically: it constrains nothing")]
+    EmptyConstraint { index: usize, text: String },
+    /// More independent constraints than coordinates.
+    #[error("{constraints} constraints on {coordinates} coordinates: at most one per coordinate")]
+    TooManyConstraints {
+        constraints: usize,
+        coordinates: usize,
+    },
+    /// A constraint's row is a combination of the earlier ones everywhere: it repeats them
+    /// (`contradicts` is `Some(false)`), contradicts them (`x = 0` with `x = 1`: `Some(true)`),
+    /// or which could not be told (`None`; `x = 1` with `x² = 1` picks a solution).
+    #[error(
+        "constraint {index} (`{text} = 0`) is not independent of the constraints before it: {}",
+        match .contradicts {
+            Some(true) => "it contradicts them (no state found satisfies them all)",
+            Some(false) => "it repeats what they say",
+            None => "it repeats them, contradicts them or picks some of their solutions",
+        }
+    )]
+    DependentConstraint {
+        index: usize,
+        text: String,
+        contradicts: Option<bool>,
+    },
+    /// A generalized force depends on accelerations (it belongs in the mass matrix).
+    #[error("the force on {coordinate} depends on accelerations ({acceleration})")]
+    ForceWithAcceleration {
+        coordinate: String,
+        acceleration: String,
+    },
+    /// A name of the system collides with a Lagrange multiplier's name.
+    #[error(
+        "`{}` is the name of a Lagrange multiplier here, and cannot also name a parameter or coordinate",
+        crate::expr::error::visible(.name)
+    )]
+    MultiplierName { name: String },
     /// A constant part of an expression overflows: its value is beyond the largest number
     /// lagrange computes with, so nothing that contains it can be evaluated anywhere.
     #[error(
@@ -114,6 +154,20 @@ impl MechError {
             MechError::ClosedFormTooLarge { .. } => "closed-form-too-large",
             MechError::ClosedFormNotGyroscopic { .. } => "closed-form-not-gyroscopic",
             MechError::DependentConstraints => "dependent-constraints",
+            MechError::ConstraintNeverHolds { .. } => "constraint-never-holds",
+            MechError::EmptyConstraint { .. } => "empty-constraint",
+            MechError::TooManyConstraints { .. } => "too-many-constraints",
+            MechError::DependentConstraint {
+                contradicts: Some(true),
+                ..
+            } => "contradictory-constraints",
+            MechError::DependentConstraint {
+                contradicts: Some(false),
+                ..
+            } => "redundant-constraint",
+            MechError::DependentConstraint { .. } => "dependent-constraint",
+            MechError::ForceWithAcceleration { .. } => "force-with-acceleration",
+            MechError::MultiplierName { .. } => "multiplier-name",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
             MechError::TooLarge(_) => "too-large",
@@ -163,6 +217,30 @@ impl MechError {
             }
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
+            }
+            MechError::ConstraintNeverHolds { .. } => {
+                "write the constraint in terms of the coordinates, or drop it".into()
+            }
+            MechError::EmptyConstraint { .. } => "drop it".into(),
+            MechError::TooManyConstraints { .. } => {
+                "drop the constraints that follow from the others, or add coordinates".into()
+            }
+            MechError::DependentConstraint {
+                contradicts: Some(true),
+                ..
+            } => "correct one of the contradicting constraints".into(),
+            MechError::DependentConstraint {
+                contradicts: Some(false),
+                ..
+            } => "drop the repeated constraint".into(),
+            MechError::DependentConstraint { .. } => {
+                "drop the dependent constraint, or correct it if it contradicts the others".into()
+            }
+            MechError::ForceWithAcceleration { .. } => {
+                "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
+            }
+            MechError::MultiplierName { name } => {
+                format!("rename `{name}` (the multipliers are lambda1, lambda2, …)")
             }
             MechError::Overflow { .. } => {
                 "choose units in which the quantities are moderate numbers".into()

@@ -5,6 +5,7 @@
 
 pub mod accel;
 pub mod bodies;
+pub(crate) mod constraint_check;
 pub(crate) mod constraints;
 pub(crate) mod coordinate;
 pub mod derive;
@@ -24,6 +25,7 @@ pub mod system;
 
 pub use bodies::{Body, Potential};
 pub use derive::{CoordinateSteps, Derivation};
+pub use energy::{Conservation, Energy, VelocityParts};
 pub use error::MechError;
 pub use state::Layout;
 pub use system::{Constraint, ConstraintKind, Coordinate, Parameter, System};

@@ -13,6 +13,7 @@ use super::magnitude::{Magnitudes, non_finite_constant};
 pub use super::naming::{NameError, check_coordinate_name, check_coordinate_names};
 use super::sample::Sampler;
 use super::state::Layout;
+use crate::expr::error::MAX_SYSTEM_INPUT_BYTES;
 use crate::expr::{Context, Id, Pool, Program, Sym, read_expr};
 
 /// Holonomic (on positions) or nonholonomic (on velocities, not integrable).
@@ -153,6 +154,7 @@ impl System {
         Context::open()
             .with_coordinates(self.coordinates.iter().map(|c| c.name.as_str()))
             .with_parameters(self.parameters.iter().map(|p| p.name.as_str()))
+            .with_max_input(MAX_SYSTEM_INPUT_BYTES)
     }
 
     /// The closed context: only this system's names.
@@ -183,11 +185,17 @@ impl System {
         }
         for (i, p) in parts.iter().enumerate() {
             if !p.trim().is_empty() {
-                self.forces[i] = self.read(
-                    p,
-                    &format!("the force on {}", self.coordinates[i].name),
-                    &ctx,
-                )?;
+                let name = self.coordinates[i].name.clone();
+                let q = self.read(p, &format!("the force on {name}"), &ctx)?;
+                // A force with q'' would make the printed equation and M, f disagree: it is
+                // an inertial term, refused with where it belongs.
+                if let Some(&(s, o)) = self.pool.variables(q).iter().find(|v| v.1 >= 2) {
+                    return Err(MechError::ForceWithAcceleration {
+                        coordinate: name,
+                        acceleration: format!("{}{}", self.pool.name(s), "'".repeat(o.into())),
+                    });
+                }
+                self.forces[i] = q;
             }
         }
         self.collect_parameters();

@@ -12,7 +12,7 @@ use serde::{Serialize, Serializer};
 
 use super::{Formula, Paint, text};
 use crate::expr::{Factored, Id, Style};
-use crate::mechanics::{ConstraintKind, MechError, System};
+use crate::mechanics::{Conservation, ConstraintKind, MechError, System};
 
 /// Everything `derive` shows about a system.
 #[derive(Clone, Debug, Serialize)]
@@ -31,8 +31,12 @@ pub struct DerivationReport {
     pub energy_conserved: bool,
     /// h = Σ q̇ ∂L/∂q̇ − L.
     pub energy_function: Formula,
-    /// Whether h = T + V.
-    pub energy_is_total: bool,
+    /// Whether h = T + V; `null` when only L was given (T and V are not known, so it cannot
+    /// be told from L alone).
+    pub energy_is_total: Option<bool>,
+    /// L₂, L₁, L₀: the parts of L of degree 2, 1 and 0 in the velocities (h = L₂ − L₀);
+    /// `null` when L is not quadratic in the velocities.
+    pub energy_parts: Option<EnergyParts>,
     /// The Euler–Lagrange expressions, each `= 0`.
     pub equations: Vec<Formula>,
     /// f in M q̈ = f.
@@ -64,9 +68,26 @@ pub struct DerivationReport {
     /// The equations with common factors taken out, as the text shows them.
     #[serde(skip)]
     pub factored_equations: Vec<Formula>,
-    /// T + V, shown when it differs from h.
+    /// T + V when T and V are known, shown when it differs from h.
     #[serde(skip)]
-    pub total_energy: Formula,
+    pub total_energy: Option<Formula>,
+    /// Why h is or is not conserved.
+    #[serde(skip)]
+    pub conservation: Conservation,
+    /// T is known and not a quadratic form in the velocities (why h ≠ T + V).
+    #[serde(skip)]
+    pub kinetic_not_quadratic: bool,
+}
+
+/// L split by degree in the velocities.
+#[derive(Clone, Debug, Serialize)]
+pub struct EnergyParts {
+    /// The velocity-free part L₀.
+    pub l0: Formula,
+    /// The part linear in the velocities L₁ (it does not enter h).
+    pub l1: Formula,
+    /// The quadratic part L₂.
+    pub l2: Formula,
 }
 
 /// A cyclic coordinate and its conserved momentum.
@@ -139,6 +160,11 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
         energy_conserved: energy.conserved,
         energy_function: f(energy.function),
         energy_is_total: energy.is_total,
+        energy_parts: energy.parts.map(|p| EnergyParts {
+            l0: f(p.l0),
+            l1: f(p.l1),
+            l2: f(p.l2),
+        }),
         equations: step(|s| s.equation),
         forcing: all(&d.forcing),
         generalized_forces: step(|s| s.force),
@@ -159,7 +185,9 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
             .iter()
             .map(|x| Formula::factored(pool, x))
             .collect(),
-        total_energy: f(energy.total),
+        total_energy: energy.total.map(f),
+        conservation: energy.conservation,
+        kinetic_not_quadratic: energy.kinetic_not_quadratic,
         coordinates: names,
     })
 }
@@ -222,10 +250,41 @@ impl DerivationReport {
                 "\\frac{{\\partial L}}{{\\partial {q}}} &= {} \\\\",
                 self.generalized_forces[i].latex
             )?;
+            if let Some(force) = &self.applied_forces[i] {
+                writeln!(o, "Q_{{{q}}} &= {} \\\\", force.latex)?;
+            }
             writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex)?;
         }
+        self.render_latex_constraints(o)?;
         writeln!(o, "h &= {}", self.energy_function.latex)?;
         writeln!(o, "\\end{{align*}}")
+    }
+
+    /// The constraints, the equations with multipliers and the multipliers' closed forms.
+    fn render_latex_constraints(&self, o: &mut String) -> fmt::Result {
+        let Some(aug) = &self.augmented_equations else {
+            return Ok(());
+        };
+        for c in &self.constraints {
+            let kind = match c.kind {
+                ConstraintKind::Holonomic => "holonomic",
+                ConstraintKind::Nonholonomic => "nonholonomic",
+            };
+            writeln!(
+                o,
+                "{} &= 0 && \\text{{({kind} constraint)}} \\\\",
+                c.constraint.latex
+            )?;
+        }
+        for e in aug {
+            writeln!(o, "{} &= 0 \\\\", e.latex)?;
+        }
+        if let Some(ms) = &self.multipliers {
+            for (j, m) in ms.iter().enumerate() {
+                writeln!(o, "\\lambda_{{{}}} &= {} \\\\", j + 1, m.latex)?;
+            }
+        }
+        Ok(())
     }
 
     fn render_steps(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
@@ -292,24 +351,30 @@ impl DerivationReport {
             paint.heading("Energy function:"),
             self.energy_function.get(style)
         )?;
-        writeln!(
-            o,
-            "  conserved: {}",
-            if self.energy_conserved {
-                "yes (∂L/∂t = 0 and no non-conservative forces)"
+        if let Some(p) = &self.energy_parts {
+            let l1 = if p.l1.plain == "0" {
+                String::new()
             } else {
-                "no"
-            }
-        )?;
-        writeln!(
-            o,
-            "  h = T + V: {}",
-            if self.energy_is_total {
-                "yes".to_string()
-            } else {
-                format!("no (T + V = {})", self.total_energy.get(style))
-            }
-        )?;
+                format!("; L₁ = {} does not enter h", p.l1.get(style))
+            };
+            writeln!(
+                o,
+                "  h = L₂ − L₀ with L₂ = {}, L₀ = {}{l1}",
+                p.l2.get(style),
+                p.l0.get(style)
+            )?;
+        }
+        writeln!(o, "  conserved: {}", conservation_text(self.conservation))?;
+        let total = match (self.energy_is_total, &self.total_energy) {
+            (Some(true), _) => "yes".to_string(),
+            (Some(false), Some(t)) if self.kinetic_not_quadratic => format!(
+                "no (T + V = {}): T is not a quadratic form in the velocities (a moving frame or support)",
+                t.get(style)
+            ),
+            (Some(false), Some(t)) => format!("no (T + V = {})", t.get(style)),
+            _ => "cannot tell from L alone: it holds if the velocity-free part of L is −V (no moving frame)".to_string(),
+        };
+        writeln!(o, "  h = T + V: {total}")?;
         if self.conserved_momenta.is_empty() {
             writeln!(o, "{} none", paint.heading("Cyclic coordinates:"))?;
         }
@@ -351,5 +416,18 @@ impl DerivationReport {
             }
         }
         Ok(())
+    }
+}
+
+/// Why h is or is not conserved, as the text says it.
+fn conservation_text(c: Conservation) -> &'static str {
+    match c {
+        Conservation::Conserved => "yes (∂L/∂t = 0 and no non-conservative forces)",
+        Conservation::ConservedPowerlessForces => {
+            "yes (∂L/∂t = 0 and the forces do no work: Σ Q q̇ = 0)"
+        }
+        Conservation::ExplicitTime => "no (L depends explicitly on t)",
+        Conservation::ForcesDoWork => "no (the non-conservative forces do work)",
+        Conservation::MovingConstraint => "no (a constraint depends on t: its force does work)",
     }
 }

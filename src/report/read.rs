@@ -82,7 +82,11 @@ pub fn reading(input: &str, opts: &ReadOptions) -> Result<Reading, ParseError> {
         .map(|(n, _)| n.trim().to_string())
         .collect();
     for (name, d) in &opts.dims {
-        dims.set(name.trim(), *d);
+        if opts.coords.iter().any(|c| c == name.trim()) {
+            dims.set_coordinate(name.trim(), *d);
+        } else {
+            dims.set(name.trim(), *d);
+        }
     }
     let base = if opts.strict {
         Context::new()

@@ -17,11 +17,11 @@ fn dims() -> Dimensions {
         .with("g", d("L T^-2"))
         .with("k", d("M T^-2"))
         .with("omega", d("T^-1"))
-        .with("theta", d("1"))
-        .with("theta1", d("1"))
-        .with("theta2", d("1"))
-        .with("x", d("L"))
-        .with("r", d("L"))
+        .with_coordinate("theta", d("1"))
+        .with_coordinate("theta1", d("1"))
+        .with_coordinate("theta2", d("1"))
+        .with_coordinate("x", d("L"))
+        .with_coordinate("r", d("L"))
 }
 
 #[test]

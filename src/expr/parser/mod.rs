@@ -24,7 +24,7 @@ use std::collections::BTreeSet;
 
 use super::ast::Statement;
 use super::context::Context;
-use super::error::{MAX_DEPTH, MAX_INPUT_BYTES, ParseError, ParseErrorKind};
+use super::error::{MAX_DEPTH, ParseError, ParseErrorKind};
 use super::lexer::{Span, Tok, Token, lex};
 
 /// The result of parsing: the statement and any coordinates implied by a derivative mark in
@@ -37,15 +37,16 @@ pub struct Parsed {
 
 /// Parses a whole input.
 pub fn parse(src: &str, ctx: &Context) -> Result<Parsed, ParseError> {
-    if src.len() > MAX_INPUT_BYTES {
-        let mut cut = MAX_INPUT_BYTES;
+    let max = ctx.max_input();
+    if src.len() > max {
+        let mut cut = max;
         while !src.is_char_boundary(cut) {
             cut -= 1;
         }
         return Err(ParseError::new(
             ParseErrorKind::TooLong {
                 len: src.len(),
-                max: MAX_INPUT_BYTES,
+                max,
             },
             cut..src.len(),
         ));

@@ -54,6 +54,7 @@ impl Builder<'_> {
             quantity: Quantity::None,
             dimension: None,
             squared: false,
+            assumptions: Vec::new(),
             line: self.problem.lagrangian_line,
         };
         self.steps.push(Step {
