@@ -10,40 +10,29 @@ use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::generalized_eigen;
 use super::magnitude::{Magnitudes, Sized};
-use super::sample::Sampler;
 use super::state::Layout;
 use super::system::System;
 use crate::expr::{Id, Program};
+
+mod families;
+mod newton;
+
+pub use families::Shape;
+
+pub(crate) use newton::wrap_angle;
+use newton::{
+    NEWTON_WANDER, NewtonScale, force_scale, is_continuum, newton, normalize_root, range_widths,
+    same_point, snap_to_zero, start_points,
+};
 
 /// An eigenvalue ω² (or a growth rate, or a frequency) counts as zero below this fraction of
 /// the largest one: linear analysis cannot tell the sign of what rounding leaves.
 pub(crate) const EIGENVALUE_ZERO: f64 = 1e-9;
 
-/// A Newton root is kept when its residual is within this fraction of the force scale (the
-/// typical size of the generalized forces' terms over the search range) after the iteration
-/// budget (the iteration itself aims at [`NEWTON_TARGET`]). Relative, never absolute: a
-/// spring of 1e-12 N/m has forces of 1e-12 N, and its equilibrium is still a single point.
-const NEWTON_ACCEPT: f64 = 1e-9;
-
-/// Residual, relative to the force scale, at which Newton's iteration stops.
-const NEWTON_TARGET: f64 = 1e-11;
-
-/// Newton's iterates may wander this many range widths away before the start is given up.
-const NEWTON_WANDER: f64 = 1e6;
-
-/// A coordinate of a root within this fraction of its range width of 0 is set to 0.
-const ROOT_SNAP: f64 = 1e-12;
-
-/// Two roots closer than this fraction of the range width (per coordinate) are one.
-const SAME_ROOT: f64 = 1e-6;
-
-/// A root may lie this fraction of the range outside a non-periodic coordinate's range
-/// (a root found exactly on the edge is not lost to rounding).
-const RANGE_MARGIN: f64 = 1e-9;
-
-/// Angles within this of ±π are reported as π (both are one angle; the tolerance is that of
-/// [`NEWTON_ACCEPT`]).
-const ANGLE_SNAP: f64 = 1e-9;
+/// A point given by hand is an equilibrium when each force is within this fraction of the
+/// size of its terms (looser than the search's acceptance: values such as l₀ + m g/k are
+/// evaluated with rounding).
+const AT_ACCEPT: f64 = 1e-8;
 
 /// Stability of an equilibrium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +61,9 @@ impl Stability {
 pub struct Equilibria {
     /// Isolated equilibria with their stability, sorted.
     pub points: Vec<(Vec<f64>, Stability)>,
+    /// What each point is beyond a point (aligned with `points`): one of a continuum along
+    /// its free directions, or degenerate (not harmonic).
+    pub shapes: Vec<Shape>,
     /// f vanishes on a whole region: equilibria are not isolated (e.g. the bead on the
     /// parabola at ω² = 2ga).
     pub continuum: bool,
@@ -88,7 +80,10 @@ pub struct Statics {
 
 impl Statics {
     /// Compiles G, J and M with the parameter values `params` (in the system's order).
+    /// Refused with [`MechError::ExplicitTime`] when the equations depend on t explicitly:
+    /// the system frozen at t = 0 has no bearing on the driven motion.
     pub fn new(sys: &mut System, d: &Derivation, params: &[f64]) -> Result<Statics, MechError> {
+        explicit_time(sys, d)?;
         let coords = sys.coordinate_syms();
         let zero = sys.pool.zero();
         let at_rest: FxHashMap<_, _> = coords
@@ -228,6 +223,7 @@ impl System {
         if is_continuum(&statics, &starts) {
             return Ok(Equilibria {
                 points: Vec::new(),
+                shapes: Vec::new(),
                 continuum: true,
             });
         }
@@ -244,26 +240,86 @@ impl System {
             let Some(q) = normalize_root(q, &ranges, &periodic) else {
                 continue;
             };
+            let q = snap_to_zero(&statics, q, &widths, &mut scratch);
             if !found.iter().any(|p| same_point(p, &q, &periodic, &widths)) {
                 found.push(q);
             }
         }
-        found.sort_by(|a, b| {
+        let mut grouped = families::group(&statics, found, &periodic, &widths, scale.force);
+        grouped.sort_by(|(a, _), (b, _)| {
             a.iter()
                 .zip(b)
                 .map(|(x, y)| x.total_cmp(y))
                 .find(|o| o.is_ne())
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
-        let mut points = Vec::with_capacity(found.len());
-        for q in found {
+        let mut points = Vec::with_capacity(grouped.len());
+        let mut shapes = Vec::with_capacity(grouped.len());
+        for (q, shape) in grouped {
             let (st, _, _) = statics.stability(&q)?;
-            points.push((q, st));
+            points.push((q, across_family(st, &shape)));
+            shapes.push(shape);
         }
         Ok(Equilibria {
             points,
+            shapes,
             continuum: false,
         })
+    }
+
+    /// The shape of the equilibrium at `q` (parameter values `params`): whether it is one
+    /// of a continuum (and along which directions), or degenerate.
+    pub fn equilibrium_shape(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q: &[f64],
+    ) -> Result<Shape, MechError> {
+        let statics = Statics::new(self, d, params)?;
+        let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
+        let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
+        let widths = range_widths(&ranges, &periodic);
+        let force = force_scale(&statics, &start_points(&ranges));
+        Ok(families::shape_at(&statics, q, &widths, force))
+    }
+
+    /// [`MechError::NotAnEquilibrium`] unless every generalized force vanishes at rest at
+    /// `q` (parameter values `params`), each relative to the size of its own terms there: a
+    /// point given by hand is analysed only when it is an equilibrium.
+    pub fn check_equilibrium(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q: &[f64],
+    ) -> Result<(), MechError> {
+        let statics = Statics::new(self, d, params)?;
+        let mut scratch = statics.program.scratch();
+        let undefined = || MechError::Undefined {
+            what: "the equations at the point given".into(),
+        };
+        let (g, _, _) = statics.eval(q, &mut scratch).ok_or_else(undefined)?;
+        let sizes = statics.sizes(q).ok_or_else(undefined)?;
+        let off: Vec<usize> = (0..g.len())
+            // A NaN force is off too.
+            .filter(|&i| g[i].is_nan() || g[i].abs() > AT_ACCEPT * sizes[i].magnitude)
+            .collect();
+        if off.is_empty() {
+            return Ok(());
+        }
+        let names: Vec<&str> = self.coordinates.iter().map(|c| c.name.as_str()).collect();
+        let point = names
+            .iter()
+            .zip(q)
+            .map(|(n, v)| format!("{n} = {}", short(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        // At rest the force on qᵢ is −∂V/∂qᵢ (plus any generalized force given).
+        let forces = off
+            .iter()
+            .map(|&i| format!("∂V/∂{} = {}", names[i], short(-g[i])))
+            .collect::<Vec<_>>()
+            .join(", ");
+        Err(MechError::NotAnEquilibrium { point, forces })
     }
 
     /// Whether the candidate equilibrium `point` (one expression per coordinate, in the
@@ -286,206 +342,66 @@ impl System {
     }
 }
 
-/// Newton's starting points in `ranges`: a grid (≤ ~400 points) plus seeded random ones.
-fn start_points(ranges: &[(f64, f64)]) -> Vec<Vec<f64>> {
-    let n = ranges.len();
-    let mut sampler = Sampler::new(0x5eed_0003);
-    let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
-    let mut starts: Vec<Vec<f64>> = Vec::new();
-    // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
-    let total = per_axis
-        .checked_pow(n as u32)
-        .filter(|&t| t <= 512)
-        .unwrap_or(0);
-    for k in 0..total {
-        let mut idx = k;
-        let mut q = Vec::with_capacity(n);
-        for r in ranges {
-            let i = idx % per_axis;
-            idx /= per_axis;
-            q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
-        }
-        starts.push(q);
+/// The stability of an equilibrium that is one of a continuum, judged across it: when
+/// every zero ω² is a free direction (not degenerate), moving along the continuum is
+/// neutral and the other directions decide (the cart-pendulum's θ = 0 with x arbitrary is
+/// stable). A degenerate point stays marginal: linear analysis cannot decide it.
+pub fn across_family(st: Stability, shape: &Shape) -> Stability {
+    if st == Stability::Marginal && !shape.free.is_empty() && !shape.degenerate {
+        Stability::Stable
+    } else {
+        st
     }
-    let random = if total == 0 { 256 } else { 64 };
-    for _ in 0..random {
-        starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
-    }
-    starts
 }
 
-/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum. Each
-/// force is zero when it is rounding relative to its own terms (the bead on the parabola at
-/// ω² = 2ga), never when it is merely small (a spring of 1e-12).
-fn is_continuum(statics: &Statics, starts: &[Vec<f64>]) -> bool {
-    let n = statics.layout.coordinates();
-    let mut zero_at_start = 0;
-    let mut defined = 0;
-    for q in starts {
-        if let Some(s) = statics.sizes(q) {
-            defined += 1;
-            if s[..n].iter().all(|v| v.negligible()) {
-                zero_at_start += 1;
+/// [`MechError::ExplicitTime`] when some equation of motion (or the mass matrix) changes
+/// with t at fixed q, q': the terms named are the coordinates' equations that do.
+fn explicit_time(sys: &mut System, d: &Derivation) -> Result<(), MechError> {
+    let time = sys.pool.time();
+    let mut driven = Vec::new();
+    for (i, &f) in d.forcing.iter().enumerate() {
+        let row = d.mass.get(i).map(Vec::as_slice).unwrap_or(&[]);
+        let depends = std::iter::once(f).chain(row.iter().copied()).any(|e| {
+            // t written but cancelling (sin(t)² + cos(t)²) is no dependence; a derivative
+            // too large to form counts as one (refusing is the safe side).
+            sys.pool.variables(e).contains(&(time, 0)) && {
+                let dt = sys.pool.diff(e, time, 0);
+                !sys.is_zero(dt)
             }
+        });
+        if depends {
+            driven.push(format!("the equation of {}", sys.coordinates[i].name));
         }
     }
-    defined > 0 && zero_at_start * 10 >= defined * 9
-}
-
-/// Newton's yardsticks: the typical size of the forces, and how far iterates may wander.
-#[derive(Clone, Copy, Debug)]
-struct NewtonScale {
-    force: f64,
-    limit: f64,
-}
-
-/// The typical size of the generalized forces over the search range: the median, over the
-/// starting points, of the largest term magnitude (a median, so that a pole inside the
-/// range does not make every residual look small).
-fn force_scale(statics: &Statics, starts: &[Vec<f64>]) -> f64 {
-    let mut sizes: Vec<f64> = starts
-        .iter()
-        .filter_map(|q| statics.force_size(q))
-        .filter(|v| v.is_finite() && *v > 0.0)
-        .collect();
-    if sizes.is_empty() {
-        return 0.0;
+    if driven.is_empty() {
+        return Ok(());
     }
-    sizes.sort_by(f64::total_cmp);
-    sizes[sizes.len() / 2]
+    Err(MechError::ExplicitTime {
+        terms: driven.join(", "),
+    })
 }
 
-/// The width of each coordinate's range (2π for an angle), kept finite.
-fn range_widths(ranges: &[(f64, f64)], periodic: &[bool]) -> Vec<f64> {
-    ranges
-        .iter()
-        .zip(periodic)
-        .map(|(&(lo, hi), &per)| {
-            let w = if per { std::f64::consts::TAU } else { hi - lo };
-            if w.is_finite() && w > 0.0 {
-                w
+/// A value with six significant digits, trailing zeros dropped.
+fn short(v: f64) -> String {
+    let t = format!("{v:.6e}");
+    match t.split_once('e') {
+        Some((_, e)) if (-4..6).contains(&e.parse::<i32>().unwrap_or(99)) => {
+            let digits = 5 - e.parse::<i32>().unwrap_or(0);
+            let t = format!("{v:.*}", digits.max(0) as usize);
+            if t.contains('.') {
+                t.trim_end_matches('0').trim_end_matches('.').to_string()
             } else {
-                f64::MAX
-            }
-        })
-        .collect()
-}
-
-/// A root with periodic coordinates wrapped into (−π, π] and tiny values set to 0; `None`
-/// when a non-periodic coordinate lies outside its range.
-fn normalize_root(mut q: Vec<f64>, ranges: &[(f64, f64)], periodic: &[bool]) -> Option<Vec<f64>> {
-    for i in 0..q.len() {
-        if periodic[i] {
-            q[i] = wrap_angle(q[i]);
-        } else {
-            let (lo, hi) = ranges[i];
-            let margin = RANGE_MARGIN * (hi - lo);
-            // Written as "not inside" so that a NaN is outside too.
-            let inside = q[i] >= lo - margin && q[i] <= hi + margin;
-            if !inside {
-                return None;
+                t
             }
         }
-        let width = if periodic[i] {
-            std::f64::consts::TAU
-        } else {
-            (ranges[i].1 - ranges[i].0).min(f64::MAX)
-        };
-        if q[i].abs() < ROOT_SNAP * width {
-            q[i] = 0.0;
-        }
-    }
-    Some(q)
-}
-
-/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π), each
-/// coordinate relative to the width of its range.
-fn same_point(a: &[f64], b: &[f64], periodic: &[bool], widths: &[f64]) -> bool {
-    a.iter()
-        .zip(b)
-        .zip(periodic.iter().zip(widths))
-        .all(|((x, y), (&per, &w))| {
-            let d = if per {
-                wrap_angle(x - y).abs()
+        Some((m, e)) => {
+            let m = if m.contains('.') {
+                m.trim_end_matches('0').trim_end_matches('.')
             } else {
-                (x - y).abs()
+                m
             };
-            d < SAME_ROOT * w
-        })
-}
-
-/// Newton's method with backtracking from `q`; `None` when it does not converge. The
-/// residual is measured against the force scale, never against 1.
-fn newton(
-    s: &Statics,
-    mut q: Vec<f64>,
-    scale: NewtonScale,
-    scratch: &mut [f64],
-) -> Option<Vec<f64>> {
-    let n = q.len();
-    for _ in 0..60 {
-        let (g, j, _) = s.eval(&q, scratch)?;
-        if g.amax() <= NEWTON_TARGET * scale.force {
-            return Some(polish(s, q, &g, &j, scratch));
+            format!("{m}e{e}")
         }
-        let step = j.clone().lu().solve(&(-&g))?;
-        if !step.iter().all(|v| v.is_finite()) {
-            return None;
-        }
-        let norm0 = g.norm();
-        let mut t = 1.0;
-        let mut accepted = false;
-        for _ in 0..20 {
-            let trial: Vec<f64> = (0..n).map(|i| q[i] + t * step[i]).collect();
-            if let Some((g2, _, _)) = s.eval(&trial, scratch)
-                && g2.norm() < norm0
-            {
-                q = trial;
-                accepted = true;
-                break;
-            }
-            t *= 0.5;
-        }
-        if !accepted {
-            return None;
-        }
-        if q.iter().any(|v| v.abs() > scale.limit) {
-            return None;
-        }
+        None => t,
     }
-    let (g, _, _) = s.eval(&q, scratch)?;
-    (g.amax() <= NEWTON_ACCEPT * scale.force).then_some(q)
-}
-
-/// One more Newton step from a converged `q`, kept when it does not make the residual
-/// worse: the target is relative to the forces over the whole range, so a root that is tiny
-/// compared with the range (x₀ = m g sin α / k = 5e-12) still gets its full precision.
-fn polish(
-    s: &Statics,
-    q: Vec<f64>,
-    g: &DVector<f64>,
-    j: &DMatrix<f64>,
-    scratch: &mut [f64],
-) -> Vec<f64> {
-    let Some(step) = j.clone().lu().solve(&(-g)) else {
-        return q;
-    };
-    let trial: Vec<f64> = q.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-    match s.eval(&trial, scratch) {
-        Some((g2, _, _)) if trial.iter().all(|v| v.is_finite()) && g2.amax() <= g.amax() => trial,
-        _ => q,
-    }
-}
-
-/// An angle in (−π, π].
-pub(crate) fn wrap_angle(x: f64) -> f64 {
-    let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
-    let mut y = x.rem_euclid(tau);
-    if y > pi {
-        y -= tau;
-    }
-    if (y + pi).abs() < ANGLE_SNAP || (y - pi).abs() < ANGLE_SNAP {
-        y = pi;
-    }
-    y
 }

@@ -79,6 +79,17 @@ pub enum MechError {
     /// it can be evaluated anywhere.
     #[error("`{expr}` is undefined")]
     UndefinedConstant { expr: String },
+    /// The equations depend on time explicitly (a driven support, the Kapitza pendulum):
+    /// the system at rest at t = 0 is not a physical equilibrium, and its linearization is
+    /// not the motion about one.
+    #[error(
+        "the equations depend on time explicitly (through {terms}): equilibria and normal modes of the system frozen at t = 0 are not physical"
+    )]
+    ExplicitTime { terms: String },
+    /// The point asked for is not an equilibrium: the generalized forces there
+    /// (`forces`: "∂V/∂θ = …"-style items, comma-separated) do not vanish.
+    #[error("{point} is not an equilibrium: {forces}")]
+    NotAnEquilibrium { point: String, forces: String },
     /// A name given as a coordinate cannot be one (time, π, a function, listed twice).
     #[error(transparent)]
     Name(#[from] super::naming::NameError),
@@ -111,6 +122,8 @@ impl MechError {
             MechError::DependentConstraints => "dependent-constraints",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
+            MechError::ExplicitTime { .. } => "explicit-time",
+            MechError::NotAnEquilibrium { .. } => "not-an-equilibrium",
             MechError::TooLarge(_) => "too-large",
             MechError::Name(e) => e.code(),
         }
@@ -161,6 +174,10 @@ impl MechError {
                 "choose units in which the quantities are moderate numbers".into()
             }
             MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
+            MechError::ExplicitTime { .. } => "simulate the motion instead (a numerical integration follows the driven system); for fast driving, an averaged effective potential is an approximation to derive by hand".into(),
+            MechError::NotAnEquilibrium { .. } => {
+                "give a point where every generalized force vanishes, or leave the point out to search for the equilibria".into()
+            }
             MechError::TooLarge(e) => e.help(),
             MechError::Name(e) => e.help(),
         }

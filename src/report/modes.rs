@@ -14,7 +14,7 @@ use serde::{Serialize, Serializer};
 use super::{Formula, Paint, text};
 use crate::check::compare::fmt_value;
 use crate::expr::{Id, ParseError, Program, Style, read_expr};
-use crate::mechanics::equilibria::Stability;
+use crate::mechanics::equilibria::{Shape, Stability, across_family};
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
 
@@ -123,8 +123,13 @@ pub struct EquilibriumModes {
     pub modes: Vec<Vec<f64>>,
     /// ω² of each mode.
     pub omega_squared: Vec<f64>,
-    /// The equilibrium, by coordinate name.
+    /// The equilibrium, by coordinate name (a coordinate listed in `free` alone is
+    /// arbitrary; its value here is the representative one).
     pub point: BTreeMap<String, f64>,
+    /// Directions along which this equilibrium is one of a continuum (empty: isolated).
+    pub free: Vec<Vec<f64>>,
+    /// ω² = 0 along a direction that is not free: the small oscillations are not harmonic.
+    pub not_harmonic: bool,
     /// Stable, unstable or marginal.
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
@@ -163,7 +168,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         })
         .collect();
     let at = match &opts.at {
-        Some(given) => Some(point(&mut sys, given)?),
+        Some(given) => Some(given_point(&mut sys, given, &values)?),
         None => None,
     };
     let unicode: Vec<String> = coordinate_labels
@@ -178,7 +183,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         (found, continuum) = numeric_modes(&mut sys, &d, at.as_deref())?;
         equilibria = found
             .iter()
-            .map(|m| equilibrium(m, &names, &unicode))
+            .map(|(m, shape)| equilibrium(m, shape, &names, &unicode))
             .collect();
     } else if !opts.symbolic {
         return Err(MechError::MissingValue {
@@ -187,7 +192,10 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         .into());
     }
     let symbolic = match (&at, opts.symbolic) {
-        (Some(ids), true) => Some(sys.symbolic_modes(&d, ids)?),
+        (Some(ids), true) => {
+            check_symbolic_point(&mut sys, &d, ids, opts)?;
+            Some(sys.symbolic_modes(&d, ids)?)
+        }
         (None, true) => return Err(ModesError::SymbolicNeedsPoint),
         _ => None,
     };
@@ -273,27 +281,73 @@ fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesE
         .collect()
 }
 
+/// [`MechError::NotAnEquilibrium`] when the forces at rest at the point given do not vanish
+/// for every value of the parameters.
+fn check_symbolic_point(
+    sys: &mut System,
+    d: &Derivation,
+    ids: &[Id],
+    opts: &ModesOptions,
+) -> Result<(), ModesError> {
+    if sys.verify_equilibrium(d, ids)? {
+        return Ok(());
+    }
+    let point = opts
+        .at
+        .iter()
+        .flatten()
+        .map(|(n, v)| format!("{} = {}", n.trim(), v.trim()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    Err(MechError::NotAnEquilibrium {
+        point,
+        forces:
+            "the generalized forces at rest there do not vanish for every value of the parameters"
+                .into(),
+    }
+    .into())
+}
+
+/// The given equilibrium with the parameter values substituted (`r = l0 + m*g/k`).
+fn given_point(
+    sys: &mut System,
+    given: &[(String, String)],
+    values: &rustc_hash::FxHashMap<(crate::expr::Sym, u8), Id>,
+) -> Result<Vec<Id>, ModesError> {
+    let ids = point(sys, given)?;
+    Ok(ids
+        .into_iter()
+        .map(|e| sys.pool.substitute(e, values))
+        .collect())
+}
+
 /// The numeric modes at the given point, or at every equilibrium found; and whether the
 /// equilibria form a continuum.
 fn numeric_modes(
     sys: &mut System,
     d: &Derivation,
     at: Option<&[Id]>,
-) -> Result<(Vec<Modes>, bool), ModesError> {
+) -> Result<(Vec<(Modes, Shape)>, bool), ModesError> {
     if let Some(ids) = at {
         let q: Vec<f64> = ids
             .iter()
             .map(|&e| constant(sys, e).ok_or(ModesError::PointNotNumeric))
             .collect::<Result<_, _>>()?;
-        return Ok((vec![sys.modes_at(d, &[], &q)?], false));
+        sys.check_equilibrium(d, &[], &q)?;
+        let shape = sys.equilibrium_shape(d, &[], &q)?;
+        let mut m = sys.modes_at(d, &[], &q)?;
+        m.stability = across_family(m.stability, &shape);
+        return Ok((vec![(m, shape)], false));
     }
     let eq = sys.equilibria(d, &[])?;
     if !eq.continuum && eq.points.is_empty() {
         return Err(MechError::NoEquilibrium.into());
     }
     let mut found = Vec::with_capacity(eq.points.len());
-    for (q, _) in eq.points {
-        found.push(sys.modes_at(d, &[], &q)?);
+    for ((q, _), shape) in eq.points.into_iter().zip(eq.shapes) {
+        let mut m = sys.modes_at(d, &[], &q)?;
+        m.stability = across_family(m.stability, &shape);
+        found.push((m, shape));
     }
     Ok((found, eq.continuum))
 }
@@ -310,7 +364,7 @@ fn constant(sys: &System, e: Id) -> Option<f64> {
         .map(|v| v[0])
 }
 
-fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumModes {
+fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) -> EquilibriumModes {
     EquilibriumModes {
         frequencies: m.frequencies.clone(),
         growth_rates: m.growth_rates.clone(),
@@ -320,6 +374,8 @@ fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumMod
         point: names.iter().cloned().zip(m.point.iter().copied()).collect(),
         stability: m.stability,
         stable: m.stability == Stability::Stable,
+        free: shape.free.clone(),
+        not_harmonic: shape.degenerate,
         coordinates: m.point.clone(),
         descriptions: m.describe(labels),
     }
@@ -368,12 +424,7 @@ impl ModesReport {
         paint: &dyn Paint,
         o: &mut String,
     ) -> fmt::Result {
-        let point: Vec<String> = self
-            .coordinate_labels
-            .iter()
-            .zip(&m.coordinates)
-            .map(|(n, v)| format!("{} = {}", n.get(style), fmt_value(*v)))
-            .collect();
+        let point = point_text(&self.coordinate_labels, m, style);
         let st = match m.stability {
             Stability::Stable => paint.good("stable"),
             Stability::Unstable => paint.bad("unstable"),
@@ -385,6 +436,7 @@ impl ModesReport {
             paint.heading("equilibrium"),
             point.join(", ")
         )?;
+        write_shape(m, paint, o)?;
         if m.gyroscopic {
             writeln!(
                 o,
@@ -415,4 +467,47 @@ impl ModesReport {
         }
         Ok(())
     }
+}
+
+/// The equilibrium as `x arbitrary, θ = 0` (a coordinate free alone is arbitrary).
+fn point_text(labels: &[Formula], m: &EquilibriumModes, style: Style) -> Vec<String> {
+    labels
+        .iter()
+        .zip(&m.coordinates)
+        .enumerate()
+        .map(|(i, (n, v))| {
+            let alone = m
+                .free
+                .iter()
+                .any(|d| d.iter().enumerate().all(|(j, &x)| (j == i) == (x != 0.0)));
+            if alone {
+                format!("{} arbitrary", n.get(style))
+            } else {
+                format!("{} = {}", n.get(style), fmt_value(*v))
+            }
+        })
+        .collect()
+}
+
+/// What the equilibrium is beyond a point: one of a continuum not along a single
+/// coordinate, or degenerate.
+fn write_shape(m: &EquilibriumModes, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+    for d in &m.free {
+        if d.iter().filter(|&&x| x != 0.0).count() > 1 {
+            let dir: Vec<String> = d.iter().map(|x| fmt_value(*x)).collect();
+            writeln!(
+                o,
+                "  one of a continuum of equilibria: every point along ({}) from here is one",
+                dir.join(", ")
+            )?;
+        }
+    }
+    if m.not_harmonic {
+        writeln!(
+            o,
+            "  {} ω² = 0 along a direction that is not free: the restoring force is not linear in the displacement, so the motion is not a harmonic oscillation and linear analysis cannot decide stability",
+            paint.warn("not harmonic:")
+        )?;
+    }
+    Ok(())
 }

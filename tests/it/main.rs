@@ -6,6 +6,7 @@ mod cli;
 mod corpus;
 mod diagnostics;
 mod dimensions;
+mod equilibria13;
 mod follow;
 mod fuzz_replay;
 mod grade;

@@ -1,0 +1,188 @@
+//! Issue 13, equilibria: continua of equilibria (a cyclic x, a free chain), explicit time
+//! refused, `--at` checked, degenerate minima found once. Physics from closed forms: the
+//! cart-pendulum's ω² = (M + m) g/(M l) about θ = 0 with x arbitrary; the free chain's
+//! translation; V = x⁴ has one equilibrium at 0.
+
+use lagrange::bank::{load_str, verify::verify};
+use lagrange::mechanics::equilibria::Stability;
+use lagrange::mechanics::{MechError, System};
+use lagrange::report::{ModesError, ModesOptions, ModesReport};
+
+const CART: &str =
+    "1/2*(M+m)*x'^2 + m*l*x'*theta'*cos(theta) + 1/2*m*l^2*theta'^2 + m*g*l*cos(theta)";
+
+fn pairs(text: &str) -> Vec<(String, String)> {
+    lagrange::report::modes::assignments(text).unwrap()
+}
+
+fn modes(
+    l: &str,
+    coords: &[&str],
+    params: &str,
+    at: Option<&str>,
+) -> Result<ModesReport, ModesError> {
+    let sys = System::from_lagrangian(l, coords).unwrap();
+    let opts = ModesOptions {
+        default_range: Some((-10.0, 10.0)),
+        ranges: Vec::new(),
+        params: pairs(params),
+        at: at.map(pairs),
+        symbolic: false,
+    };
+    lagrange::report::modes(&sys, &opts)
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-7 * (1.0 + a.abs().max(b.abs()))
+}
+
+#[test]
+fn the_cart_pendulum_is_x_arbitrary_theta_zero_with_the_textbook_frequency() {
+    let (big, m, l, g) = (2.0, 1.0, 1.5, 9.8);
+    let r = modes(CART, &["x", "theta"], "M=2, m=1, l=1.5, g=9.8", None).unwrap();
+    assert_eq!(
+        r.equilibria.len(),
+        2,
+        "one continuum per θ, not a row of points"
+    );
+    let bottom = &r.equilibria[0];
+    assert_eq!(bottom.free, vec![vec![1.0, 0.0]]);
+    assert_eq!(bottom.coordinates[1], 0.0);
+    assert_eq!(bottom.stability, Stability::Stable);
+    let w2 = (big + m) * g / (big * l);
+    assert!(
+        bottom.frequencies.iter().any(|w| close(w * w, w2)),
+        "{:?}",
+        bottom.frequencies
+    );
+    let top = &r.equilibria[1];
+    assert!(close(top.coordinates[1].abs(), std::f64::consts::PI));
+    assert_eq!(top.stability, Stability::Unstable);
+    let text = r.render(lagrange::expr::Style::Plain, &lagrange::report::Plain);
+    assert!(text.contains("x arbitrary, theta = 0: stable"), "{text}");
+}
+
+#[test]
+fn a_free_chain_is_one_continuum_along_its_translation() {
+    let l = "1/2*x1'^2 + 1/2*x2'^2 + 1/2*x3'^2 - 1/2*(x1-x2)^2 - 1/2*(x2-x3)^2";
+    let r = modes(l, &["x1", "x2", "x3"], "", None).unwrap();
+    assert_eq!(r.equilibria.len(), 1);
+    assert_eq!(r.equilibria[0].free, vec![vec![1.0, 1.0, 1.0]]);
+    assert_eq!(r.equilibria[0].coordinates, vec![0.0, 0.0, 0.0]);
+}
+
+#[test]
+fn a_degenerate_minimum_is_one_equilibrium_and_not_harmonic() {
+    let r = modes("1/2*x'^2 - x^4", &["x"], "", None).unwrap();
+    assert_eq!(r.equilibria.len(), 1, "not 44 points at ±1e-4");
+    assert_eq!(r.equilibria[0].coordinates, vec![0.0]);
+    assert!(r.equilibria[0].not_harmonic);
+    assert_eq!(r.equilibria[0].stability, Stability::Marginal);
+}
+
+#[test]
+fn the_hoop_at_the_critical_spin_has_its_bottom_exactly_at_zero() {
+    // R ω² = g: the bottom is a quartic minimum, θ = 0 exactly, not θ = 1e-8.
+    let l = "1/2*R^2*theta'^2 + 1/2*w^2*R^2*sin(theta)^2 + g*R*cos(theta)";
+    let r = modes(l, &["theta"], "R=1, g=4, w=2", None).unwrap();
+    let pts: Vec<f64> = r.equilibria.iter().map(|e| e.coordinates[0]).collect();
+    assert_eq!(pts.len(), 2, "{pts:?}");
+    assert_eq!(pts[0], 0.0);
+    assert!(r.equilibria[0].not_harmonic);
+}
+
+#[test]
+fn an_explicit_time_dependence_is_refused() {
+    // The Kapitza pendulum: the support oscillates as a cos(ν t).
+    let l = "1/2*l^2*theta'^2 - l*a*nu*sin(nu*t)*sin(theta)*theta' + g*l*cos(theta)";
+    let err = modes(l, &["theta"], "l=1, a=0.1, nu=50, g=9.8", None).unwrap_err();
+    assert!(
+        matches!(err, ModesError::Mech(MechError::ExplicitTime { .. })),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_point_that_is_not_an_equilibrium_is_refused_with_the_force() {
+    let err = modes(
+        "1/2*theta'^2 + cos(theta)",
+        &["theta"],
+        "",
+        Some("theta = 1"),
+    )
+    .unwrap_err();
+    let text = err.to_string();
+    assert!(text.contains("not an equilibrium"), "{text}");
+    // ∂V/∂θ = sin 1.
+    assert!(text.contains("0.841471"), "{text}");
+}
+
+#[test]
+fn the_point_given_may_be_an_expression_in_the_parameters() {
+    let l = "1/2*m*(r'^2 + r^2*theta'^2) + m*g*r*cos(theta) - 1/2*k*(r-l0)^2";
+    let r = modes(
+        l,
+        &["r", "theta"],
+        "m=1, g=9.8, k=10, l0=1",
+        Some("r = l0 + m*g/k, theta = 0"),
+    )
+    .unwrap();
+    let e = &r.equilibria[0];
+    assert!(close(e.coordinates[0], 1.98));
+    // Radial ω² = k/m, swing ω² = g/r₀.
+    let w2 = &e.omega_squared;
+    assert!(w2.iter().any(|w| close(*w, 10.0)), "{w2:?}");
+    assert!(w2.iter().any(|w| close(*w, 9.8 / 1.98)), "{w2:?}");
+}
+
+const SPRING_CART: &str = r#"
+id = "t-spring-cart"
+title = "t"
+source = "test"
+statement = "A block on a spring riding a free cart."
+coordinates = [
+  { name = "x", range = [-2.0, 2.0] },
+  { name = "s", range = [-1.0, 1.0] },
+]
+lagrangian = "1/2*M*x'^2 + 1/2*m*(x' + s')^2 - 1/2*k*s^2"
+
+[parameters]
+M = { dimension = "M", range = [0.5, 2.0] }
+m = { dimension = "M", range = [0.5, 2.0] }
+k = { dimension = "M T^-2", range = [1.0, 5.0] }
+
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "Equilibria?"
+answer = ANSWER
+stability = ["stable"]
+"#;
+
+fn findings(answer: &str) -> Vec<(String, String)> {
+    let text = SPRING_CART.replace("ANSWER", answer);
+    let p = load_str("t.toml", &text).unwrap();
+    verify(&p)
+        .into_iter()
+        .map(|f| (f.code.to_string(), f.message))
+        .collect()
+}
+
+#[test]
+fn a_continuum_is_statable_with_any_and_verifies() {
+    assert_eq!(findings(r#"["x = any, s = 0"]"#), vec![]);
+}
+
+#[test]
+fn a_continuum_stated_as_a_point_is_named_not_reported_missing() {
+    let f = findings(r#"["x = 0, s = 0"]"#);
+    assert_eq!(f.len(), 1, "{f:?}");
+    assert_eq!(f[0].0, "not-isolated", "{f:?}");
+    assert!(f[0].1.contains("x = any"), "{f:?}");
+}
+
+#[test]
+fn any_on_a_coordinate_that_is_not_free_fails() {
+    let f = findings(r#"["x = any, s = any"]"#);
+    assert_eq!(f.len(), 1, "{f:?}");
+}
