@@ -98,9 +98,10 @@ fn stated_equilibria(
             let want = problem.dims.get(&p.system.coordinates[i].name);
             check_dimension(problem, p, v, want)?;
         }
+        let samples = p.points.points.clone();
         if !p
             .system
-            .verify_equilibrium(&p.derivation, point)
+            .verify_equilibrium_at(&p.derivation, point, &samples)
             .map_err(|e| Failed::new("unusable", e.to_string()))?
         {
             return Err(Failed::new(

@@ -130,6 +130,8 @@ pub struct EquilibriumModes {
     pub free: Vec<Vec<f64>>,
     /// ω² = 0 along a direction that is not free: the small oscillations are not harmonic.
     pub not_harmonic: bool,
+    /// Coordinates whose velocities lose their inertia here (a singular chart): no modes.
+    pub singular_chart: Vec<String>,
     /// Stable, unstable or marginal.
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
@@ -335,6 +337,9 @@ fn numeric_modes(
             .collect::<Result<_, _>>()?;
         sys.check_equilibrium(d, &[], &q)?;
         let shape = sys.equilibrium_shape(d, &[], &q)?;
+        if !shape.singular_chart.is_empty() {
+            return Ok((vec![(chart_modes(&q), shape)], false));
+        }
         let mut m = sys.modes_at(d, &[], &q)?;
         m.stability = across_family(m.stability, &shape);
         return Ok((vec![(m, shape)], false));
@@ -345,11 +350,28 @@ fn numeric_modes(
     }
     let mut found = Vec::with_capacity(eq.points.len());
     for ((q, _), shape) in eq.points.into_iter().zip(eq.shapes) {
+        if !shape.singular_chart.is_empty() {
+            found.push((chart_modes(&q), shape));
+            continue;
+        }
         let mut m = sys.modes_at(d, &[], &q)?;
         m.stability = across_family(m.stability, &shape);
         found.push((m, shape));
     }
     Ok((found, eq.continuum))
+}
+
+/// An equilibrium where the coordinates are singular: no modes (the chart's linearization
+/// says nothing), stability undecided.
+fn chart_modes(q: &[f64]) -> Modes {
+    Modes {
+        point: q.to_vec(),
+        stability: Stability::Marginal,
+        frequencies: Vec::new(),
+        growth_rates: Vec::new(),
+        modes: Vec::new(),
+        gyroscopic: false,
+    }
 }
 
 /// The value of a constant expression.
@@ -376,6 +398,11 @@ fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) ->
         stable: m.stability == Stability::Stable,
         free: shape.free.clone(),
         not_harmonic: shape.degenerate,
+        singular_chart: shape
+            .singular_chart
+            .iter()
+            .filter_map(|&i| labels.get(i).cloned())
+            .collect(),
         coordinates: m.point.clone(),
         descriptions: m.describe(labels),
     }
@@ -501,6 +528,14 @@ fn write_shape(m: &EquilibriumModes, paint: &dyn Paint, o: &mut String) -> fmt::
                 dir.join(", ")
             )?;
         }
+    }
+    if !m.singular_chart.is_empty() {
+        writeln!(
+            o,
+            "  {} the mass matrix is singular here: the velocity of {} has no inertia at this point (like a longitude at a pole), so these coordinates cannot describe small motions about it; the point is an equilibrium, but its stability and frequencies need coordinates that are regular here (e.g. Cartesian ones)",
+            paint.warn("singular coordinates:"),
+            m.singular_chart.join(", ")
+        )?;
     }
     if m.not_harmonic {
         writeln!(

@@ -186,3 +186,94 @@ fn any_on_a_coordinate_that_is_not_free_fails() {
     let f = findings(r#"["x = any, s = any"]"#);
     assert_eq!(f.len(), 1, "{f:?}");
 }
+
+const ELASTIC: &str = r#"
+id = "t-elastic"
+title = "t"
+source = "test"
+statement = "A bob on a spring swinging in a vertical plane."
+coordinates = [
+  { name = "r", range = [0.1, 5.0] },
+  { name = "theta", periodic = true },
+]
+lagrangian = "1/2*m*(r'^2 + r^2*theta'^2) + m*g*r*cos(theta) - 1/2*k*(r - l0)^2"
+assume = ["k*l0 > m*g"]
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+g = { dimension = "L T^-2", range = [5.0, 15.0] }
+k = { dimension = "M T^-2", range = [20.0, 50.0] }
+l0 = { dimension = "L", range = [0.5, 2.0] }
+
+[[bodies]]
+kind = "point"
+mass = "m"
+position = ["r*sin(theta)", "-r*cos(theta)"]
+
+[[potentials]]
+kind = "gravity"
+g = "g"
+axis = "y"
+
+[[potentials]]
+kind = "spring"
+k = "k"
+natural = "l0"
+from = ["0", "0"]
+to = 1
+
+[[parts]]
+id = "frequencies"
+kind = "frequencies"
+prompt = "Frequencies?"
+answer = ["sqrt(k/m)", "sqrt(g*k/(k*l0 + m*g))"]
+at = { r = "AT", theta = "0" }
+
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "Equilibria?"
+answer = ["r = l0 + m*g/k, theta = 0", "r = l0 - m*g/k, theta = pi"]
+stability = ["stable", "unstable"]
+"#;
+
+fn elastic_findings(at: &str) -> Vec<(String, String)> {
+    let p = load_str("t.toml", &ELASTIC.replace("AT", at)).unwrap();
+    verify(&p)
+        .into_iter()
+        .map(|f| (f.code.to_string(), f.message))
+        .collect()
+}
+
+#[test]
+fn the_elastic_pendulum_with_bodies_verifies_under_its_assumption() {
+    // Radial ω² = k/m; swing ω² = g/r₀ = g k/(k l₀ + m g).
+    assert_eq!(elastic_findings("l0 + m*g/k"), vec![]);
+}
+
+#[test]
+fn a_frequency_part_at_a_point_that_is_not_an_equilibrium_fails() {
+    let f = elastic_findings("l0");
+    assert_eq!(f.len(), 1, "{f:?}");
+    assert_eq!(f[0].0, "not-an-equilibrium", "{f:?}");
+    assert!(f[0].1.contains("∂V/∂r"), "{f:?}");
+}
+
+#[test]
+fn the_spherical_pendulum_at_its_pole_is_explained_not_refused() {
+    let l = "1/2*m*l^2*(theta'^2 + sin(theta)^2*phi'^2) + m*g*l*cos(theta)";
+    let r = modes(l, &["theta", "phi"], "m=1, l=1, g=9.8", None).unwrap();
+    assert_eq!(r.equilibria.len(), 2);
+    for e in &r.equilibria {
+        assert_eq!(e.singular_chart, vec!["φ".to_string()]);
+        assert!(e.frequencies.is_empty() && e.growth_rates.is_empty());
+    }
+    let at = modes(
+        l,
+        &["theta", "phi"],
+        "m=1, l=1, g=9.8",
+        Some("theta = 0, phi = 0"),
+    )
+    .unwrap();
+    assert_eq!(at.equilibria[0].singular_chart.len(), 1);
+}

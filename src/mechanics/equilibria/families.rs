@@ -29,6 +29,10 @@ pub struct Shape {
     /// not linear in the displacement (V = x⁴), so the small oscillations there are not
     /// harmonic and linear analysis cannot decide stability.
     pub degenerate: bool,
+    /// The coordinates whose velocities lose their inertia here (the mass matrix is
+    /// singular: the spherical pendulum's φ at θ = 0, a longitude at a pole). The chart is
+    /// singular, not the physics; small oscillations need coordinates regular here.
+    pub singular_chart: Vec<usize>,
 }
 
 impl Shape {
@@ -46,9 +50,10 @@ impl Shape {
 pub(super) fn shape_at(s: &Statics, q: &[f64], widths: &[f64], force: f64) -> Shape {
     let n = q.len();
     let mut scratch = s.program.scratch();
-    let Some((_, j, _)) = s.eval(q, &mut scratch) else {
+    let Some((_, j, m)) = s.eval(q, &mut scratch) else {
         return Shape::default();
     };
+    let singular_chart = singular_coordinates(&m);
     let sizes = s.sizes(q);
     let term_size = sizes
         .as_ref()
@@ -64,7 +69,10 @@ pub(super) fn shape_at(s: &Statics, q: &[f64], widths: &[f64], force: f64) -> Sh
     };
     let scale = svd.singular_values.iter().fold(term_size, |a, &x| a.max(x));
     let step = widths.iter().fold(f64::MAX, |a, &w| a.min(w)).min(1e6);
-    let mut shape = Shape::default();
+    let mut shape = Shape {
+        singular_chart,
+        ..Shape::default()
+    };
     for k in 0..n {
         if svd.singular_values[k] > EIGENVALUE_ZERO * scale {
             continue;
@@ -77,6 +85,32 @@ pub(super) fn shape_at(s: &Statics, q: &[f64], widths: &[f64], force: f64) -> Sh
         }
     }
     shape
+}
+
+/// The coordinates along which the mass matrix `m` has lost rank: a null direction of `m`
+/// (eigenvalue below [`EIGENVALUE_ZERO`] of the largest), named by its large components.
+fn singular_coordinates(m: &nalgebra::DMatrix<f64>) -> Vec<usize> {
+    let sym = (m + m.transpose()) * 0.5;
+    if !sym.iter().all(|x| x.is_finite()) {
+        return Vec::new();
+    }
+    let eig = sym.symmetric_eigen();
+    let big = eig.eigenvalues.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut out = Vec::new();
+    for (k, &v) in eig.eigenvalues.iter().enumerate() {
+        if v.abs() > EIGENVALUE_ZERO * big {
+            continue;
+        }
+        let col = eig.eigenvectors.column(k);
+        let top = col.amax();
+        for (i, x) in col.iter().enumerate() {
+            if x.abs() > 0.1 * top && !out.contains(&i) {
+                out.push(i);
+            }
+        }
+    }
+    out.sort_unstable();
+    out
 }
 
 /// Whether every force stays zero (rounding relative to its terms, or below the search's
@@ -216,13 +250,13 @@ mod tests {
     fn a_coordinate_axis_is_recognised() {
         let s = Shape {
             free: vec![vec![1.0, 0.0]],
-            degenerate: false,
+            ..Shape::default()
         };
         assert!(s.coordinate_free(0));
         assert!(!s.coordinate_free(1));
         let chain = Shape {
             free: vec![vec![1.0, 1.0, 1.0]],
-            degenerate: false,
+            ..Shape::default()
         };
         assert!(!chain.coordinate_free(0));
     }
@@ -238,9 +272,23 @@ mod tests {
     fn points_on_a_translation_family_are_one() {
         let s = Shape {
             free: vec![vec![1.0, 1.0]],
-            degenerate: false,
+            ..Shape::default()
         };
         assert!(on_family(&[0.0, 0.0], &s, &[3.0, 3.0], &[1e-6, 1e-6]));
         assert!(!on_family(&[0.0, 0.0], &s, &[3.0, 2.0], &[1e-6, 1e-6]));
+    }
+}
+
+#[cfg(test)]
+mod chart_tests {
+    use super::*;
+
+    #[test]
+    fn a_pole_names_the_coordinate_that_lost_its_inertia() {
+        // Spherical pendulum at θ = 0: M = diag(m l², m l² sin²θ) = diag(1, 0).
+        let m = nalgebra::DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(singular_coordinates(&m), vec![1]);
+        let fine = nalgebra::DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 2.0]);
+        assert!(singular_coordinates(&fine).is_empty());
     }
 }
