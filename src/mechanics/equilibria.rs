@@ -14,16 +14,15 @@ use super::state::Layout;
 use super::system::System;
 use crate::expr::{Id, Program};
 
+mod blocks;
 mod families;
 mod newton;
 
+pub use blocks::Coverage;
 pub use families::Shape;
 
 pub(crate) use newton::wrap_angle;
-use newton::{
-    NEWTON_WANDER, NewtonScale, force_scale, is_continuum, newton, normalize_root, range_widths,
-    same_point, snap_to_zero, start_points,
-};
+use newton::{force_scale, is_continuum, range_widths, start_points};
 
 /// An eigenvalue ω² (or a growth rate, or a frequency) counts as zero below this fraction of
 /// the largest one: linear analysis cannot tell the sign of what rounding leaves.
@@ -64,6 +63,8 @@ pub struct Equilibria {
     /// What each point is beyond a point (aligned with `points`): one of a continuum along
     /// its free directions, or degenerate (not harmonic).
     pub shapes: Vec<Shape>,
+    /// What the search covered (blocks searched on their own, starts in each).
+    pub coverage: Coverage,
     /// f vanishes on a whole region: equilibria are not isolated (e.g. the bead on the
     /// parabola at ω² = 2ga).
     pub continuum: bool,
@@ -76,6 +77,8 @@ pub struct Statics {
     sizes: Magnitudes,
     layout: Layout,
     base: Vec<f64>,
+    /// The entries of J = ∂G/∂q, row-major: which coordinates' forces depend on which.
+    jacobian: Vec<Id>,
 }
 
 impl Statics {
@@ -116,11 +119,13 @@ impl Statics {
         }
         let layout = sys.state_layout();
         let base = layout.at_rest(&[], params);
+        let n = coords.len();
         Ok(Statics {
             program,
             sizes,
             layout,
             base,
+            jacobian: roots[n..n + n * n].to_vec(),
         })
     }
 
@@ -139,10 +144,10 @@ impl Statics {
     }
 
     /// The size of the generalized forces at `q`: the largest term magnitude among the Gᵢ.
-    fn force_size(&self, q: &[f64]) -> Option<f64> {
-        let n = self.layout.coordinates();
+    /// (The largest among the forces of the coordinates `active`.)
+    fn force_size(&self, q: &[f64], active: &[usize]) -> Option<f64> {
         let s = self.sizes(q)?;
-        Some(s[..n].iter().fold(0.0, |a, v| a.max(v.magnitude)))
+        Some(active.iter().fold(0.0, |a, &i| a.max(s[i].magnitude)))
     }
 
     fn eval(
@@ -211,7 +216,6 @@ impl System {
         let statics = Statics::new(self, d, params)?;
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
-        let mut scratch = statics.program.scratch();
         let starts = start_points(&ranges);
         if let Some(q) = starts.first()
             && starts.iter().all(|q| statics.sizes(q).is_none())
@@ -224,28 +228,36 @@ impl System {
             return Ok(Equilibria {
                 points: Vec::new(),
                 shapes: Vec::new(),
+                coverage: Coverage::default(),
                 continuum: true,
             });
         }
         let widths = range_widths(&ranges, &periodic);
-        let scale = NewtonScale {
-            force: force_scale(&statics, &starts),
-            limit: NEWTON_WANDER * widths.iter().fold(1.0f64, |a, &w| a.max(w)),
+        let blocks = self.decoupled_blocks(&statics);
+        let rest: Vec<f64> = starts[0].clone();
+        let search = blocks::Search {
+            statics: &statics,
+            ranges: &ranges,
+            periodic: &periodic,
+            widths: &widths,
         };
-        let mut found: Vec<Vec<f64>> = Vec::new();
-        for q0 in starts {
-            let Some(q) = newton(&statics, q0, scale, &mut scratch) else {
-                continue;
-            };
-            let Some(q) = normalize_root(q, &ranges, &periodic) else {
-                continue;
-            };
-            let q = snap_to_zero(&statics, q, &widths, &mut scratch);
-            if !found.iter().any(|p| same_point(p, &q, &periodic, &widths)) {
-                found.push(q);
+        let mut roots = Vec::with_capacity(blocks.len());
+        let mut coverage = Coverage::default();
+        let mut force = f64::MAX;
+        for block in &blocks {
+            let (r, count, f) = search.block_roots(block, &rest);
+            roots.push(r);
+            coverage.starts.push(count);
+            if f > 0.0 {
+                force = force.min(f);
             }
         }
-        let mut grouped = families::group(&statics, found, &periodic, &widths, scale.force);
+        coverage.blocks = blocks.clone();
+        if force == f64::MAX {
+            force = 0.0;
+        }
+        let found = blocks::product(&blocks, &roots, &rest)?;
+        let mut grouped = families::group(&statics, found, &periodic, &widths, force);
         grouped.sort_by(|(a, _), (b, _)| {
             a.iter()
                 .zip(b)
@@ -270,6 +282,7 @@ impl System {
             points,
             shapes,
             continuum: false,
+            coverage,
         })
     }
 
@@ -285,7 +298,12 @@ impl System {
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let widths = range_widths(&ranges, &periodic);
-        let force = force_scale(&statics, &start_points(&ranges));
+        let all: Vec<usize> = (0..q.len()).collect();
+        let block = newton::Block {
+            statics: &statics,
+            active: &all,
+        };
+        let force = force_scale(block, &start_points(&ranges));
         Ok(families::shape_at(&statics, q, &widths, force))
     }
 

@@ -90,6 +90,10 @@ pub enum MechError {
     /// (`forces`: "∂V/∂θ = …"-style items, comma-separated) do not vanish.
     #[error("{point} is not an equilibrium: {forces}")]
     NotAnEquilibrium { point: String, forces: String },
+    /// The equations decouple into blocks whose equilibria combine into more points than
+    /// are listed (`count`: their number, in decimal).
+    #[error("the equilibria number {count}: more than the {max} that are listed")]
+    TooManyEquilibria { count: String, max: usize },
     /// A name given as a coordinate cannot be one (time, π, a function, listed twice).
     #[error(transparent)]
     Name(#[from] super::naming::NameError),
@@ -123,6 +127,7 @@ impl MechError {
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
             MechError::ExplicitTime { .. } => "explicit-time",
+            MechError::TooManyEquilibria { .. } => "too-many-equilibria",
             MechError::NotAnEquilibrium { .. } => "not-an-equilibrium",
             MechError::TooLarge(_) => "too-large",
             MechError::Name(e) => e.code(),
@@ -174,6 +179,9 @@ impl MechError {
                 "choose units in which the quantities are moderate numbers".into()
             }
             MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
+            MechError::TooManyEquilibria { .. } => {
+                "narrow the ranges of the coordinates, or give the equilibrium".into()
+            }
             MechError::ExplicitTime { .. } => "simulate the motion instead (a numerical integration follows the driven system); for fast driving, an averaged effective potential is an approximation to derive by hand".into(),
             MechError::NotAnEquilibrium { .. } => {
                 "give a point where every generalized force vanishes, or leave the point out to search for the equilibria".into()

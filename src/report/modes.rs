@@ -14,9 +14,16 @@ use serde::{Serialize, Serializer};
 use super::{Formula, Paint, text};
 use crate::check::compare::fmt_value;
 use crate::expr::{Id, ParseError, Program, Style, read_expr};
-use crate::mechanics::equilibria::{Shape, Stability, across_family};
+use crate::mechanics::equilibria::{Coverage, Shape, Stability, across_family};
+
+mod shown;
+
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
+use shown::{
+    chart_modes, check_symbolic_point, given_point, point_text, search_coverage, write_coverage,
+    write_shape,
+};
 
 /// What to analyse. Names and values are as a person typed them; values are expressions.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -102,12 +109,24 @@ pub struct ModesReport {
     pub continuum: bool,
     /// The equilibria analysed.
     pub equilibria: Vec<EquilibriumModes>,
+    /// What the search covered, when the equilibria were searched for (not given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub search: Option<SearchCoverage>,
     /// ω² in closed form, when closed forms were asked for (empty: not given for this size).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_squared: Option<Vec<Formula>>,
     /// How the text shows each coordinate.
     #[serde(skip)]
     pub coordinate_labels: Vec<Formula>,
+}
+
+/// What the equilibrium search covered: the list is a search's, not a proof.
+#[derive(Clone, Debug, Serialize)]
+pub struct SearchCoverage {
+    /// Blocks of coordinates whose equations at rest decouple, each searched on its own.
+    pub blocks: Vec<Vec<String>>,
+    /// Newton starts in each block.
+    pub starts: Vec<usize>,
 }
 
 /// One equilibrium and its small oscillations.
@@ -180,9 +199,11 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
     let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
     let mut equilibria = Vec::new();
     let mut continuum = false;
+    let mut search = None;
     if sys.parameters.is_empty() {
-        let found;
-        (found, continuum) = numeric_modes(&mut sys, &d, at.as_deref())?;
+        let (found, coverage);
+        (found, continuum, coverage) = numeric_modes(&mut sys, &d, at.as_deref())?;
+        search = coverage.map(|c| search_coverage(&c, &unicode));
         equilibria = found
             .iter()
             .map(|(m, shape)| equilibrium(m, shape, &names, &unicode))
@@ -207,6 +228,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
             .as_ref()
             .map(|s| Formula::factored(pool, &s.characteristic_shown)),
         continuum,
+        search,
         equilibria,
         omega_squared: symbolic.as_ref().map(|s| {
             s.omega_squared_shown
@@ -283,45 +305,9 @@ fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesE
         .collect()
 }
 
-/// [`MechError::NotAnEquilibrium`] when the forces at rest at the point given do not vanish
-/// for every value of the parameters.
-fn check_symbolic_point(
-    sys: &mut System,
-    d: &Derivation,
-    ids: &[Id],
-    opts: &ModesOptions,
-) -> Result<(), ModesError> {
-    if sys.verify_equilibrium(d, ids)? {
-        return Ok(());
-    }
-    let point = opts
-        .at
-        .iter()
-        .flatten()
-        .map(|(n, v)| format!("{} = {}", n.trim(), v.trim()))
-        .collect::<Vec<_>>()
-        .join(", ");
-    Err(MechError::NotAnEquilibrium {
-        point,
-        forces:
-            "the generalized forces at rest there do not vanish for every value of the parameters"
-                .into(),
-    }
-    .into())
-}
-
-/// The given equilibrium with the parameter values substituted (`r = l0 + m*g/k`).
-fn given_point(
-    sys: &mut System,
-    given: &[(String, String)],
-    values: &rustc_hash::FxHashMap<(crate::expr::Sym, u8), Id>,
-) -> Result<Vec<Id>, ModesError> {
-    let ids = point(sys, given)?;
-    Ok(ids
-        .into_iter()
-        .map(|e| sys.pool.substitute(e, values))
-        .collect())
-}
+/// The modes found with their shapes, whether the equilibria fill the range, and what the
+/// search covered (none when the point was given).
+type NumericModes = (Vec<(Modes, Shape)>, bool, Option<Coverage>);
 
 /// The numeric modes at the given point, or at every equilibrium found; and whether the
 /// equilibria form a continuum.
@@ -329,7 +315,7 @@ fn numeric_modes(
     sys: &mut System,
     d: &Derivation,
     at: Option<&[Id]>,
-) -> Result<(Vec<(Modes, Shape)>, bool), ModesError> {
+) -> Result<NumericModes, ModesError> {
     if let Some(ids) = at {
         let q: Vec<f64> = ids
             .iter()
@@ -338,11 +324,11 @@ fn numeric_modes(
         sys.check_equilibrium(d, &[], &q)?;
         let shape = sys.equilibrium_shape(d, &[], &q)?;
         if !shape.singular_chart.is_empty() {
-            return Ok((vec![(chart_modes(&q), shape)], false));
+            return Ok((vec![(chart_modes(&q), shape)], false, None));
         }
         let mut m = sys.modes_at(d, &[], &q)?;
         m.stability = across_family(m.stability, &shape);
-        return Ok((vec![(m, shape)], false));
+        return Ok((vec![(m, shape)], false, None));
     }
     let eq = sys.equilibria(d, &[])?;
     if !eq.continuum && eq.points.is_empty() {
@@ -358,20 +344,7 @@ fn numeric_modes(
         m.stability = across_family(m.stability, &shape);
         found.push((m, shape));
     }
-    Ok((found, eq.continuum))
-}
-
-/// An equilibrium where the coordinates are singular: no modes (the chart's linearization
-/// says nothing), stability undecided.
-fn chart_modes(q: &[f64]) -> Modes {
-    Modes {
-        point: q.to_vec(),
-        stability: Stability::Marginal,
-        frequencies: Vec::new(),
-        growth_rates: Vec::new(),
-        modes: Vec::new(),
-        gyroscopic: false,
-    }
+    Ok((found, eq.continuum, Some(eq.coverage)))
 }
 
 /// The value of a constant expression.
@@ -423,6 +396,9 @@ impl ModesReport {
         }
         for m in &self.equilibria {
             self.render_equilibrium(m, style, paint, o)?;
+        }
+        if let Some(c) = &self.search {
+            write_coverage(c, self.equilibria.len(), o)?;
         }
         if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
             writeln!(
@@ -494,55 +470,4 @@ impl ModesReport {
         }
         Ok(())
     }
-}
-
-/// The equilibrium as `x arbitrary, θ = 0` (a coordinate free alone is arbitrary).
-fn point_text(labels: &[Formula], m: &EquilibriumModes, style: Style) -> Vec<String> {
-    labels
-        .iter()
-        .zip(&m.coordinates)
-        .enumerate()
-        .map(|(i, (n, v))| {
-            let alone = m
-                .free
-                .iter()
-                .any(|d| d.iter().enumerate().all(|(j, &x)| (j == i) == (x != 0.0)));
-            if alone {
-                format!("{} arbitrary", n.get(style))
-            } else {
-                format!("{} = {}", n.get(style), fmt_value(*v))
-            }
-        })
-        .collect()
-}
-
-/// What the equilibrium is beyond a point: one of a continuum not along a single
-/// coordinate, or degenerate.
-fn write_shape(m: &EquilibriumModes, paint: &dyn Paint, o: &mut String) -> fmt::Result {
-    for d in &m.free {
-        if d.iter().filter(|&&x| x != 0.0).count() > 1 {
-            let dir: Vec<String> = d.iter().map(|x| fmt_value(*x)).collect();
-            writeln!(
-                o,
-                "  one of a continuum of equilibria: every point along ({}) from here is one",
-                dir.join(", ")
-            )?;
-        }
-    }
-    if !m.singular_chart.is_empty() {
-        writeln!(
-            o,
-            "  {} the mass matrix is singular here: the velocity of {} has no inertia at this point (like a longitude at a pole), so these coordinates cannot describe small motions about it; the point is an equilibrium, but its stability and frequencies need coordinates that are regular here (e.g. Cartesian ones)",
-            paint.warn("singular coordinates:"),
-            m.singular_chart.join(", ")
-        )?;
-    }
-    if m.not_harmonic {
-        writeln!(
-            o,
-            "  {} ω² = 0 along a direction that is not free: the restoring force is not linear in the displacement, so the motion is not a harmonic oscillation and linear analysis cannot decide stability",
-            paint.warn("not harmonic:")
-        )?;
-    }
-    Ok(())
 }

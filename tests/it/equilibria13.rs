@@ -277,3 +277,36 @@ fn the_spherical_pendulum_at_its_pole_is_explained_not_refused() {
     .unwrap();
     assert_eq!(at.equilibria[0].singular_chart.len(), 1);
 }
+
+#[test]
+fn six_uncoupled_pendula_have_every_one_of_their_729_equilibria() {
+    // Each qᵢ in [−4, 4] rests at −π, 0 or π: 3⁶ points, one of them (all at 0) stable.
+    let names = ["q1", "q2", "q3", "q4", "q5", "q6"];
+    let l: Vec<String> = names
+        .iter()
+        .map(|q| format!("1/2*{q}'^2 + cos({q})"))
+        .collect();
+    let sys = System::from_lagrangian(&l.join(" + "), &names).unwrap();
+    let opts = ModesOptions {
+        default_range: Some((-4.0, 4.0)),
+        ranges: Vec::new(),
+        params: Vec::new(),
+        at: None,
+        symbolic: false,
+    };
+    let r = lagrange::report::modes(&sys, &opts).unwrap();
+    assert_eq!(r.equilibria.len(), 729);
+    let stable: Vec<_> = r
+        .equilibria
+        .iter()
+        .filter(|e| e.stability == Stability::Stable)
+        .collect();
+    assert_eq!(stable.len(), 1);
+    assert_eq!(stable[0].coordinates, vec![0.0; 6]);
+    let search = r.search.as_ref().unwrap();
+    assert_eq!(search.blocks.len(), 6);
+    let text = r.render(lagrange::expr::Style::Plain, &lagrange::report::Plain);
+    assert!(text.contains("decouple into 6 blocks"), "{text}");
+    assert!(text.contains("may be missing"), "{text}");
+    assert!(!text.contains("every equilibrium"), "{text}");
+}

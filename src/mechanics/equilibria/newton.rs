@@ -95,10 +95,10 @@ pub(super) struct NewtonScale {
 /// The typical size of the generalized forces over the search range: the median, over the
 /// starting points, of the largest term magnitude (a median, so that a pole inside the
 /// range does not make every residual look small).
-pub(super) fn force_scale(statics: &Statics, starts: &[Vec<f64>]) -> f64 {
+pub(super) fn force_scale(b: Block, starts: &[Vec<f64>]) -> f64 {
     let mut sizes: Vec<f64> = starts
         .iter()
-        .filter_map(|q| statics.force_size(q))
+        .filter_map(|q| b.statics.force_size(q, b.active))
         .filter(|v| v.is_finite() && *v > 0.0)
         .collect();
     if sizes.is_empty() {
@@ -171,34 +171,64 @@ pub(super) fn same_point(a: &[f64], b: &[f64], periodic: &[bool], widths: &[f64]
         })
 }
 
-/// Newton's method with backtracking from `q`; `None` when it does not converge. The
-/// residual is measured against the force scale, never against 1.
+/// The equations of one block of coordinates that decouple from the rest (all of them
+/// when the system does not decouple): Gᵢ and ∂Gᵢ/∂qⱼ for i, j in the block. The other
+/// coordinates stay where they are; the block's forces do not depend on them.
+#[derive(Clone, Copy)]
+pub(super) struct Block<'a> {
+    pub(super) statics: &'a Statics,
+    pub(super) active: &'a [usize],
+}
+
+impl Block<'_> {
+    /// The block's G and J at `q`.
+    fn eval(&self, q: &[f64], scratch: &mut [f64]) -> Option<(DVector<f64>, DMatrix<f64>)> {
+        let (g, j, _) = self.statics.eval(q, scratch)?;
+        let a = self.active;
+        let gs = DVector::from_fn(a.len(), |r, _| g[a[r]]);
+        let js = DMatrix::from_fn(a.len(), a.len(), |r, c| j[(a[r], a[c])]);
+        Some((gs, js))
+    }
+
+    /// `q` moved by `t` times `step` (one entry per coordinate of the block).
+    fn moved(&self, q: &[f64], step: &DVector<f64>, t: f64) -> Vec<f64> {
+        let mut out = q.to_vec();
+        for (k, &i) in self.active.iter().enumerate() {
+            out[i] += t * step[k];
+        }
+        out
+    }
+}
+
+/// The pseudo-inverse step −J⁺G, not LU: J is exactly singular along a free direction (a
+/// cyclic x, a chain's translation), and the step there is simply zero.
+fn step_of(g: &DVector<f64>, j: &DMatrix<f64>) -> Option<DVector<f64>> {
+    let svd = j.clone().svd(true, true);
+    let cut = PSEUDO_INVERSE_CUT * svd.singular_values.max();
+    let step = svd.solve(&(-g), cut).ok()?;
+    step.iter().all(|v| v.is_finite()).then_some(step)
+}
+
+/// Newton's method with backtracking from `q` on the block `b`; `None` when it does not
+/// converge. The residual is measured against the force scale, never against 1.
 pub(super) fn newton(
-    s: &Statics,
+    b: Block,
     mut q: Vec<f64>,
     scale: NewtonScale,
     scratch: &mut [f64],
 ) -> Option<Vec<f64>> {
-    let n = q.len();
     for _ in 0..60 {
-        let (g, j, _) = s.eval(&q, scratch)?;
+        let (g, j) = b.eval(&q, scratch)?;
         if g.amax() <= NEWTON_TARGET * scale.force {
-            return Some(polish(s, q, &g, &j, scratch));
+            return Some(polish(b, q, &g, &j, scratch));
         }
-        // The pseudo-inverse, not LU: J is exactly singular along a free direction (a
-        // cyclic x, a chain's translation), and the step there is simply zero.
-        let svd = j.clone().svd(true, true);
-        let cut = PSEUDO_INVERSE_CUT * svd.singular_values.max();
-        let step = svd.solve(&(-&g), cut).ok()?;
-        if !step.iter().all(|v| v.is_finite()) {
-            return None;
-        }
+        let step = step_of(&g, &j)?;
         let norm0 = g.norm();
         let mut t = 1.0;
         let mut accepted = false;
         for _ in 0..20 {
-            let trial: Vec<f64> = (0..n).map(|i| q[i] + t * step[i]).collect();
-            if let Some((g2, _, _)) = s.eval(&trial, scratch)
+            let trial = b.moved(&q, &step, t);
+            if let Some((g2, _)) = b.eval(&trial, scratch)
                 && g2.norm() < norm0
             {
                 q = trial;
@@ -207,14 +237,11 @@ pub(super) fn newton(
             }
             t *= 0.5;
         }
-        if !accepted {
-            return None;
-        }
-        if q.iter().any(|v| v.abs() > scale.limit) {
+        if !accepted || q.iter().any(|v| v.abs() > scale.limit) {
             return None;
         }
     }
-    let (g, _, _) = s.eval(&q, scratch)?;
+    let (g, _) = b.eval(&q, scratch)?;
     (g.amax() <= NEWTON_ACCEPT * scale.force).then_some(q)
 }
 
@@ -224,21 +251,21 @@ pub(super) fn newton(
 /// wherever rounding stopped the iteration; a simple root near 0 (x₀ = 5e-12) keeps its
 /// value, since 0 leaves a larger residual there.
 pub(super) fn snap_to_zero(
-    s: &Statics,
+    b: Block,
     mut q: Vec<f64>,
     widths: &[f64],
     scratch: &mut [f64],
 ) -> Vec<f64> {
-    let Some((mut g, _, _)) = s.eval(&q, scratch) else {
+    let Some((mut g, _)) = b.eval(&q, scratch) else {
         return q;
     };
-    for i in 0..q.len() {
+    for &i in b.active {
         if q[i] == 0.0 || q[i].abs() >= SAME_ROOT * widths[i] {
             continue;
         }
         let mut trial = q.clone();
         trial[i] = 0.0;
-        if let Some((g2, _, _)) = s.eval(&trial, scratch)
+        if let Some((g2, _)) = b.eval(&trial, scratch)
             && g2.amax() <= g.amax()
         {
             (q, g) = (trial, g2);
@@ -251,11 +278,9 @@ pub(super) fn snap_to_zero(
 /// [`POLISH_STEPS`]): the target is relative to the forces over the whole range, so a root
 /// that is tiny compared with the range (x₀ = m g sin α / k = 5e-12) still gets its full
 /// precision, and a degenerate root (V = x⁴, where Newton only gains a factor 2/3 a step)
-/// is followed down to 0 rather than left at ±1e-4 by every start. Steps use the
-/// pseudo-inverse, so that a direction along which J vanishes exactly (a cyclic
-/// coordinate) is left alone rather than failing the solve.
-pub(super) fn polish(
-    s: &Statics,
+/// is followed down to 0 rather than left at ±1e-4 by every start.
+fn polish(
+    b: Block,
     mut q: Vec<f64>,
     g: &DVector<f64>,
     j: &DMatrix<f64>,
@@ -266,14 +291,12 @@ pub(super) fn polish(
         if g.amax() == 0.0 {
             break;
         }
-        let svd = j.clone().svd(true, true);
-        let cut = PSEUDO_INVERSE_CUT * svd.singular_values.max();
-        let Ok(step) = svd.solve(&(-&g), cut) else {
+        let Some(step) = step_of(&g, &j) else {
             break;
         };
-        let trial: Vec<f64> = q.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-        match s.eval(&trial, scratch) {
-            Some((g2, j2, _)) if trial.iter().all(|v| v.is_finite()) && g2.amax() < g.amax() => {
+        let trial = b.moved(&q, &step, 1.0);
+        match b.eval(&trial, scratch) {
+            Some((g2, j2)) if trial.iter().all(|v| v.is_finite()) && g2.amax() < g.amax() => {
                 (q, g, j) = (trial, g2, j2);
             }
             _ => break,
