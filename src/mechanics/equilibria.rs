@@ -175,38 +175,34 @@ impl Statics {
         let k = -&j;
         let k = (&k + k.transpose()) * 0.5;
         let (vals, vecs) = generalized_eigen(&k, &m)?;
-        // ω² is zero relative to the larger of the eigenvalues and the size of the terms of
-        // K (per unit mass): a stiffness that is rounding left over from cancelling terms
-        // is zero however the eigenvalues compare with each other, and a weak but real one
-        // (k = 1e-12) is not.
-        let scale = vals
-            .iter()
-            .fold(self.stiffness_size(q, &m), |a, v| a.max(v.abs()));
-        let tol = EIGENVALUE_ZERO * scale;
-        let st = if vals.iter().any(|&v| v < -tol) {
+        // Each ω² is zero relative to the size of the terms of K along its own mode (per
+        // unit mass): a stiffness that is rounding left over from cancelling terms is zero
+        // however the eigenvalues compare with each other, and a weak but real one
+        // (k = 1e-12, even beside a stiff k = 1) is not.
+        let sizes = self.sizes(q);
+        let n = vals.len();
+        let tol: Vec<f64> = (0..n)
+            .map(|k| {
+                let u = vecs.column(k);
+                let mass = (u.transpose() * &m * u)[(0, 0)].abs();
+                let terms: f64 = sizes.as_ref().map_or(0.0, |s| {
+                    (0..n)
+                        .flat_map(|i| (0..n).map(move |j| (i, j)))
+                        .map(|(i, j)| s[n + i * n + j].magnitude * (u[i] * u[j]).abs())
+                        .sum()
+                });
+                let scale = (terms / mass).max(vals[k].abs());
+                EIGENVALUE_ZERO * if scale.is_finite() { scale } else { 0.0 }
+            })
+            .collect();
+        let st = if (0..n).any(|k| vals[k] < -tol[k]) {
             Stability::Unstable
-        } else if vals.iter().any(|&v| v.abs() <= tol) {
+        } else if (0..n).any(|k| vals[k].abs() <= tol[k]) {
             Stability::Marginal
         } else {
             Stability::Stable
         };
         Ok((st, vals.iter().copied().collect(), vecs))
-    }
-
-    /// The size of the terms of K = −J at `q` per unit of mass: maxᵢ Σⱼ |Kᵢⱼ terms| / Mᵢᵢ,
-    /// the scale of ω² that rounding in K is measured against (0 when K is exactly 0).
-    fn stiffness_size(&self, q: &[f64], m: &DMatrix<f64>) -> f64 {
-        let n = self.layout.coordinates();
-        let Some(s) = self.sizes(q) else {
-            return 0.0;
-        };
-        (0..n)
-            .map(|i| {
-                let row: f64 = (0..n).map(|j| s[n + i * n + j].magnitude).sum();
-                row / m[(i, i)].abs()
-            })
-            .filter(|v| v.is_finite())
-            .fold(0.0, f64::max)
     }
 }
 

@@ -310,3 +310,20 @@ fn six_uncoupled_pendula_have_every_one_of_their_729_equilibria() {
     assert!(text.contains("may be missing"), "{text}");
     assert!(!text.contains("every equilibrium"), "{text}");
 }
+
+#[test]
+fn a_weak_spring_beside_a_stiff_one_is_harmonic_and_stable() {
+    // ω² = 1e-12 and 1: both real restoring forces, neither degenerate.
+    let l = "1/2*x'^2 + 1/2*y'^2 - 1/2*1e-12*x^2 - 1/2*y^2";
+    let r = modes(l, &["x", "y"], "", None).unwrap();
+    assert_eq!(r.equilibria.len(), 1);
+    let e = &r.equilibria[0];
+    assert_eq!(e.stability, Stability::Stable);
+    assert!(!e.not_harmonic);
+    assert!(e.free.is_empty());
+    assert!(
+        e.frequencies.iter().any(|w| close(*w, 1e-6)),
+        "{:?}",
+        e.frequencies
+    );
+}

@@ -63,7 +63,7 @@ pub(super) fn shape_at(s: &Statics, q: &[f64], widths: &[f64], force: f64) -> Sh
                 .fold(0.0f64, |a, x| a.max(x.magnitude))
         })
         .unwrap_or(0.0);
-    let svd = j.svd(false, true);
+    let svd = j.clone().svd(false, true);
     let Some(vt) = svd.v_t else {
         return Shape::default();
     };
@@ -78,6 +78,11 @@ pub(super) fn shape_at(s: &Statics, q: &[f64], widths: &[f64], force: f64) -> Sh
             continue;
         }
         let v: Vec<f64> = vt.row(k).iter().copied().collect();
+        if !null_along(&j, sizes.as_deref(), &v) {
+            // Small only beside stiffer directions (a spring of 1e-12 next to one of 1):
+            // a weak restoring force is still a linear one.
+            continue;
+        }
         if free_along(s, q, &v, step, force, &mut scratch) {
             shape.free.push(clean_direction(&v));
         } else {
@@ -111,6 +116,27 @@ fn singular_coordinates(m: &nalgebra::DMatrix<f64>) -> Vec<usize> {
     }
     out.sort_unstable();
     out
+}
+
+/// Whether J v vanishes relative to the size of the terms it is made of (Σⱼ |Jᵢⱼ terms| |vⱼ|):
+/// rounding left over from cancelling terms (a chain's translation, the hoop at the
+/// critical spin) or exactly zero (V = x⁴ at 0), never merely small.
+fn null_along(
+    j: &nalgebra::DMatrix<f64>,
+    sizes: Option<&[crate::mechanics::magnitude::Sized]>,
+    v: &[f64],
+) -> bool {
+    let n = v.len();
+    let Some(sz) = sizes else {
+        return false;
+    };
+    (0..n).all(|r| {
+        let jv: f64 = (0..n).map(|c| j[(r, c)] * v[c]).sum();
+        let size: f64 = (0..n)
+            .map(|c| sz[n + r * n + c].magnitude * v[c].abs())
+            .sum();
+        jv.abs() <= EIGENVALUE_ZERO * size
+    })
 }
 
 /// Whether every force stays zero (rounding relative to its terms, or below the search's
