@@ -417,6 +417,14 @@ pub fn across_family(st: Stability, shape: &Shape) -> Stability {
     }
 }
 
+impl System {
+    /// [`MechError::ExplicitTime`] when the equations of motion depend on t explicitly:
+    /// equilibria and small oscillations (numeric or in closed form) are then refused.
+    pub fn refuse_explicit_time(&mut self, d: &Derivation) -> Result<(), MechError> {
+        explicit_time(self, d)
+    }
+}
+
 /// [`MechError::ExplicitTime`] when some equation of motion (or the mass matrix) changes
 /// with t at fixed q, q': the terms named are the coordinates' equations that do.
 fn explicit_time(sys: &mut System, d: &Derivation) -> Result<(), MechError> {

@@ -100,6 +100,20 @@ fn an_explicit_time_dependence_is_refused() {
         matches!(err, ModesError::Mech(MechError::ExplicitTime { .. })),
         "{err}"
     );
+    // In closed form too: no ω² with a cos(ν t) in it.
+    let sys = System::from_lagrangian(l, &["theta"]).unwrap();
+    let opts = ModesOptions {
+        default_range: None,
+        ranges: Vec::new(),
+        params: Vec::new(),
+        at: Some(pairs("theta = 0")),
+        symbolic: true,
+    };
+    let err = lagrange::report::modes(&sys, &opts).unwrap_err();
+    assert!(
+        matches!(err, ModesError::Mech(MechError::ExplicitTime { .. })),
+        "{err}"
+    );
 }
 
 #[test]

@@ -21,6 +21,7 @@ pub(super) fn check_symbolic_point(
     ids: &[Id],
     opts: &ModesOptions,
 ) -> Result<(), ModesError> {
+    sys.refuse_explicit_time(d)?;
     if sys.verify_equilibrium(d, ids)? {
         return Ok(());
     }
