@@ -476,3 +476,42 @@ fn short(v: f64) -> String {
         None => t,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_shown_with_six_significant_digits() {
+        assert_eq!(short(0.8414709848078965), "0.841471");
+        assert_eq!(short(-16.49278), "-16.4928");
+        assert_eq!(short(2.0), "2");
+        assert_eq!(short(1.5e-9), "1.5e-9");
+        assert_eq!(short(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn time_that_cancels_is_no_explicit_dependence() {
+        // sin²(t) + cos²(t) = 1: the oscillator is not driven.
+        let l = "1/2*x'^2 - 1/2*(sin(t)^2 + cos(t)^2)*x^2";
+        let mut sys = System::from_lagrangian(l, &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert!(sys.refuse_explicit_time(&d).is_ok());
+        let driven = "1/2*x'^2 - 1/2*x^2 + x*cos(t)";
+        let mut sys = System::from_lagrangian(driven, &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert_eq!(
+            sys.refuse_explicit_time(&d).unwrap_err().code(),
+            "explicit-time"
+        );
+    }
+
+    #[test]
+    fn a_point_that_is_not_an_equilibrium_names_its_force() {
+        let mut sys = System::from_lagrangian("1/2*x'^2 - 1/2*x^2", &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert!(sys.check_equilibrium(&d, &[], &[0.0]).is_ok());
+        let e = sys.check_equilibrium(&d, &[], &[2.0]).unwrap_err();
+        assert_eq!(e.to_string(), "x = 2 is not an equilibrium: ∂V/∂x = 2");
+    }
+}
