@@ -341,3 +341,37 @@ fn a_weak_spring_beside_a_stiff_one_is_harmonic_and_stable() {
         e.frequencies
     );
 }
+
+#[test]
+fn a_translating_chain_is_named_as_a_continuum_not_a_missing_point() {
+    let text = r#"
+id = "t-chain"
+title = "t"
+source = "test"
+statement = "Two masses joined by a spring on a free rail."
+coordinates = [
+  { name = "x1", range = [-3.0, 3.0] },
+  { name = "x2", range = [-3.0, 3.0] },
+]
+lagrangian = "1/2*m*(x1'^2 + x2'^2) - 1/2*k*(x1 - x2)^2"
+
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+k = { dimension = "M T^-2", range = [1.0, 5.0] }
+
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "Equilibria?"
+answer = ["x1 = 0, x2 = 0"]
+"#;
+    let p = load_str("t.toml", text).unwrap();
+    let f: Vec<_> = verify(&p)
+        .into_iter()
+        .map(|f| (f.code, f.message))
+        .collect();
+    assert_eq!(f.len(), 1, "{f:?}");
+    assert_eq!(f[0].0, "not-isolated", "{f:?}");
+    assert!(f[0].1.contains("along (1, 1)"), "{f:?}");
+    assert!(!f[0].1.contains("x1 = -3"), "{f:?}");
+}
