@@ -53,6 +53,10 @@ pub const FILES: &[(&str, &str)] = &[
         "charge-magnetic.toml",
         include_str!("../../problems/charge-magnetic.toml"),
     ),
+    (
+        "spring-cart.toml",
+        include_str!("../../problems/spring-cart.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

@@ -5,9 +5,10 @@
 use super::verify_failed::{Check, Failed, check_dimension};
 use crate::check::compare::{fmt_value, parameter_text, values};
 use crate::check::points::PointSet;
-use crate::check::prepare::{Prepared, read_point, same_coordinate};
+use crate::check::prepare::{Prepared, read_point_any, same_coordinate};
 use crate::check::tolerance;
 use crate::expr::Id;
+use crate::mechanics::equilibria::Shape;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, Problem};
 
@@ -28,6 +29,11 @@ enum EquilibriumFinding {
     },
     /// Stated item `item` is not among the engine's equilibria.
     Spurious { item: String },
+    /// Stated item `item` is one of a continuum along `coordinate`, stated as a point.
+    NotIsolated { item: String, coordinate: String },
+    /// The engine finds a continuum along a direction that is not one coordinate (a free
+    /// chain's translation), which an answer cannot state point by point.
+    Family { at: String, direction: String },
 }
 
 impl EquilibriumFinding {
@@ -50,6 +56,18 @@ impl EquilibriumFinding {
                 "wrong-stability",
                 format!("`{item}` is stated {want}, but it is {is} (for {pstr})"),
             ),
+            EquilibriumFinding::NotIsolated { item, coordinate } => Failed::new(
+                "not-isolated",
+                format!(
+                    "`{item}` is one of a continuum of equilibria (for {pstr}): {coordinate} is arbitrary there; state it as `{coordinate} = any`"
+                ),
+            ),
+            EquilibriumFinding::Family { at, direction } => Failed::new(
+                "not-isolated",
+                format!(
+                    "the equilibria through {at} form a continuum along ({direction}) (for {pstr}), which an equilibria part cannot state point by point: fix the free motion (a coordinate relative to another) or ask for the frequencies at one point"
+                ),
+            ),
             EquilibriumFinding::Spurious { item } => Failed::new(
                 "spurious-equilibrium",
                 format!("`{item}` is not among the equilibria the engine finds for {pstr}"),
@@ -58,26 +76,32 @@ impl EquilibriumFinding {
     }
 }
 
+/// The stated points (one expression per coordinate) and which coordinates are `any`.
+type StatedItems = (Vec<Vec<Id>>, Vec<Vec<bool>>);
+
 /// Reads the stated equilibria and checks each one's dimensions, that the forces vanish
 /// there, and that the stabilities are as many as the equilibria.
 fn stated_equilibria(
     problem: &Problem,
     part: &Part,
     p: &mut Prepared,
-) -> Result<Vec<Vec<Id>>, Failed> {
-    let stated: Vec<Vec<Id>> = part
+) -> Result<StatedItems, Failed> {
+    let (stated, free): (Vec<Vec<Id>>, Vec<Vec<bool>>) = part
         .answers
         .iter()
-        .map(|a| read_point(p, a))
-        .collect::<Result<_, _>>()?;
+        .map(|a| read_point_any(p, a))
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip();
     for (item, point) in part.answers.iter().zip(&stated) {
         for (i, &v) in point.iter().enumerate() {
             let want = problem.dims.get(&p.system.coordinates[i].name);
             check_dimension(problem, p, v, want)?;
         }
+        let samples = p.points.points.clone();
         if !p
             .system
-            .verify_equilibrium(&p.derivation, point)
+            .verify_equilibrium_at(&p.derivation, point, &samples)
             .map_err(|e| Failed::new("unusable", e.to_string()))?
         {
             let at = super::verify_failed::equilibrium_failure(p, point)
@@ -101,22 +125,27 @@ fn stated_equilibria(
             ),
         ));
     }
-    Ok(stated)
+    Ok((stated, free))
 }
 
-/// Compares the stated equilibria (values `stated_pts`) with those the engine finds for
-/// `params`.
+/// The stated points for one parameter sample: values, and which coordinates are `any`.
+struct StatedPoints<'a> {
+    values: Vec<&'a [f64]>,
+    free: &'a [Vec<bool>],
+}
+
+/// Compares the stated equilibria with those the engine finds for `params`.
 fn compare_equilibria(
     part: &Part,
     p: &mut Prepared,
     params: &[f64],
-    stated_pts: &[&[f64]],
+    stated: &StatedPoints,
 ) -> Result<Option<EquilibriumFinding>, Failed> {
     let found = match p.system.equilibria(&p.derivation, params) {
         // No equilibrium found: right for an answer of `none`; otherwise each stated point
         // in range is spurious.
         Err(crate::mechanics::MechError::NoEquilibrium) => {
-            return Ok(stated_pts.first().map(|_| EquilibriumFinding::Spurious {
+            return Ok(stated.values.first().map(|_| EquilibriumFinding::Spurious {
                 item: part.answers[0].clone(),
             }));
         }
@@ -126,34 +155,44 @@ fn compare_equilibria(
         return Ok(Some(EquilibriumFinding::Continuum));
     }
     let coords = &p.system.coordinates;
-    let same = |s: &[f64], q: &[f64]| {
-        s.iter()
-            .zip(q)
-            .enumerate()
-            .all(|(i, (a, b))| same_coordinate(coords[i].periodic, *a, *b))
+    // A stated point matches an engine's equilibrium when each coordinate agrees, a
+    // coordinate stated `any` exactly where the engine finds it free alone; leniently,
+    // ignoring the coordinates the engine finds free (to name a continuum stated as a point).
+    let matches = |j: usize, q: &[f64], shape: &Shape, strict: bool| {
+        (0..q.len()).all(|i| {
+            let (any, free) = (stated.free[j][i], shape.coordinate_free(i));
+            match (any, free) {
+                (_, true) if !strict => true,
+                (true, true) => true,
+                (true, false) | (false, true) => false,
+                (false, false) => same_coordinate(coords[i].periodic, stated.values[j][i], q[i]),
+            }
+        })
     };
-    for (q, st) in &found.points {
-        match stated_pts.iter().position(|s| same(s, q)) {
-            None => {
-                let at = coords
-                    .iter()
-                    .zip(q)
-                    .map(|(c, x)| format!("{} = {}", c.name, fmt_value(*x)))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                return Ok(Some(EquilibriumFinding::Missing { at }));
+    for ((q, st), shape) in found.points.iter().zip(&found.shapes) {
+        if let Some(f) = unstatable_family(p, q, shape) {
+            return Ok(Some(f));
+        }
+        let Some(j) = (0..stated.values.len()).find(|&j| matches(j, q, shape, true)) else {
+            if let Some(j) = (0..stated.values.len()).find(|&j| matches(j, q, shape, false))
+                && let Some(i) = (0..q.len()).find(|&i| shape.coordinate_free(i))
+            {
+                return Ok(Some(EquilibriumFinding::NotIsolated {
+                    item: part.answers[j].clone(),
+                    coordinate: coords[i].name.clone(),
+                }));
             }
-            Some(j) => {
-                if let Some(want) = part.stability.get(j)
-                    && want != st.name()
-                {
-                    return Ok(Some(EquilibriumFinding::Stability {
-                        item: part.answers[j].clone(),
-                        want: want.clone(),
-                        is: st.name(),
-                    }));
-                }
-            }
+            let at = point_text(p, q, shape);
+            return Ok(Some(EquilibriumFinding::Missing { at }));
+        };
+        if let Some(want) = part.stability.get(j)
+            && want != st.name()
+        {
+            return Ok(Some(EquilibriumFinding::Stability {
+                item: part.answers[j].clone(),
+                want: want.clone(),
+                is: st.name(),
+            }));
         }
     }
     let in_range = |q: &[f64]| {
@@ -164,16 +203,56 @@ fn compare_equilibria(
                     .contains(x)
         })
     };
-    Ok(stated_pts
-        .iter()
-        .position(|s| in_range(s) && !found.points.iter().any(|(q, _)| same(s, q)))
+    Ok((0..stated.values.len())
+        .find(|&j| {
+            in_range(stated.values[j])
+                && !found
+                    .points
+                    .iter()
+                    .zip(&found.shapes)
+                    .any(|((q, _), sh)| matches(j, q, sh, true))
+        })
         .map(|j| EquilibriumFinding::Spurious {
             item: part.answers[j].clone(),
         }))
 }
 
+/// A continuum along a direction that is not a single coordinate, as a finding.
+fn unstatable_family(p: &Prepared, q: &[f64], shape: &Shape) -> Option<EquilibriumFinding> {
+    let d = shape
+        .free
+        .iter()
+        .find(|d| d.iter().filter(|&&x| x != 0.0).count() > 1)?;
+    Some(EquilibriumFinding::Family {
+        at: point_text(p, q, shape),
+        direction: d
+            .iter()
+            .map(|x| fmt_value(*x))
+            .collect::<Vec<_>>()
+            .join(", "),
+    })
+}
+
+/// `x arbitrary, theta = 0`: the engine's equilibrium as text.
+fn point_text(p: &Prepared, q: &[f64], shape: &Shape) -> String {
+    p.system
+        .coordinates
+        .iter()
+        .zip(q)
+        .enumerate()
+        .map(|(i, (c, x))| {
+            if shape.coordinate_free(i) {
+                format!("{} arbitrary", c.name)
+            } else {
+                format!("{} = {}", c.name, fmt_value(*x))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 pub(super) fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
-    let stated = stated_equilibria(problem, part, p)?;
+    let (stated, free) = stated_equilibria(problem, part, p)?;
     let samples = PointSet::draw(
         &p.system,
         &p.assumptions,
@@ -192,7 +271,11 @@ pub(super) fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared
         if let Some(f) = repeated_equilibrium(part, p, &stated_pts) {
             return Err(f);
         }
-        if let Some(f) = compare_equilibria(part, p, &params, &stated_pts)? {
+        let pts = StatedPoints {
+            values: stated_pts,
+            free: &free,
+        };
+        if let Some(f) = compare_equilibria(part, p, &params, &pts)? {
             return Err(f.details(&parameter_text(&p.system, &params)));
         }
     }

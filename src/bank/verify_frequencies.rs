@@ -43,6 +43,9 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
         let q0 = &v[stated.len()..];
+        p.system
+            .check_equilibrium(&p.derivation, &params, q0)
+            .map_err(|e| Failed::new("not-an-equilibrium", e.to_string()))?;
         let modes = p
             .system
             .modes_at(&p.derivation, &params, q0)

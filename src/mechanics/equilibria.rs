@@ -10,40 +10,28 @@ use super::derive::Derivation;
 use super::error::MechError;
 use super::linalg::generalized_eigen;
 use super::magnitude::{Magnitudes, Sized};
-use super::sample::Sampler;
 use super::state::Layout;
 use super::system::System;
 use crate::expr::{Id, Program};
+
+mod blocks;
+mod families;
+mod newton;
+
+pub use blocks::Coverage;
+pub use families::Shape;
+
+pub(crate) use newton::wrap_angle;
+use newton::{force_scale, is_continuum, range_widths, start_points};
 
 /// An eigenvalue ω² (or a growth rate, or a frequency) counts as zero below this fraction of
 /// the largest one: linear analysis cannot tell the sign of what rounding leaves.
 pub(crate) const EIGENVALUE_ZERO: f64 = 1e-9;
 
-/// A Newton root is kept when its residual is within this fraction of the force scale (the
-/// typical size of the generalized forces' terms over the search range) after the iteration
-/// budget (the iteration itself aims at [`NEWTON_TARGET`]). Relative, never absolute: a
-/// spring of 1e-12 N/m has forces of 1e-12 N, and its equilibrium is still a single point.
-const NEWTON_ACCEPT: f64 = 1e-9;
-
-/// Residual, relative to the force scale, at which Newton's iteration stops.
-const NEWTON_TARGET: f64 = 1e-11;
-
-/// Newton's iterates may wander this many range widths away before the start is given up.
-const NEWTON_WANDER: f64 = 1e6;
-
-/// A coordinate of a root within this fraction of its range width of 0 is set to 0.
-const ROOT_SNAP: f64 = 1e-12;
-
-/// Two roots closer than this fraction of the range width (per coordinate) are one.
-const SAME_ROOT: f64 = 1e-6;
-
-/// A root may lie this fraction of the range outside a non-periodic coordinate's range
-/// (a root found exactly on the edge is not lost to rounding).
-const RANGE_MARGIN: f64 = 1e-9;
-
-/// Angles within this of ±π are reported as π (both are one angle; the tolerance is that of
-/// [`NEWTON_ACCEPT`]).
-const ANGLE_SNAP: f64 = 1e-9;
+/// A point given by hand is an equilibrium when each force is within this fraction of the
+/// size of its terms (looser than the search's acceptance: values such as l₀ + m g/k are
+/// evaluated with rounding).
+const AT_ACCEPT: f64 = 1e-8;
 
 /// Stability of an equilibrium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +60,11 @@ impl Stability {
 pub struct Equilibria {
     /// Isolated equilibria with their stability, sorted.
     pub points: Vec<(Vec<f64>, Stability)>,
+    /// What each point is beyond a point (aligned with `points`): one of a continuum along
+    /// its free directions, or degenerate (not harmonic).
+    pub shapes: Vec<Shape>,
+    /// What the search covered (blocks searched on their own, starts in each).
+    pub coverage: Coverage,
     /// f vanishes on a whole region: equilibria are not isolated (e.g. the bead on the
     /// parabola at ω² = 2ga).
     pub continuum: bool,
@@ -84,11 +77,16 @@ pub struct Statics {
     sizes: Magnitudes,
     layout: Layout,
     base: Vec<f64>,
+    /// The entries of J = ∂G/∂q, row-major: which coordinates' forces depend on which.
+    jacobian: Vec<Id>,
 }
 
 impl Statics {
     /// Compiles G, J and M with the parameter values `params` (in the system's order).
+    /// Refused with [`MechError::ExplicitTime`] when the equations depend on t explicitly:
+    /// the system frozen at t = 0 has no bearing on the driven motion.
     pub fn new(sys: &mut System, d: &Derivation, params: &[f64]) -> Result<Statics, MechError> {
+        explicit_time(sys, d)?;
         let coords = sys.coordinate_syms();
         let zero = sys.pool.zero();
         let at_rest: FxHashMap<_, _> = coords
@@ -121,11 +119,13 @@ impl Statics {
         }
         let layout = sys.state_layout();
         let base = layout.at_rest(&[], params);
+        let n = coords.len();
         Ok(Statics {
             program,
             sizes,
             layout,
             base,
+            jacobian: roots[n..n + n * n].to_vec(),
         })
     }
 
@@ -144,10 +144,10 @@ impl Statics {
     }
 
     /// The size of the generalized forces at `q`: the largest term magnitude among the Gᵢ.
-    fn force_size(&self, q: &[f64]) -> Option<f64> {
-        let n = self.layout.coordinates();
+    /// (The largest among the forces of the coordinates `active`.)
+    fn force_size(&self, q: &[f64], active: &[usize]) -> Option<f64> {
         let s = self.sizes(q)?;
-        Some(s[..n].iter().fold(0.0, |a, v| a.max(v.magnitude)))
+        Some(active.iter().fold(0.0, |a, &i| a.max(s[i].magnitude)))
     }
 
     fn eval(
@@ -175,38 +175,34 @@ impl Statics {
         let k = -&j;
         let k = (&k + k.transpose()) * 0.5;
         let (vals, vecs) = generalized_eigen(&k, &m)?;
-        // ω² is zero relative to the larger of the eigenvalues and the size of the terms of
-        // K (per unit mass): a stiffness that is rounding left over from cancelling terms
-        // is zero however the eigenvalues compare with each other, and a weak but real one
-        // (k = 1e-12) is not.
-        let scale = vals
-            .iter()
-            .fold(self.stiffness_size(q, &m), |a, v| a.max(v.abs()));
-        let tol = EIGENVALUE_ZERO * scale;
-        let st = if vals.iter().any(|&v| v < -tol) {
+        // Each ω² is zero relative to the size of the terms of K along its own mode (per
+        // unit mass): a stiffness that is rounding left over from cancelling terms is zero
+        // however the eigenvalues compare with each other, and a weak but real one
+        // (k = 1e-12, even beside a stiff k = 1) is not.
+        let sizes = self.sizes(q);
+        let n = vals.len();
+        let tol: Vec<f64> = (0..n)
+            .map(|k| {
+                let u = vecs.column(k);
+                let mass = (u.transpose() * &m * u)[(0, 0)].abs();
+                let terms: f64 = sizes.as_ref().map_or(0.0, |s| {
+                    (0..n)
+                        .flat_map(|i| (0..n).map(move |j| (i, j)))
+                        .map(|(i, j)| s[n + i * n + j].magnitude * (u[i] * u[j]).abs())
+                        .sum()
+                });
+                let scale = (terms / mass).max(vals[k].abs());
+                EIGENVALUE_ZERO * if scale.is_finite() { scale } else { 0.0 }
+            })
+            .collect();
+        let st = if (0..n).any(|k| vals[k] < -tol[k]) {
             Stability::Unstable
-        } else if vals.iter().any(|&v| v.abs() <= tol) {
+        } else if (0..n).any(|k| vals[k].abs() <= tol[k]) {
             Stability::Marginal
         } else {
             Stability::Stable
         };
         Ok((st, vals.iter().copied().collect(), vecs))
-    }
-
-    /// The size of the terms of K = −J at `q` per unit of mass: maxᵢ Σⱼ |Kᵢⱼ terms| / Mᵢᵢ,
-    /// the scale of ω² that rounding in K is measured against (0 when K is exactly 0).
-    fn stiffness_size(&self, q: &[f64], m: &DMatrix<f64>) -> f64 {
-        let n = self.layout.coordinates();
-        let Some(s) = self.sizes(q) else {
-            return 0.0;
-        };
-        (0..n)
-            .map(|i| {
-                let row: f64 = (0..n).map(|j| s[n + i * n + j].magnitude).sum();
-                row / m[(i, i)].abs()
-            })
-            .filter(|v| v.is_finite())
-            .fold(0.0, f64::max)
     }
 }
 
@@ -216,7 +212,6 @@ impl System {
         let statics = Statics::new(self, d, params)?;
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
-        let mut scratch = statics.program.scratch();
         let starts = start_points(&ranges);
         if let Some(q) = starts.first()
             && starts.iter().all(|q| statics.sizes(q).is_none())
@@ -228,42 +223,166 @@ impl System {
         if is_continuum(&statics, &starts) {
             return Ok(Equilibria {
                 points: Vec::new(),
+                shapes: Vec::new(),
+                coverage: Coverage::default(),
                 continuum: true,
             });
         }
         let widths = range_widths(&ranges, &periodic);
-        let scale = NewtonScale {
-            force: force_scale(&statics, &starts),
-            limit: NEWTON_WANDER * widths.iter().fold(1.0f64, |a, &w| a.max(w)),
+        let blocks = self.decoupled_blocks(&statics);
+        let rest: Vec<f64> = starts[0].clone();
+        let search = blocks::Search {
+            statics: &statics,
+            ranges: &ranges,
+            periodic: &periodic,
+            widths: &widths,
         };
-        let mut found: Vec<Vec<f64>> = Vec::new();
-        for q0 in starts {
-            let Some(q) = newton(&statics, q0, scale, &mut scratch) else {
-                continue;
-            };
-            let Some(q) = normalize_root(q, &ranges, &periodic) else {
-                continue;
-            };
-            if !found.iter().any(|p| same_point(p, &q, &periodic, &widths)) {
-                found.push(q);
+        let mut roots = Vec::with_capacity(blocks.len());
+        let mut coverage = Coverage::default();
+        let mut force = f64::MAX;
+        for block in &blocks {
+            let (r, count, f) = search.block_roots(block, &rest);
+            roots.push(r);
+            coverage.starts.push(count);
+            if f > 0.0 {
+                force = force.min(f);
             }
         }
-        found.sort_by(|a, b| {
+        coverage.blocks = blocks.clone();
+        if force == f64::MAX {
+            force = 0.0;
+        }
+        let found = blocks::product(&blocks, &roots, &rest)?;
+        let mut grouped = families::group(&statics, found, &periodic, &widths, force);
+        grouped.sort_by(|(a, _), (b, _)| {
             a.iter()
                 .zip(b)
                 .map(|(x, y)| x.total_cmp(y))
                 .find(|o| o.is_ne())
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
-        let mut points = Vec::with_capacity(found.len());
-        for q in found {
+        let mut points = Vec::with_capacity(grouped.len());
+        let mut shapes = Vec::with_capacity(grouped.len());
+        for (q, shape) in grouped {
+            if !shape.singular_chart.is_empty() {
+                // The chart fails here, so its linearization says nothing: undecided.
+                points.push((q, Stability::Marginal));
+                shapes.push(shape);
+                continue;
+            }
             let (st, _, _) = statics.stability(&q)?;
-            points.push((q, st));
+            points.push((q, across_family(st, &shape)));
+            shapes.push(shape);
         }
         Ok(Equilibria {
             points,
+            shapes,
             continuum: false,
+            coverage,
         })
+    }
+
+    /// The shape of the equilibrium at `q` (parameter values `params`): whether it is one
+    /// of a continuum (and along which directions), or degenerate.
+    pub fn equilibrium_shape(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q: &[f64],
+    ) -> Result<Shape, MechError> {
+        let statics = Statics::new(self, d, params)?;
+        let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
+        let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
+        let widths = range_widths(&ranges, &periodic);
+        let all: Vec<usize> = (0..q.len()).collect();
+        let block = newton::Block {
+            statics: &statics,
+            active: &all,
+        };
+        let force = force_scale(block, &start_points(&ranges));
+        Ok(families::shape_at(&statics, q, &widths, force))
+    }
+
+    /// [`MechError::NotAnEquilibrium`] unless every generalized force vanishes at rest at
+    /// `q` (parameter values `params`), each relative to the size of its own terms there: a
+    /// point given by hand is analysed only when it is an equilibrium.
+    pub fn check_equilibrium(
+        &mut self,
+        d: &Derivation,
+        params: &[f64],
+        q: &[f64],
+    ) -> Result<(), MechError> {
+        let statics = Statics::new(self, d, params)?;
+        let mut scratch = statics.program.scratch();
+        let undefined = || MechError::Undefined {
+            what: "the equations at the point given".into(),
+        };
+        let (g, _, _) = statics.eval(q, &mut scratch).ok_or_else(undefined)?;
+        let sizes = statics.sizes(q).ok_or_else(undefined)?;
+        let off: Vec<usize> = (0..g.len())
+            // A NaN force is off too.
+            .filter(|&i| g[i].is_nan() || g[i].abs() > AT_ACCEPT * sizes[i].magnitude)
+            .collect();
+        if off.is_empty() {
+            return Ok(());
+        }
+        let names: Vec<&str> = self.coordinates.iter().map(|c| c.name.as_str()).collect();
+        let point = names
+            .iter()
+            .zip(q)
+            .map(|(n, v)| format!("{n} = {}", short(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        // At rest the force on qᵢ is −∂V/∂qᵢ (plus any generalized force given).
+        let forces = off
+            .iter()
+            .map(|&i| format!("∂V/∂{} = {}", names[i], short(-g[i])))
+            .collect::<Vec<_>>()
+            .join(", ");
+        Err(MechError::NotAnEquilibrium { point, forces })
+    }
+
+    /// Whether the candidate equilibrium `point` satisfies f(q₀, 0) = 0 at each of
+    /// `samples` (state vectors in the system's layout, drawn by the caller so that they
+    /// respect the problem's assumptions: the elastic pendulum's r₀ = l₀ + m g/k is an
+    /// equilibrium where |r₀| = r₀), each force zero relative to its terms. `false` when
+    /// no sample is defined.
+    pub fn verify_equilibrium_at(
+        &mut self,
+        d: &Derivation,
+        point: &[Id],
+        samples: &[Vec<f64>],
+    ) -> Result<bool, MechError> {
+        let g = self.forces_at_rest(d, point);
+        let sizes = self.magnitudes(&g)?;
+        let mut defined = 0;
+        for x in samples {
+            let Some(v) = sizes.eval(x) else { continue };
+            if v.iter().any(|s| !s.value.is_finite()) {
+                continue;
+            }
+            defined += 1;
+            if !v.iter().all(|s| s.negligible()) {
+                return Ok(false);
+            }
+        }
+        Ok(defined > 0)
+    }
+
+    /// The forces at rest at `point` (one expression per coordinate).
+    fn forces_at_rest(&mut self, d: &Derivation, point: &[Id]) -> Vec<Id> {
+        let coords = self.coordinate_syms();
+        let zero = self.pool.zero();
+        let mut map: FxHashMap<_, _> = FxHashMap::default();
+        for (&c, &v) in coords.iter().zip(point) {
+            map.insert((c, 0), v);
+            map.insert((c, 1), zero);
+            map.insert((c, 2), zero);
+        }
+        d.forcing
+            .iter()
+            .map(|&f| self.pool.substitute(f, &map))
+            .collect()
     }
 
     /// Whether the candidate equilibrium `point` (one expression per coordinate, in the
@@ -286,206 +405,113 @@ impl System {
     }
 }
 
-/// Newton's starting points in `ranges`: a grid (≤ ~400 points) plus seeded random ones.
-fn start_points(ranges: &[(f64, f64)]) -> Vec<Vec<f64>> {
-    let n = ranges.len();
-    let mut sampler = Sampler::new(0x5eed_0003);
-    let per_axis = ((400f64).powf(1.0 / n as f64).floor() as usize).clamp(2, 41);
-    let mut starts: Vec<Vec<f64>> = Vec::new();
-    // The grid grows as per_axis^n: past 512 points (n > 9) only random starts are used.
-    let total = per_axis
-        .checked_pow(n as u32)
-        .filter(|&t| t <= 512)
-        .unwrap_or(0);
-    for k in 0..total {
-        let mut idx = k;
-        let mut q = Vec::with_capacity(n);
-        for r in ranges {
-            let i = idx % per_axis;
-            idx /= per_axis;
-            q.push(r.0 + (r.1 - r.0) * (i as f64 + 0.5) / per_axis as f64);
-        }
-        starts.push(q);
+/// The stability of an equilibrium that is one of a continuum, judged across it: when
+/// every zero ω² is a free direction (not degenerate), moving along the continuum is
+/// neutral and the other directions decide (the cart-pendulum's θ = 0 with x arbitrary is
+/// stable). A degenerate point stays marginal: linear analysis cannot decide it.
+pub fn across_family(st: Stability, shape: &Shape) -> Stability {
+    if st == Stability::Marginal && !shape.free.is_empty() && !shape.degenerate {
+        Stability::Stable
+    } else {
+        st
     }
-    let random = if total == 0 { 256 } else { 64 };
-    for _ in 0..random {
-        starts.push(ranges.iter().map(|r| sampler.uniform(r.0, r.1)).collect());
-    }
-    starts
 }
 
-/// Whether f ≈ 0 at almost every starting point: the equilibria form a continuum. Each
-/// force is zero when it is rounding relative to its own terms (the bead on the parabola at
-/// ω² = 2ga), never when it is merely small (a spring of 1e-12).
-fn is_continuum(statics: &Statics, starts: &[Vec<f64>]) -> bool {
-    let n = statics.layout.coordinates();
-    let mut zero_at_start = 0;
-    let mut defined = 0;
-    for q in starts {
-        if let Some(s) = statics.sizes(q) {
-            defined += 1;
-            if s[..n].iter().all(|v| v.negligible()) {
-                zero_at_start += 1;
+impl System {
+    /// [`MechError::ExplicitTime`] when the equations of motion depend on t explicitly:
+    /// equilibria and small oscillations (numeric or in closed form) are then refused.
+    pub fn refuse_explicit_time(&mut self, d: &Derivation) -> Result<(), MechError> {
+        explicit_time(self, d)
+    }
+}
+
+/// [`MechError::ExplicitTime`] when some equation of motion (or the mass matrix) changes
+/// with t at fixed q, q': the terms named are the coordinates' equations that do.
+fn explicit_time(sys: &mut System, d: &Derivation) -> Result<(), MechError> {
+    let time = sys.pool.time();
+    let mut driven = Vec::new();
+    for (i, &f) in d.forcing.iter().enumerate() {
+        let row = d.mass.get(i).map(Vec::as_slice).unwrap_or(&[]);
+        let depends = std::iter::once(f).chain(row.iter().copied()).any(|e| {
+            // t written but cancelling (sin(t)² + cos(t)²) is no dependence; a derivative
+            // too large to form counts as one (refusing is the safe side).
+            sys.pool.variables(e).contains(&(time, 0)) && {
+                let dt = sys.pool.diff(e, time, 0);
+                !sys.is_zero(dt)
             }
+        });
+        if depends {
+            driven.push(format!("the equation of {}", sys.coordinates[i].name));
         }
     }
-    defined > 0 && zero_at_start * 10 >= defined * 9
-}
-
-/// Newton's yardsticks: the typical size of the forces, and how far iterates may wander.
-#[derive(Clone, Copy, Debug)]
-struct NewtonScale {
-    force: f64,
-    limit: f64,
-}
-
-/// The typical size of the generalized forces over the search range: the median, over the
-/// starting points, of the largest term magnitude (a median, so that a pole inside the
-/// range does not make every residual look small).
-fn force_scale(statics: &Statics, starts: &[Vec<f64>]) -> f64 {
-    let mut sizes: Vec<f64> = starts
-        .iter()
-        .filter_map(|q| statics.force_size(q))
-        .filter(|v| v.is_finite() && *v > 0.0)
-        .collect();
-    if sizes.is_empty() {
-        return 0.0;
+    if driven.is_empty() {
+        return Ok(());
     }
-    sizes.sort_by(f64::total_cmp);
-    sizes[sizes.len() / 2]
+    Err(MechError::ExplicitTime {
+        terms: driven.join(", "),
+    })
 }
 
-/// The width of each coordinate's range (2π for an angle), kept finite.
-fn range_widths(ranges: &[(f64, f64)], periodic: &[bool]) -> Vec<f64> {
-    ranges
-        .iter()
-        .zip(periodic)
-        .map(|(&(lo, hi), &per)| {
-            let w = if per { std::f64::consts::TAU } else { hi - lo };
-            if w.is_finite() && w > 0.0 {
-                w
+/// A value with six significant digits, trailing zeros dropped.
+fn short(v: f64) -> String {
+    let t = format!("{v:.6e}");
+    match t.split_once('e') {
+        Some((_, e)) if (-4..6).contains(&e.parse::<i32>().unwrap_or(99)) => {
+            let digits = 5 - e.parse::<i32>().unwrap_or(0);
+            let t = format!("{v:.*}", digits.max(0) as usize);
+            if t.contains('.') {
+                t.trim_end_matches('0').trim_end_matches('.').to_string()
             } else {
-                f64::MAX
-            }
-        })
-        .collect()
-}
-
-/// A root with periodic coordinates wrapped into (−π, π] and tiny values set to 0; `None`
-/// when a non-periodic coordinate lies outside its range.
-fn normalize_root(mut q: Vec<f64>, ranges: &[(f64, f64)], periodic: &[bool]) -> Option<Vec<f64>> {
-    for i in 0..q.len() {
-        if periodic[i] {
-            q[i] = wrap_angle(q[i]);
-        } else {
-            let (lo, hi) = ranges[i];
-            let margin = RANGE_MARGIN * (hi - lo);
-            // Written as "not inside" so that a NaN is outside too.
-            let inside = q[i] >= lo - margin && q[i] <= hi + margin;
-            if !inside {
-                return None;
+                t
             }
         }
-        let width = if periodic[i] {
-            std::f64::consts::TAU
-        } else {
-            (ranges[i].1 - ranges[i].0).min(f64::MAX)
-        };
-        if q[i].abs() < ROOT_SNAP * width {
-            q[i] = 0.0;
-        }
-    }
-    Some(q)
-}
-
-/// Whether two roots are one equilibrium (periodic coordinates compared modulo 2π), each
-/// coordinate relative to the width of its range.
-fn same_point(a: &[f64], b: &[f64], periodic: &[bool], widths: &[f64]) -> bool {
-    a.iter()
-        .zip(b)
-        .zip(periodic.iter().zip(widths))
-        .all(|((x, y), (&per, &w))| {
-            let d = if per {
-                wrap_angle(x - y).abs()
+        Some((m, e)) => {
+            let m = if m.contains('.') {
+                m.trim_end_matches('0').trim_end_matches('.')
             } else {
-                (x - y).abs()
+                m
             };
-            d < SAME_ROOT * w
-        })
-}
-
-/// Newton's method with backtracking from `q`; `None` when it does not converge. The
-/// residual is measured against the force scale, never against 1.
-fn newton(
-    s: &Statics,
-    mut q: Vec<f64>,
-    scale: NewtonScale,
-    scratch: &mut [f64],
-) -> Option<Vec<f64>> {
-    let n = q.len();
-    for _ in 0..60 {
-        let (g, j, _) = s.eval(&q, scratch)?;
-        if g.amax() <= NEWTON_TARGET * scale.force {
-            return Some(polish(s, q, &g, &j, scratch));
+            format!("{m}e{e}")
         }
-        let step = j.clone().lu().solve(&(-&g))?;
-        if !step.iter().all(|v| v.is_finite()) {
-            return None;
-        }
-        let norm0 = g.norm();
-        let mut t = 1.0;
-        let mut accepted = false;
-        for _ in 0..20 {
-            let trial: Vec<f64> = (0..n).map(|i| q[i] + t * step[i]).collect();
-            if let Some((g2, _, _)) = s.eval(&trial, scratch)
-                && g2.norm() < norm0
-            {
-                q = trial;
-                accepted = true;
-                break;
-            }
-            t *= 0.5;
-        }
-        if !accepted {
-            return None;
-        }
-        if q.iter().any(|v| v.abs() > scale.limit) {
-            return None;
-        }
-    }
-    let (g, _, _) = s.eval(&q, scratch)?;
-    (g.amax() <= NEWTON_ACCEPT * scale.force).then_some(q)
-}
-
-/// One more Newton step from a converged `q`, kept when it does not make the residual
-/// worse: the target is relative to the forces over the whole range, so a root that is tiny
-/// compared with the range (x₀ = m g sin α / k = 5e-12) still gets its full precision.
-fn polish(
-    s: &Statics,
-    q: Vec<f64>,
-    g: &DVector<f64>,
-    j: &DMatrix<f64>,
-    scratch: &mut [f64],
-) -> Vec<f64> {
-    let Some(step) = j.clone().lu().solve(&(-g)) else {
-        return q;
-    };
-    let trial: Vec<f64> = q.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-    match s.eval(&trial, scratch) {
-        Some((g2, _, _)) if trial.iter().all(|v| v.is_finite()) && g2.amax() <= g.amax() => trial,
-        _ => q,
+        None => t,
     }
 }
 
-/// An angle in (−π, π].
-pub(crate) fn wrap_angle(x: f64) -> f64 {
-    let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
-    let mut y = x.rem_euclid(tau);
-    if y > pi {
-        y -= tau;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_shown_with_six_significant_digits() {
+        assert_eq!(short(0.8414709848078965), "0.841471");
+        assert_eq!(short(-16.49278), "-16.4928");
+        assert_eq!(short(2.0), "2");
+        assert_eq!(short(1.5e-9), "1.5e-9");
+        assert_eq!(short(f64::NAN), "NaN");
     }
-    if (y + pi).abs() < ANGLE_SNAP || (y - pi).abs() < ANGLE_SNAP {
-        y = pi;
+
+    #[test]
+    fn time_that_cancels_is_no_explicit_dependence() {
+        // sin²(t) + cos²(t) = 1: the oscillator is not driven.
+        let l = "1/2*x'^2 - 1/2*(sin(t)^2 + cos(t)^2)*x^2";
+        let mut sys = System::from_lagrangian(l, &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert!(sys.refuse_explicit_time(&d).is_ok());
+        let driven = "1/2*x'^2 - 1/2*x^2 + x*cos(t)";
+        let mut sys = System::from_lagrangian(driven, &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert_eq!(
+            sys.refuse_explicit_time(&d).unwrap_err().code(),
+            "explicit-time"
+        );
     }
-    y
+
+    #[test]
+    fn a_point_that_is_not_an_equilibrium_names_its_force() {
+        let mut sys = System::from_lagrangian("1/2*x'^2 - 1/2*x^2", &["x"]).unwrap();
+        let d = sys.derive().unwrap();
+        assert!(sys.check_equilibrium(&d, &[], &[0.0]).is_ok());
+        let e = sys.check_equilibrium(&d, &[], &[2.0]).unwrap_err();
+        assert_eq!(e.to_string(), "x = 2 is not an equilibrium: ∂V/∂x = 2");
+    }
 }

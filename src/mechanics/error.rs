@@ -123,6 +123,21 @@ pub enum MechError {
     /// it can be evaluated anywhere.
     #[error("`{expr}` is undefined")]
     UndefinedConstant { expr: String },
+    /// The equations depend on time explicitly (a driven support, the Kapitza pendulum):
+    /// the system at rest at t = 0 is not a physical equilibrium, and its linearization is
+    /// not the motion about one.
+    #[error(
+        "the equations depend on time explicitly (through {terms}): equilibria and normal modes of the system frozen at t = 0 are not physical"
+    )]
+    ExplicitTime { terms: String },
+    /// The point asked for is not an equilibrium: the generalized forces there
+    /// (`forces`: "∂V/∂θ = …"-style items, comma-separated) do not vanish.
+    #[error("{point} is not an equilibrium: {forces}")]
+    NotAnEquilibrium { point: String, forces: String },
+    /// The equations decouple into blocks whose equilibria combine into more points than
+    /// are listed (`count`: their number, in decimal).
+    #[error("the equilibria number {count}: more than the {max} that are listed")]
+    TooManyEquilibria { count: String, max: usize },
     /// A name given as a coordinate cannot be one (time, π, a function, listed twice).
     #[error(transparent)]
     Name(#[from] super::naming::NameError),
@@ -170,6 +185,9 @@ impl MechError {
             MechError::MultiplierName { .. } => "multiplier-name",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
+            MechError::ExplicitTime { .. } => "explicit-time",
+            MechError::TooManyEquilibria { .. } => "too-many-equilibria",
+            MechError::NotAnEquilibrium { .. } => "not-an-equilibrium",
             MechError::TooLarge(_) => "too-large",
             MechError::Name(e) => e.code(),
         }
@@ -246,6 +264,13 @@ impl MechError {
                 "choose units in which the quantities are moderate numbers".into()
             }
             MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
+            MechError::TooManyEquilibria { .. } => {
+                "narrow the ranges of the coordinates, or give the equilibrium".into()
+            }
+            MechError::ExplicitTime { .. } => "simulate the motion instead (a numerical integration follows the driven system); for fast driving, an averaged effective potential is an approximation to derive by hand".into(),
+            MechError::NotAnEquilibrium { .. } => {
+                "give a point where every generalized force vanishes, or leave the point out to search for the equilibria".into()
+            }
             MechError::TooLarge(e) => e.help(),
             MechError::Name(e) => e.help(),
         }

@@ -14,9 +14,16 @@ use serde::{Serialize, Serializer};
 use super::{Formula, Paint, text};
 use crate::check::compare::fmt_value;
 use crate::expr::{Id, ParseError, Program, Style, read_expr};
-use crate::mechanics::equilibria::Stability;
+use crate::mechanics::equilibria::{Coverage, Shape, Stability, across_family};
+
+mod shown;
+
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
+use shown::{
+    chart_modes, check_symbolic_point, given_point, point_text, search_coverage, write_coverage,
+    write_shape,
+};
 
 /// What to analyse. Names and values are as a person typed them; values are expressions.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -108,6 +115,9 @@ pub struct ModesReport {
     pub continuum: bool,
     /// The equilibria analysed.
     pub equilibria: Vec<EquilibriumModes>,
+    /// What the search covered, when the equilibria were searched for (not given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub search: Option<SearchCoverage>,
     /// ω² in closed form, when closed forms were asked for (empty: not given for this size).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_squared: Option<Vec<Formula>>,
@@ -120,6 +130,15 @@ pub struct ModesReport {
     /// Gyroscopic terms entered the characteristic polynomial: det(K − ω²M − iωC).
     #[serde(skip)]
     pub gyroscopic_closed_form: bool,
+}
+
+/// What the equilibrium search covered: the list is a search's, not a proof.
+#[derive(Clone, Debug, Serialize)]
+pub struct SearchCoverage {
+    /// Blocks of coordinates whose equations at rest decouple, each searched on its own.
+    pub blocks: Vec<Vec<String>>,
+    /// Newton starts in each block.
+    pub starts: Vec<usize>,
 }
 
 /// One equilibrium and its small oscillations.
@@ -135,11 +154,18 @@ pub struct EquilibriumModes {
     pub modes: Vec<Vec<f64>>,
     /// ω² of each mode.
     pub omega_squared: Vec<f64>,
-    /// The equilibrium, by coordinate name.
+    /// The equilibrium, by coordinate name (a coordinate listed in `free` alone is
+    /// arbitrary; its value here is the representative one).
     pub point: BTreeMap<String, f64>,
     /// For a steady motion: the velocity of each cyclic coordinate, `phi'` and its value.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rates: Vec<(String, f64)>,
+    /// Directions along which this equilibrium is one of a continuum (empty: isolated).
+    pub free: Vec<Vec<f64>>,
+    /// ω² = 0 along a direction that is not free: the small oscillations are not harmonic.
+    pub not_harmonic: bool,
+    /// Coordinates whose velocities lose their inertia here (a singular chart): no modes.
+    pub singular_chart: Vec<String>,
     /// Stable, unstable or marginal.
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
@@ -180,7 +206,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         })
         .collect();
     let at = match &opts.at {
-        Some(given) => Some(point(&mut sys, given)?),
+        Some(given) => Some(given_point(&mut sys, given, &values)?),
         None => None,
     };
     let unicode: Vec<String> = coordinate_labels
@@ -190,15 +216,17 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
     let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
     let mut equilibria = Vec::new();
     let mut continuum = false;
+    let mut search = None;
     if sys.parameters.is_empty() {
-        let found;
-        (found, continuum) = numeric_modes(&mut sys, &d, at.as_deref())?;
+        let (found, coverage);
+        (found, continuum, coverage) = numeric_modes(&mut sys, &d, at.as_deref())?;
+        search = coverage.map(|c| search_coverage(&c, &unicode));
         equilibria = found
             .iter()
-            .map(|m| equilibrium(m, &names, &unicode))
+            .map(|(m, shape)| equilibrium(m, shape, &names, &unicode))
             .collect();
         if let Some(note) = &steady {
-            let points: Vec<Vec<f64>> = found.iter().map(|m| m.point.clone()).collect();
+            let points: Vec<Vec<f64>> = found.iter().map(|(m, _)| m.point.clone()).collect();
             let rates = super::steady::rates_at(note, &mut sys, &values, &points);
             for (e, r) in equilibria.iter_mut().zip(rates) {
                 e.rates = r;
@@ -211,7 +239,10 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         .into());
     }
     let symbolic = match (&at, opts.symbolic) {
-        (Some(ids), true) => Some(sys.symbolic_modes(&d, ids)?),
+        (Some(ids), true) => {
+            check_symbolic_point(&mut sys, &d, ids, opts)?;
+            Some(sys.symbolic_modes(&d, ids)?)
+        }
         (None, true) => return Err(ModesError::SymbolicNeedsPoint),
         _ => None,
     };
@@ -221,6 +252,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
             .as_ref()
             .map(|s| Formula::factored(pool, &s.characteristic_shown)),
         continuum,
+        search,
         equilibria,
         omega_squared: symbolic.as_ref().map(|s| {
             s.omega_squared_shown
@@ -299,29 +331,46 @@ fn point(sys: &mut System, given: &[(String, String)]) -> Result<Vec<Id>, ModesE
         .collect()
 }
 
+/// The modes found with their shapes, whether the equilibria fill the range, and what the
+/// search covered (none when the point was given).
+type NumericModes = (Vec<(Modes, Shape)>, bool, Option<Coverage>);
+
 /// The numeric modes at the given point, or at every equilibrium found; and whether the
 /// equilibria form a continuum.
 fn numeric_modes(
     sys: &mut System,
     d: &Derivation,
     at: Option<&[Id]>,
-) -> Result<(Vec<Modes>, bool), ModesError> {
+) -> Result<NumericModes, ModesError> {
     if let Some(ids) = at {
         let q: Vec<f64> = ids
             .iter()
             .map(|&e| constant(sys, e).ok_or(ModesError::PointNotNumeric))
             .collect::<Result<_, _>>()?;
-        return Ok((vec![sys.modes_at(d, &[], &q)?], false));
+        sys.check_equilibrium(d, &[], &q)?;
+        let shape = sys.equilibrium_shape(d, &[], &q)?;
+        if !shape.singular_chart.is_empty() {
+            return Ok((vec![(chart_modes(&q), shape)], false, None));
+        }
+        let mut m = sys.modes_at(d, &[], &q)?;
+        m.stability = across_family(m.stability, &shape);
+        return Ok((vec![(m, shape)], false, None));
     }
     let eq = sys.equilibria(d, &[])?;
     if !eq.continuum && eq.points.is_empty() {
         return Err(MechError::NoEquilibrium.into());
     }
     let mut found = Vec::with_capacity(eq.points.len());
-    for (q, _) in eq.points {
-        found.push(sys.modes_at(d, &[], &q)?);
+    for ((q, _), shape) in eq.points.into_iter().zip(eq.shapes) {
+        if !shape.singular_chart.is_empty() {
+            found.push((chart_modes(&q), shape));
+            continue;
+        }
+        let mut m = sys.modes_at(d, &[], &q)?;
+        m.stability = across_family(m.stability, &shape);
+        found.push((m, shape));
     }
-    Ok((found, eq.continuum))
+    Ok((found, eq.continuum, Some(eq.coverage)))
 }
 
 /// The value of a constant expression.
@@ -336,7 +385,7 @@ fn constant(sys: &System, e: Id) -> Option<f64> {
         .map(|v| v[0])
 }
 
-fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumModes {
+fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) -> EquilibriumModes {
     EquilibriumModes {
         frequencies: m.frequencies.clone(),
         growth_rates: m.growth_rates.clone(),
@@ -346,6 +395,13 @@ fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumMod
         point: names.iter().cloned().zip(m.point.iter().copied()).collect(),
         stability: m.stability,
         stable: m.stability == Stability::Stable,
+        free: shape.free.clone(),
+        not_harmonic: shape.degenerate,
+        singular_chart: shape
+            .singular_chart
+            .iter()
+            .filter_map(|&i| labels.get(i).cloned())
+            .collect(),
         coordinates: m.point.clone(),
         rates: Vec::new(),
         descriptions: m.describe(labels),
@@ -370,6 +426,9 @@ impl ModesReport {
         }
         for m in &self.equilibria {
             self.render_equilibrium(m, style, paint, o)?;
+        }
+        if let Some(c) = &self.search {
+            write_coverage(c, self.equilibria.len(), o)?;
         }
         if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
             let det = if self.gyroscopic_closed_form {
@@ -403,12 +462,7 @@ impl ModesReport {
         paint: &dyn Paint,
         o: &mut String,
     ) -> fmt::Result {
-        let point: Vec<String> = self
-            .coordinate_labels
-            .iter()
-            .zip(&m.coordinates)
-            .map(|(n, v)| format!("{} = {}", n.get(style), fmt_value(*v)))
-            .collect();
+        let point = point_text(&self.coordinate_labels, m, style);
         let st = match m.stability {
             Stability::Stable => paint.good("stable"),
             Stability::Unstable => paint.bad("unstable"),
@@ -423,6 +477,7 @@ impl ModesReport {
         for (name, v) in &m.rates {
             writeln!(o, "  {name} = {}", fmt_value(*v))?;
         }
+        write_shape(m, paint, o)?;
         if m.gyroscopic {
             writeln!(
                 o,

@@ -7,6 +7,7 @@ mod corpus;
 mod diagnostics;
 mod dimensions;
 mod energy13;
+mod equilibria13;
 mod follow;
 mod fuzz_replay;
 mod grade;

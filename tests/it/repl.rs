@@ -184,6 +184,10 @@ fn wrong_step(step: &lagrange::tutor::ladder::Step, reference: &str) -> String {
             .collect::<Vec<_>>()
             .join(", ");
     }
+    // A continuum (`x = any, s = 0`) is one item: move its fixed coordinate instead.
+    if id == "equilibria" && reference.contains("= any") && reference.contains("= 0") {
+        return reference.replacen("= 0", "= 1", 1);
+    }
     if id == "equilibria" || id.starts_with("position:") {
         let items: Vec<&str> = reference.split(", ").collect();
         return match items.as_slice() {
