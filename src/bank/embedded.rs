@@ -45,6 +45,10 @@ pub const FILES: &[(&str, &str)] = &[
         "central-force.toml",
         include_str!("../../problems/central-force.toml"),
     ),
+    (
+        "rotating-trap.toml",
+        include_str!("../../problems/rotating-trap.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

@@ -116,7 +116,7 @@ fn compare_equilibria(
     if found.continuum {
         return Ok(Some(EquilibriumFinding::Continuum));
     }
-    let coords = &p.system.coordinates;
+    let coords = p.system.coordinates.clone();
     let same = |s: &[f64], q: &[f64]| {
         s.iter()
             .zip(q)
@@ -135,6 +135,11 @@ fn compare_equilibria(
                 return Ok(Some(EquilibriumFinding::Missing { at }));
             }
             Some(j) => {
+                // The full linearization (velocity terms included), as `modes` reports it.
+                let st = p
+                    .system
+                    .modes_at(&p.derivation, params, q)
+                    .map_or(*st, |m| m.stability);
                 if let Some(want) = part.stability.get(j)
                     && want != st.name()
                 {

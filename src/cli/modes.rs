@@ -79,6 +79,10 @@ fn modes_report(
         ModesError::SymbolicNeedsPoint => {
             CliError::usage("--symbolic needs the equilibrium, given with --at")
         }
+        ModesError::ConstrainedNeedsPoint => CliError::Usage(format!(
+            "{e}: give the equilibrium with --at, e.g. --at \"x=0, y=-L\""
+        )),
+        ModesError::SymbolicConstrained => CliError::Usage(format!("{e}: drop --symbolic")),
     })
 }
 

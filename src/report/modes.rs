@@ -72,6 +72,16 @@ pub enum ModesError {
     /// Closed forms were asked for without an equilibrium to expand about.
     #[error("the closed forms need the equilibrium")]
     SymbolicNeedsPoint,
+    /// The equilibrium search does not follow constraints: the point must be given.
+    #[error(
+        "with constraints the equilibria are not searched for (the search would ignore the constraints)"
+    )]
+    ConstrainedNeedsPoint,
+    /// The closed forms do not include constraints.
+    #[error(
+        "the closed forms ignore constraints, so they would be wrong here; the numeric modes are linearized on the constraints"
+    )]
+    SymbolicConstrained,
 }
 
 /// A `name=value` item that is not one.
@@ -110,14 +120,33 @@ pub struct ModesReport {
     pub coordinate_labels: Vec<Formula>,
 }
 
+/// A damped oscillation.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct DampedMode {
+    /// The decay rate γ = −Re λ.
+    pub decay_rate: f64,
+    /// The damping ratio ζ = γ/|λ|.
+    pub damping_ratio: f64,
+    /// The damped angular frequency ω_d = Im λ.
+    pub frequency: f64,
+}
+
 /// One equilibrium and its small oscillations.
 #[derive(Clone, Debug, Serialize)]
 pub struct EquilibriumModes {
-    /// Oscillation frequencies ω.
+    /// Damped oscillations (with damping terms).
+    pub damped: Vec<DampedMode>,
+    /// Symmetric velocity terms (friction, drag) survive.
+    pub damping: bool,
+    /// Decay rates of the modes that decay without oscillating.
+    pub decay_rates: Vec<f64>,
+    /// Directions along which a displacement is not restored (ω = 0), largest component 1.
+    pub free_directions: Vec<Vec<f64>>,
+    /// Undamped oscillation frequencies ω, 0 for each free motion.
     pub frequencies: Vec<f64>,
     /// Growth rates of unstable directions.
     pub growth_rates: Vec<f64>,
-    /// Velocity-dependent terms survive: solved as a first-order system.
+    /// Gyroscopic (antisymmetric velocity) terms survive: rotating frames, magnetic fields.
     pub gyroscopic: bool,
     /// The mode shapes, one per mode.
     pub modes: Vec<Vec<f64>>,
@@ -185,6 +214,9 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
             name: sys.parameters[0].name.clone(),
         }
         .into());
+    }
+    if opts.symbolic && !sys.constraints.is_empty() {
+        return Err(ModesError::SymbolicConstrained);
     }
     let symbolic = match (&at, opts.symbolic) {
         (Some(ids), true) => Some(sys.symbolic_modes(&d, ids)?),
@@ -287,6 +319,9 @@ fn numeric_modes(
             .collect::<Result<_, _>>()?;
         return Ok((vec![sys.modes_at(d, &[], &q)?], false));
     }
+    if !sys.constraints.is_empty() {
+        return Err(ModesError::ConstrainedNeedsPoint);
+    }
     let eq = sys.equilibria(d, &[])?;
     if !eq.continuum && eq.points.is_empty() {
         return Err(MechError::NoEquilibrium.into());
@@ -312,6 +347,18 @@ fn constant(sys: &System, e: Id) -> Option<f64> {
 
 fn equilibrium(m: &Modes, names: &[String], labels: &[String]) -> EquilibriumModes {
     EquilibriumModes {
+        damped: m
+            .damped
+            .iter()
+            .map(|d| DampedMode {
+                decay_rate: d.decay_rate,
+                damping_ratio: d.damping_ratio,
+                frequency: d.frequency,
+            })
+            .collect(),
+        damping: m.damping,
+        decay_rates: m.decay_rates.clone(),
+        free_directions: m.free_directions.clone(),
         frequencies: m.frequencies.clone(),
         growth_rates: m.growth_rates.clone(),
         gyroscopic: m.gyroscopic,
@@ -385,12 +432,7 @@ impl ModesReport {
             paint.heading("equilibrium"),
             point.join(", ")
         )?;
-        if m.gyroscopic {
-            writeln!(
-                o,
-                "  velocity-dependent terms survive here: solved as a first-order system"
-            )?;
-        }
+        render_velocity_terms(m, o)?;
         let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
         if !m.frequencies.is_empty() {
             writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "))?;
@@ -398,21 +440,73 @@ impl ModesReport {
         if !m.growth_rates.is_empty() {
             writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "))?;
         }
-        for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
-            let desc = m.descriptions.get(k).map_or("", String::as_str);
+        for d in &m.damped {
             writeln!(
                 o,
-                "  mode {}: ω² = {}, shape ({}){}",
-                k + 1,
-                fmt_value(*w2),
-                list(shape).join(", "),
-                if desc.is_empty() {
-                    String::new()
-                } else {
-                    format!(" — {desc}")
-                }
+                "  damped oscillation: ω = {}, decay rate γ = {}, damping ratio ζ = {}",
+                fmt_value(d.frequency),
+                fmt_value(d.decay_rate),
+                fmt_value(d.damping_ratio)
             )?;
         }
-        Ok(())
+        if !m.decay_rates.is_empty() {
+            writeln!(
+                o,
+                "  decay without oscillation, rates: {}",
+                list(&m.decay_rates).join(", ")
+            )?;
+        }
+        if m.modes.is_empty() {
+            for f in &m.free_directions {
+                writeln!(
+                    o,
+                    "  ω = 0: a displacement along ({}) is not restored",
+                    list(f).join(", ")
+                )?;
+            }
+        }
+        render_shapes(m, o)
     }
+}
+
+/// Which velocity terms survive at the equilibrium, and how they were solved.
+fn render_velocity_terms(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
+    let what = match (m.gyroscopic, m.damping) {
+        (true, true) => "gyroscopic and damping terms survive here",
+        (true, false) => "gyroscopic (velocity-coupling) terms survive here",
+        (false, true) => "damping terms survive here",
+        (false, false) => return Ok(()),
+    };
+    writeln!(o, "  {what}: solved as M ẍ + C ẋ + K x = 0 (C = G + D)")
+}
+
+/// One line per normal mode: ω = 0 as a free motion, otherwise ω², the shape and what the
+/// shape means where it means something.
+fn render_shapes(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
+    let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
+    for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
+        if *w2 == 0.0 {
+            writeln!(
+                o,
+                "  mode {}: ω = 0: free motion along ({})",
+                k + 1,
+                list(shape).join(", ")
+            )?;
+            continue;
+        }
+        let desc = m.descriptions.get(k).map_or("", String::as_str);
+        writeln!(
+            o,
+            "  mode {}: ω² = {}, shape ({}){}",
+            k + 1,
+            fmt_value(*w2),
+            list(shape).join(", "),
+            if desc.is_empty() {
+                String::new()
+            } else {
+                format!(" — {desc}")
+            }
+        )?;
+    }
+    Ok(())
 }
