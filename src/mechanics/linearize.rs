@@ -92,6 +92,24 @@ impl System {
             })
     }
 
+    /// f, then each φⱼ, then for each j and i: ∂φⱼ/∂qᵢ followed by ∂²φⱼ/∂qᵢ∂qₖ for every k.
+    fn constraint_roots(&mut self, d: &Derivation) -> Vec<Id> {
+        let coords = self.coordinate_syms();
+        let phis: Vec<Id> = self.constraints.iter().map(|c| c.expr).collect();
+        let mut roots: Vec<Id> = d.forcing.clone();
+        roots.extend(phis.iter().copied());
+        for &phi in &phis {
+            for &qi in &coords {
+                let a = self.pool.diff(phi, qi, 0);
+                roots.push(a);
+                for &qk in &coords {
+                    roots.push(self.pool.diff(a, qk, 0));
+                }
+            }
+        }
+        roots
+    }
+
     /// Restricts `lin` to the holonomic constraints' tangent space at `q0`, with the
     /// constraint forces' stiffness.
     fn on_manifold(
@@ -109,20 +127,8 @@ impl System {
         {
             return Err(MechError::ModesRolling);
         }
-        let coords = self.coordinate_syms();
-        let phis: Vec<Id> = self.constraints.iter().map(|c| c.expr).collect();
-        let mm = phis.len();
-        let mut roots: Vec<Id> = d.forcing.clone();
-        roots.extend(phis.iter().copied());
-        for &phi in &phis {
-            for &qi in &coords {
-                let a = self.pool.diff(phi, qi, 0);
-                roots.push(a);
-                for &qk in &coords {
-                    roots.push(self.pool.diff(a, qk, 0));
-                }
-            }
-        }
+        let mm = self.constraints.len();
+        let roots = self.constraint_roots(d);
         let v = self.sized(&roots, params, q0)?;
         if let Some(j) = (0..mm).find(|&j| !near_zero(v[n + j])) {
             return Err(MechError::OffConstraint { index: j + 1 });
@@ -152,11 +158,31 @@ impl System {
         }
         let t = tangent_basis(&a)?;
         let tt = t.transpose();
+        // The constraint forces' stiffness is measured against the size of the forces they
+        // balance (f's terms over |A|), not against its own value: a multiplier that is
+        // rounding (nothing to balance) gives a stiffness that is rounding too.
+        let curvature = (0..mm)
+            .flat_map(|j| (0..n * n).map(move |e| (j, e)))
+            .fold(0.0f64, |s, (j, e)| {
+                s.max(v[at(j, e / n) + 1 + e % n].magnitude)
+            });
+        let min_mass = lin
+            .m
+            .diagonal()
+            .iter()
+            .fold(f64::INFINITY, |s, x| s.min(x.abs()));
+        let constraint_size = f_size / a.amax().max(f64::MIN_POSITIVE) * curvature / min_mass;
+        let k_size = if constraint_size.is_finite() {
+            lin.k_size.max(constraint_size)
+        } else {
+            lin.k_size
+        };
         Ok(Linear {
             m: &tt * &lin.m * &t,
             k: &tt * k * &t,
             c: &tt * &lin.c * &t,
             tangent: t,
+            k_size,
             ..lin
         })
     }

@@ -67,8 +67,19 @@ impl Modes {
                 let moving: Vec<usize> =
                     (0..m.shape.len()).filter(|&i| m.shape[i] != 0.0).collect();
                 let name = |i: usize| names.get(i).map_or("?", String::as_str);
+                let w2 = m.omega_squared;
+                let degenerate = self
+                    .modes
+                    .iter()
+                    .filter(|o| (o.omega_squared - w2).abs() <= 1e-9 * w2.abs())
+                    .count()
+                    > 1;
                 match moving[..] {
-                    _ if m.omega_squared == 0.0 => "free motion (ω = 0)".into(),
+                    _ if w2 == 0.0 => "free motion (ω = 0)".into(),
+                    // Any combination of modes with one ω² is a mode: no shape is special.
+                    _ if degenerate => {
+                        "degenerate: any combination of the modes with this ω² is a mode".into()
+                    }
                     [i] => format!("only {} moves", name(i)),
                     [i, j] => {
                         let r = m.shape[j] / m.shape[i];

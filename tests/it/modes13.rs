@@ -258,3 +258,41 @@ fn bank_verifies_the_gyroscopic_trap_and_the_cart_zero_mode() {
         "{out}"
     );
 }
+
+/// On a sphere x² + y² + z² = L² under gravity (the spherical pendulum in Cartesian
+/// coordinates): ω² = g/L twice, a degenerate pair whose shapes are not singled out; on the
+/// parabola y = x²/(2a): ω² = g/a (the curvature radius at the bottom is a).
+#[test]
+fn constrained_pendula_match_their_textbook_frequencies() {
+    let (g, len, a) = (9.81, 1.3, 0.7);
+    let mut sys =
+        System::from_lagrangian("1/2*m*(x'^2 + y'^2 + z'^2) - m*g*z", &["x", "y", "z"]).unwrap();
+    sys.add_constraint("x^2 + y^2 + z^2 = L^2").unwrap();
+    let r = modes(
+        &mut sys,
+        &[("m", 2.0), ("g", g), ("L", len)],
+        &[0.0, 0.0, -len],
+    )
+    .unwrap();
+    let w = (g / len).sqrt();
+    assert_list(&r.frequencies, &[w, w]);
+    let names: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
+    assert!(
+        r.describe(&names)
+            .iter()
+            .all(|d| d.starts_with("degenerate")),
+        "{:?}",
+        r.describe(&names)
+    );
+    let mut sys = System::from_lagrangian("1/2*m*(x'^2 + y'^2) - m*g*y", &["x", "y"]).unwrap();
+    sys.add_constraint("y = x^2/(2*a)").unwrap();
+    let r = modes(&mut sys, &[("m", 0.3), ("g", g), ("a", a)], &[0.0, 0.0]).unwrap();
+    assert_list(&r.frequencies, &[(g / a).sqrt()]);
+    // A bead on a horizontal ring: nothing restores it, ω = 0 along the ring.
+    let mut sys = System::from_lagrangian("1/2*m*(x'^2 + y'^2)", &["x", "y"]).unwrap();
+    sys.add_constraint("x^2 + y^2 = R^2").unwrap();
+    let r = modes(&mut sys, &[("m", 1.0), ("R", 2.0)], &[0.0, -2.0]).unwrap();
+    assert_eq!(r.stability, Stability::Marginal);
+    assert_list(&r.frequencies, &[0.0]);
+    assert_list(&r.free_directions[0], &[1.0, 0.0]);
+}
