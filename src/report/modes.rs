@@ -108,6 +108,8 @@ pub struct ModesReport {
     /// det(K − ω²M), when closed forms were asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub characteristic_polynomial: Option<Formula>,
+    /// How many holonomic constraints the modes were linearized on.
+    pub constraints: usize,
     /// Every point of the search range is an equilibrium.
     pub continuum: bool,
     /// The equilibria analysed.
@@ -228,6 +230,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         characteristic_polynomial: symbolic
             .as_ref()
             .map(|s| Formula::factored(pool, &s.characteristic_shown)),
+        constraints: sys.constraints.len(),
         continuum,
         equilibria,
         omega_squared: symbolic.as_ref().map(|s| {
@@ -383,6 +386,14 @@ impl ModesReport {
             writeln!(
                 o,
                 "every point in the search range is an equilibrium: they are not isolated (neutral)"
+            )?;
+        }
+        if self.constraints > 0 && !self.equilibria.is_empty() {
+            writeln!(
+                o,
+                "linearized on the constraint manifold ({} constraint{}): the shapes are tangent to it",
+                self.constraints,
+                if self.constraints == 1 { "" } else { "s" }
             )?;
         }
         for m in &self.equilibria {

@@ -296,3 +296,62 @@ fn constrained_pendula_match_their_textbook_frequencies() {
     assert_list(&r.frequencies, &[0.0]);
     assert_list(&r.free_directions[0], &[1.0, 0.0]);
 }
+
+/// What `modes` prints for a free chain, a rotating trap, a damped oscillator and a
+/// Cartesian pendulum.
+#[test]
+fn modes_reports_snapshot() {
+    let cases: [&[&str]; 4] = [
+        &[
+            "-L",
+            "1/2*m*(x1'^2 + x2'^2 + x3'^2) - 1/2*k*(x2 - x1)^2 - 1/2*k*(x3 - x2)^2",
+            "-q",
+            "x1,x2,x3",
+            "--params",
+            "m=1, k=1",
+            "--at",
+            "x1=0, x2=0, x3=0",
+        ],
+        &[
+            "-L",
+            "1/2*((x' - W*y)^2 + (y' + W*x)^2) - 2*(x^2 + y^2)",
+            "-q",
+            "x,y",
+            "--params",
+            "W=3",
+            "--at",
+            "x=0, y=0",
+        ],
+        &[
+            "-L",
+            "1/2*x'^2 - 9/2*x^2",
+            "-q",
+            "x",
+            "--force",
+            "-0.6*x'",
+            "--at",
+            "x=0",
+        ],
+        &[
+            "-L",
+            "1/2*m*(x'^2 + y'^2) - m*g*y",
+            "-q",
+            "x,y",
+            "--constraint",
+            "x^2 + y^2 = L^2",
+            "--params",
+            "m=1, g=9.81, L=2",
+            "--at",
+            "x=0, y=-2",
+        ],
+    ];
+    let mut all = String::new();
+    for args in cases {
+        let mut full = vec!["modes"];
+        full.extend_from_slice(args);
+        let (code, out, err) = lagrange(&full);
+        assert_eq!(code, 0, "{err}");
+        all.push_str(&format!("$ {}\n{out}\n", args.join(" ")));
+    }
+    insta::assert_snapshot!(all);
+}
