@@ -240,7 +240,9 @@ fn cli_constraint_without_a_point_is_refused_with_the_reason() {
 fn bank_verifies_the_gyroscopic_trap_and_the_cart_zero_mode() {
     let (code, out, err) = lagrange(&["problems", "verify"]);
     assert_eq!(code, 0, "{out}{err}");
-    assert!(out.contains("✓ rotating-trap"), "{out}");
+    assert!(out.contains("✓ rotating-trap ("), "{out}");
+    // Stable although K < 0: verify and `modes` agree (both keep the Coriolis terms).
+    assert!(out.contains("✓ rotating-trap-fast"), "{out}");
     assert!(out.contains("✓ cart-pendulum"), "{out}");
     let (_, out, _) = lagrange(&[
         "check",

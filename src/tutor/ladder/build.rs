@@ -577,7 +577,11 @@ mod tests {
                 .collect();
             // A gyroscopic problem (the rotating trap) has no det(K − ω² M) step.
             let Some(step) = steps.iter().find(|s| s.id == "characteristic") else {
-                assert!(p.id == "rotating-trap", "{}: no characteristic step", p.id);
+                assert!(
+                    p.id.starts_with("rotating-trap"),
+                    "{}: no characteristic step",
+                    p.id
+                );
                 continue;
             };
             let v = check_step(p, step, &text.join(", ")).unwrap();
