@@ -83,10 +83,11 @@ impl System {
         self.on_manifold(d, params, q0, lin)
     }
 
-    /// The values of `roots` at rest at `q0`, with their magnitudes.
+    /// The values of `roots` at rest at `q0`, with their magnitudes; every one finite.
     fn sized(&self, roots: &[Id], params: &[f64], q0: &[f64]) -> Result<Vec<Sized>, MechError> {
         self.magnitudes(roots)?
             .eval(&self.state_layout().at_rest(q0, params))
+            .filter(|v| v.iter().all(|s| s.value.is_finite()))
             .ok_or_else(|| MechError::Undefined {
                 what: "the linearized equations".into(),
             })

@@ -17,6 +17,9 @@ use super::error::MechError;
 /// computed to ~1e-15 of it, a defective pair (two modes colliding) to ~1e-8.
 const REAL_PART_ZERO: f64 = 1e-7;
 
+/// QR sweeps allowed per row of the companion matrix.
+const SCHUR_SWEEPS: usize = 200;
+
 /// An oscillation that decays: λ = −γ ± i ω_d.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Damped {
@@ -56,7 +59,6 @@ pub(crate) fn solve(
     k: &DMatrix<f64>,
     rate_floor: f64,
 ) -> Result<Spectrum, MechError> {
-    let n = m.nrows();
     let l = m
         .clone()
         .cholesky()
@@ -65,15 +67,7 @@ pub(crate) fn solve(
     let linv = l.try_inverse().ok_or(MechError::SingularMassHere)?;
     let kt = &linv * k * linv.transpose();
     let ct = &linv * c * linv.transpose();
-    let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
-    for i in 0..n {
-        a[(i, n + i)] = 1.0;
-        for j in 0..n {
-            a[(n + i, j)] = -kt[(i, j)];
-            a[(n + i, n + j)] = -ct[(i, j)];
-        }
-    }
-    let eig = a.complex_eigenvalues();
+    let eig = companion_eigenvalues(&kt, &ct)?;
     let scale = eig.iter().fold(rate_floor, |s, z| s.max(z.norm()));
     let zero = EIGENVALUE_ZERO.sqrt() * scale;
     let re_zero = REAL_PART_ZERO * scale;
@@ -127,6 +121,34 @@ pub(crate) fn solve(
         Stability::Stable
     };
     Ok(out)
+}
+
+/// The eigenvalues of the companion matrix [[0, I], [−K̃, −C̃]] of ÿ + C̃ ẏ + K̃ y = 0.
+fn companion_eigenvalues(
+    kt: &DMatrix<f64>,
+    ct: &DMatrix<f64>,
+) -> Result<Vec<nalgebra::Complex<f64>>, MechError> {
+    let n = kt.nrows();
+    let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
+    for i in 0..n {
+        a[(i, n + i)] = 1.0;
+        for j in 0..n {
+            a[(n + i, j)] = -kt[(i, j)];
+            a[(n + i, n + j)] = -ct[(i, j)];
+        }
+    }
+    if !a.iter().all(|x| x.is_finite()) {
+        return Err(MechError::Undefined {
+            what: "the linearized equations".into(),
+        });
+    }
+    // A bounded number of QR sweeps (convergence takes a few per eigenvalue).
+    let eig = nalgebra::Schur::try_new(a, f64::EPSILON, SCHUR_SWEEPS * (2 * n).max(1))
+        .ok_or(MechError::Undefined {
+            what: "the eigenvalues of the linearized equations (no convergence)".into(),
+        })?
+        .complex_eigenvalues();
+    Ok(eig.iter().copied().collect())
 }
 
 /// An orthonormal basis of the vectors v with |K v| ≤ tol |v| (right singular vectors).

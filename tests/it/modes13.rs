@@ -357,3 +357,17 @@ fn modes_reports_snapshot() {
     }
     insta::assert_snapshot!(all);
 }
+
+/// A charge in a uniform magnetic field (L = ½ m v² + q B x ẏ): the cyclotron frequency
+/// qB/m and two neutral directions (the guiding centre can sit anywhere), no growth.
+#[test]
+fn charge_in_a_magnetic_field_has_the_cyclotron_frequency() {
+    let mut sys = System::from_lagrangian("1/2*m*(x'^2 + y'^2) + e*B*x*y'", &["x", "y"]).unwrap();
+    let (m, e, b) = (0.7, 1.3, 2.1);
+    let r = modes(&mut sys, &[("m", m), ("e", e), ("B", b)], &[0.2, -0.4]).unwrap();
+    assert!(r.gyroscopic && !r.damping);
+    assert_eq!(r.stability, Stability::Marginal);
+    assert_list(&r.frequencies, &[e * b / m]);
+    assert!(r.growth_rates.is_empty());
+    assert_eq!(r.free_directions.len(), 2);
+}
