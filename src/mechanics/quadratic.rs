@@ -34,8 +34,7 @@ pub struct Damped {
 /// The classified spectrum of M ẍ + C ẋ + K x = 0.
 #[derive(Clone, Debug)]
 pub struct Spectrum {
-    /// Undamped angular frequencies, ascending, with one 0 for each uniform (secular) free
-    /// motion.
+    /// Undamped angular frequencies, ascending, with one 0 for each mode of zero frequency.
     pub frequencies: Vec<f64>,
     /// Growth rates Re λ > 0, one per mode, ascending.
     pub growth_rates: Vec<f64>,
@@ -48,6 +47,19 @@ pub struct Spectrum {
     pub free_directions: Vec<Vec<f64>>,
     /// Unstable if anything grows; marginal if some λ = 0; otherwise stable.
     pub stability: Stability,
+}
+
+impl Spectrum {
+    fn empty() -> Spectrum {
+        Spectrum {
+            frequencies: Vec::new(),
+            growth_rates: Vec::new(),
+            damped: Vec::new(),
+            decay_rates: Vec::new(),
+            free_directions: Vec::new(),
+            stability: Stability::Marginal,
+        }
+    }
 }
 
 /// Solves M ẍ + C ẋ + K x = 0. `rate_floor` is a rate below which nothing is resolved (from
@@ -71,14 +83,7 @@ pub(crate) fn solve(
     let scale = eig.iter().fold(rate_floor, |s, z| s.max(z.norm()));
     let zero = EIGENVALUE_ZERO.sqrt() * scale;
     let re_zero = REAL_PART_ZERO * scale;
-    let mut out = Spectrum {
-        frequencies: Vec::new(),
-        growth_rates: Vec::new(),
-        damped: Vec::new(),
-        decay_rates: Vec::new(),
-        free_directions: Vec::new(),
-        stability: Stability::Marginal,
-    };
+    let mut out = Spectrum::empty();
     let mut zeros = 0usize;
     for z in eig.iter() {
         if z.norm() <= zero {
@@ -105,9 +110,21 @@ pub(crate) fn solve(
         .into_iter()
         .map(|y| normalize(&(linv.transpose() * y)))
         .collect();
-    // λ = 0 beyond the static null directions are uniform motions x = v t: ω = 0 modes.
-    let secular = zeros.saturating_sub(out.free_directions.len());
-    out.frequencies.extend(std::iter::repeat_n(0.0, secular));
+    let growing = eig
+        .iter()
+        .filter(|z| z.norm() > zero && z.re > re_zero)
+        .count();
+    let undamped = (c + c.transpose()).iter().all(|x| *x == 0.0);
+    let zero_modes = if undamped {
+        // The spectrum pairs λ with −λ: of the n modes, each oscillation uses one pair, each
+        // growing λ one pair with its decaying mirror, and what is left has ω = 0 (a free
+        // motion, or a pair of conjugate neutral directions such as a guiding centre).
+        (m.nrows()).saturating_sub(out.frequencies.len() + growing)
+    } else {
+        // With damping: λ = 0 beyond the static null directions are uniform motions x = v t.
+        zeros.saturating_sub(out.free_directions.len())
+    };
+    out.frequencies.extend(std::iter::repeat_n(0.0, zero_modes));
     out.frequencies.sort_by(f64::total_cmp);
     out.growth_rates.sort_by(f64::total_cmp);
     out.decay_rates.sort_by(f64::total_cmp);

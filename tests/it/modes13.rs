@@ -367,7 +367,17 @@ fn charge_in_a_magnetic_field_has_the_cyclotron_frequency() {
     let r = modes(&mut sys, &[("m", m), ("e", e), ("B", b)], &[0.2, -0.4]).unwrap();
     assert!(r.gyroscopic && !r.damping);
     assert_eq!(r.stability, Stability::Marginal);
-    assert_list(&r.frequencies, &[e * b / m]);
+    // The guiding centre's X and Y are one degree of freedom, of frequency 0.
+    assert_list(&r.frequencies, &[0.0, e * b / m]);
     assert!(r.growth_rates.is_empty());
     assert_eq!(r.free_directions.len(), 2);
+}
+
+/// Just off the critical rotation of an isotropic trap the slow mode |ω₀ − Ω| is below what
+/// the solver resolves: it is one mode of frequency 0, not two, beside ω₀ + Ω.
+#[test]
+fn a_mode_too_slow_to_resolve_is_one_zero() {
+    let r = trap(4.0, 4.0, 2.0 * (1.0 + 1e-7));
+    assert_eq!(r.frequencies.len(), 2, "{:?}", r.frequencies);
+    assert!((r.frequencies[1] - 4.0).abs() < 1e-5, "{:?}", r.frequencies);
 }
