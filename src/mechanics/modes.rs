@@ -80,6 +80,8 @@ impl Modes {
                     _ if degenerate => {
                         "degenerate: any combination of the modes with this ω² is a mode".into()
                     }
+                    // With one coordinate there is nothing to compare.
+                    [_] if m.shape.len() == 1 => String::new(),
                     [i] => format!("only {} moves", name(i)),
                     [i, j] => {
                         let r = m.shape[j] / m.shape[i];
