@@ -381,3 +381,15 @@ fn a_mode_too_slow_to_resolve_is_one_zero() {
     assert_eq!(r.frequencies.len(), 2, "{:?}", r.frequencies);
     assert!((r.frequencies[1] - 4.0).abs() < 1e-5, "{:?}", r.frequencies);
 }
+
+/// A free mode's 0 written as an expression that vanishes only up to rounding is the 0 the
+/// part asks for.
+#[test]
+fn a_zero_frequency_up_to_rounding_is_accepted() {
+    let answer = "sqrt((M+m)^2*g/(M^2*l)) - (M+m)/M*sqrt(g/l), sqrt((M+m)*g/(M*l))";
+    let (_, out, err) = lagrange(&["check", "cart-pendulum", "frequencies", answer]);
+    assert!(
+        out.contains("\ncorrect") && !out.contains("incorrect"),
+        "{out}{err}"
+    );
+}
