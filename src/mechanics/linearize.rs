@@ -24,8 +24,11 @@ const RESIDUAL_ZERO: f64 = 1e-8;
 /// The linearized equations at one point.
 #[derive(Clone, Debug)]
 pub(crate) struct Linear {
+    /// The mass matrix M(q₀).
     pub m: DMatrix<f64>,
+    /// The stiffness K = −∂f/∂q (with the constraint forces' curvature on a manifold).
     pub k: DMatrix<f64>,
+    /// The velocity matrix C = −∂f/∂q' = G + D (gyroscopic and damping parts).
     pub c: DMatrix<f64>,
     /// The size of K's terms per unit mass (the ω² scale that rounding is measured against).
     pub k_size: f64,
