@@ -57,6 +57,14 @@ pub const FILES: &[(&str, &str)] = &[
         "spring-cart.toml",
         include_str!("../../problems/spring-cart.toml"),
     ),
+    (
+        "rotating-trap.toml",
+        include_str!("../../problems/rotating-trap.toml"),
+    ),
+    (
+        "rotating-trap-fast.toml",
+        include_str!("../../problems/rotating-trap-fast.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

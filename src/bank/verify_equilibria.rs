@@ -154,7 +154,7 @@ fn compare_equilibria(
     if found.continuum {
         return Ok(Some(EquilibriumFinding::Continuum));
     }
-    let coords = &p.system.coordinates;
+    let coords = p.system.coordinates.clone();
     // A stated point matches an engine's equilibrium when each coordinate agrees, a
     // coordinate stated `any` exactly where the engine finds it free alone; leniently,
     // ignoring the coordinates the engine finds free (to name a continuum stated as a point).
@@ -184,6 +184,17 @@ fn compare_equilibria(
             }
             let at = point_text(p, q, shape);
             return Ok(Some(EquilibriumFinding::Missing { at }));
+        };
+        // The full linearization (velocity terms included), as `modes` reports it, at an
+        // isolated point; on a continuum the search's stability, judged across it (the free
+        // direction is not an instability: the cart at rest anywhere with θ = 0 is stable).
+        let isolated = (0..q.len()).all(|i| !shape.coordinate_free(i));
+        let st = if isolated {
+            p.system
+                .modes_at(&p.derivation, params, q)
+                .map_or(*st, |m| m.stability)
+        } else {
+            *st
         };
         if let Some(want) = part.stability.get(j)
             && want != st.name()

@@ -7,6 +7,7 @@ use crate::check::points::PointSet;
 use crate::check::prepare::{Prepared, equilibrium_of, read_frequency};
 use crate::check::tolerance;
 use crate::expr::{Dimension, Id};
+use crate::mechanics::modes::Modes;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, Problem};
 
@@ -69,10 +70,38 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
             return Err(Failed::new(
                 "wrong-frequency",
                 format!(
-                    "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}"
+                    "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}{}",
+                    why_differ(&modes, &got)
                 ),
             ));
         }
     }
     Ok(())
+}
+
+/// What the engine's list holds beside the undamped frequencies, when the stated list may
+/// have left it out: ω = 0 for free motions, damped or growing modes.
+fn why_differ(modes: &Modes, got: &[f64]) -> String {
+    let zeros = modes.frequencies.iter().filter(|w| **w == 0.0).count();
+    let stated_zeros = got.iter().filter(|w| **w == 0.0).count();
+    let mut notes = Vec::new();
+    if zeros != stated_zeros {
+        notes.push(format!(
+            "the system has {zeros} free motion(s) (ω = 0): list 0 once for each"
+        ));
+    }
+    if !modes.damped.is_empty() || !modes.decay_rates.is_empty() {
+        notes.push("damped modes are not undamped frequencies".to_string());
+    }
+    if !modes.growth_rates.is_empty() {
+        notes.push(format!(
+            "{} mode(s) grow instead of oscillating",
+            modes.growth_rates.len()
+        ));
+    }
+    if notes.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", notes.join("; "))
+    }
 }

@@ -81,7 +81,7 @@ pub(crate) fn read_stated_items(
         let n = items.len();
         return Ok((items, vec![None; n]));
     }
-    let input = &super::prepare::any_as_zero(p, input);
+    let input = &super::prepare::any_as_marker(p, input);
     let marked = stability::mark(p, input)?;
     let n = p.system.n();
     let tuples = n > 1 && has_tuple(&marked.text);

@@ -291,8 +291,10 @@ pub(super) fn classify_unmatched(
         _ => None,
     };
     let have = p.system.pool.dimension(first, &problem.dims).ok().flatten();
+    // 0 has every dimension (a free motion's ω = 0).
     if let (Some(want), Some(have)) = (want, have)
         && want != have
+        && !p.system.pool.is_zero(first)
     {
         if !free.is_empty() {
             free.remove(0);

@@ -60,7 +60,54 @@ fn match_items(part: &Part, p: &Prepared, lists: &Lists) -> (Vec<bool>, Vec<bool
             matched_stu[i] = true;
         }
     }
+    if part.kind == PartKind::Frequencies {
+        match_zero_frequencies(part, lists, &mut matched_ref, &mut matched_stu);
+    }
     (matched_ref, matched_stu)
+}
+
+/// A free mode's ω = 0 written as an expression that vanishes only up to rounding
+/// (√((M + m)²·g²) − (M + m)·g) matches a reference 0, measured against the largest frequency
+/// of the list at each sample rather than against itself.
+fn match_zero_frequencies(
+    part: &Part,
+    lists: &Lists,
+    matched_ref: &mut [bool],
+    matched_stu: &mut [bool],
+) {
+    let value = |item: &[Option<Vec<f64>>], k: usize| {
+        item.get(k)
+            .and_then(Option::as_ref)
+            .and_then(|v| v.first().copied())
+    };
+    let samples = lists.reference.first().map_or(0, Vec::len);
+    let scale = |k: usize| {
+        lists
+            .reference
+            .iter()
+            .filter_map(|r| value(r, k))
+            .fold(0.0f64, |a, x| a.max(x.abs()))
+    };
+    let is_zero =
+        |r: &[Option<Vec<f64>>]| (0..samples).all(|k| value(r, k).is_none_or(|x| x == 0.0));
+    // Where the student's item is undefined the reference must be too.
+    let near_zero = |s: &[Option<Vec<f64>>]| {
+        (0..samples).all(|k| match value(s, k) {
+            Some(u) => u.abs() <= part.tolerance * scale(k),
+            None => value(&lists.reference[0], k).is_none(),
+        })
+    };
+    for (j, r) in lists.reference.iter().enumerate() {
+        if matched_ref[j] || !is_zero(r) {
+            continue;
+        }
+        if let Some(i) =
+            (0..lists.student.len()).find(|&i| !matched_stu[i] && near_zero(&lists.student[i]))
+        {
+            matched_ref[j] = true;
+            matched_stu[i] = true;
+        }
+    }
 }
 
 /// How the items were read, joined as a student would type them.
@@ -170,7 +217,40 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         v.diagnoses.clear();
     }
     super::misconception::list(problem, part, p, &items, &mut v);
+    show_any(part, input, &mut v);
     v
+}
+
+/// A coordinate left arbitrary is shown as `any` (it is read as a marker value), and a
+/// student who gave one point of a continuum is told which coordinate is free.
+fn show_any(part: &Part, input: &str, v: &mut Verdict) {
+    if part.kind != PartKind::Equilibria {
+        return;
+    }
+    for (marker, word) in [("√3·π", "any"), ("sqrt(3)*pi", "any")] {
+        v.reading.plain = v.reading.plain.replace(marker, word);
+        v.reading.unicode = v.reading.unicode.replace(marker, word);
+        for d in &mut v.diagnoses {
+            d.message = d.message.replace(marker, word);
+        }
+    }
+    let free: Vec<&str> = part
+        .answers
+        .iter()
+        .flat_map(|a| a.split(','))
+        .filter_map(|it| it.split_once('='))
+        .filter(|(_, r)| r.trim() == "any")
+        .map(|(l, _)| l.trim())
+        .collect();
+    if v.status != Status::Correct && !free.is_empty() && !input.contains("any") {
+        v.diagnoses.push(Diagnosis::new(
+            Code::WrongItem,
+            format!(
+                "{} is arbitrary at the equilibria asked for (a continuum: every value is one), so give it as `{} = any` rather than a value",
+                free[0], free[0]
+            ),
+        ));
+    }
 }
 
 /// `wrong-stability` for each matched item whose stated stability the part contradicts.

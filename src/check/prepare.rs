@@ -114,7 +114,38 @@ pub(crate) fn residuals(p: &mut Prepared, items: &[String]) -> Result<Vec<Id>, C
 /// Reads an equilibrium item: `pi`, `theta = pi` or `theta1 = 0, theta2 = pi`; a
 /// coordinate stated `any` reads as 0 (see [`read_point_any`] for which ones are).
 pub(crate) fn read_point(p: &mut Prepared, src: &str) -> Result<Vec<Id>, CheckError> {
-    read_point_any(p, src).map(|(point, _)| point)
+    let marked = any_as_marker(p, src);
+    read_point_any(p, &marked).map(|(point, _)| point)
+}
+
+/// What a coordinate left arbitrary (`x = any`) is read as when answers are compared: a
+/// value no one types for a coordinate (√3·π), so that `any` matches only `any`. Read as 0,
+/// a student's single point `x = 0, s = 0` would pass for the continuum `x = any, s = 0` —
+/// the point is one of the continuum, but the answer misses that x is free.
+const ANY_MARKER: &str = "√3π";
+
+/// `input` with each `= any` read as [`ANY_MARKER`] (unless `any` is a parameter).
+pub(crate) fn any_as_marker(p: &Prepared, input: &str) -> String {
+    if p.system.parameters.iter().any(|q| q.name == "any") {
+        return input.to_string();
+    }
+    let mut out = String::with_capacity(input.len() + 8);
+    let mut rest = input;
+    while let Some(k) = rest.find("any") {
+        let (before, after) = rest.split_at(k);
+        let tail = &after[3..];
+        let word_end = !tail.starts_with(|c: char| c.is_alphanumeric() || c == '_' || c == '\'');
+        let after_eq = before.trim_end().ends_with('=');
+        out.push_str(before);
+        out.push_str(if word_end && after_eq {
+            ANY_MARKER
+        } else {
+            "any"
+        });
+        rest = tail;
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Reads an equilibrium item that may leave coordinates arbitrary, `x = any, theta = 0`
@@ -147,28 +178,6 @@ pub(crate) fn read_point_any(
         return Ok((read_point_exact(p, src)?, free));
     }
     Ok((read_point_exact(p, &items.join(", "))?, free))
-}
-
-/// `input` with each `= any` (a coordinate left arbitrary) read as `= 0` (`0` padded to the
-/// width of `any`, so that offsets into the text hold), unless `any` is a parameter. The
-/// grader compares such a point as its representative with that coordinate 0.
-pub(crate) fn any_as_zero(p: &Prepared, input: &str) -> String {
-    if p.system.parameters.iter().any(|q| q.name == "any") {
-        return input.to_string();
-    }
-    let mut out = String::with_capacity(input.len());
-    let mut rest = input;
-    while let Some(k) = rest.find("any") {
-        let (before, after) = rest.split_at(k);
-        let tail = &after[3..];
-        let word_end = !tail.starts_with(|c: char| c.is_alphanumeric() || c == '_' || c == '\'');
-        let after_eq = before.trim_end().ends_with('=');
-        out.push_str(before);
-        out.push_str(if word_end && after_eq { "0  " } else { "any" });
-        rest = tail;
-    }
-    out.push_str(rest);
-    out
 }
 
 /// `src` split at its commas outside brackets.

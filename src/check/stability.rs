@@ -160,7 +160,7 @@ const ENGINE_SAMPLES: usize = 3;
 /// The engine's stability of a point given by its values at each sample point: the one
 /// answer of every sample where it is defined, or `None`.
 pub(crate) fn engine_stability(p: &mut Prepared, point: &[Option<Vec<f64>>]) -> Option<Stated> {
-    use crate::mechanics::equilibria::{Stability, Statics};
+    use crate::mechanics::equilibria::Stability;
     let mut found: Option<Stated> = None;
     let defined = point
         .iter()
@@ -168,8 +168,9 @@ pub(crate) fn engine_stability(p: &mut Prepared, point: &[Option<Vec<f64>>]) -> 
         .filter_map(|(k, q)| Some((k, q.as_ref()?)));
     for (k, q) in defined.take(ENGINE_SAMPLES) {
         let params = p.points.params(&p.system, k).to_vec();
-        let statics = Statics::new(&mut p.system, &p.derivation, &params).ok()?;
-        let st = match statics.stability(q).ok()?.0 {
+        // The full linearization (velocity terms included), as `modes` and verify judge it.
+        let modes = p.system.modes_at(&p.derivation, &params, q).ok()?;
+        let st = match modes.stability {
             Stability::Stable => Stated::Stable,
             Stability::Unstable => Stated::Unstable,
             Stability::Marginal => Stated::Marginal,

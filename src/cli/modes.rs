@@ -86,6 +86,10 @@ fn modes_report(
         }
         ModesError::Steady(lagrange::mechanics::steady::SteadyError::Mech(e)) => CliError::Mech(e),
         ModesError::Steady(e) => CliError::Usage(format!("--steady: {e}; {}", e.help())),
+        ModesError::ConstrainedNeedsPoint => CliError::Usage(format!(
+            "{e}: give the equilibrium with --at, e.g. --at \"x=0, y=-L\""
+        )),
+        ModesError::SymbolicConstrained => CliError::Usage(format!("{e}: drop --symbolic")),
     })
 }
 

@@ -290,6 +290,12 @@ impl System {
         params: &[f64],
         q: &[f64],
     ) -> Result<Shape, MechError> {
+        // With constraints the unconstrained K says nothing about the shape (the Cartesian
+        // pendulum's K is singular along the rod, which the constraint holds): the
+        // linearization on the constraint manifold is the analysis there.
+        if !self.constraints.is_empty() {
+            return Ok(Shape::default());
+        }
         let statics = Statics::new(self, d, params)?;
         let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
@@ -312,6 +318,12 @@ impl System {
         params: &[f64],
         q: &[f64],
     ) -> Result<(), MechError> {
+        // With constraints the forces need not vanish (the constraint balances them): the
+        // linearization on the constraint manifold checks the point instead (`OffConstraint`,
+        // `NotConstrainedEquilibrium`).
+        if !self.constraints.is_empty() {
+            return Ok(());
+        }
         let statics = Statics::new(self, d, params)?;
         let mut scratch = statics.program.scratch();
         let undefined = || MechError::Undefined {

@@ -113,6 +113,23 @@ pub enum MechError {
         crate::expr::error::visible(.name)
     )]
     MultiplierName { name: String },
+    /// Small oscillations with a rolling (velocity) constraint are not linearized: the
+    /// reachable positions are not a manifold of fewer coordinates.
+    #[error(
+        "small oscillations with a rolling (velocity) constraint are not analysed: the constraint restricts velocities, not positions, so the modes of the unconstrained system would be wrong"
+    )]
+    ModesRolling,
+    /// The point asked for is not on a holonomic constraint.
+    #[error("the point does not satisfy constraint {index}")]
+    OffConstraint { index: usize },
+    /// The point is on the constraints but the forces there have a part along the manifold.
+    #[error(
+        "the point is not an equilibrium on the constraint manifold: the force along it is {residual:.3e}"
+    )]
+    NotConstrainedEquilibrium { residual: f64 },
+    /// As many independent constraints as coordinates: nothing can move.
+    #[error("the constraints fix every coordinate: there is nothing to oscillate")]
+    ModesNoFreedom,
     /// A constant part of an expression overflows: its value is beyond the largest number
     /// lagrange computes with, so nothing that contains it can be evaluated anywhere.
     #[error(
@@ -183,6 +200,10 @@ impl MechError {
             MechError::DependentConstraint { .. } => "dependent-constraint",
             MechError::ForceWithAcceleration { .. } => "force-with-acceleration",
             MechError::MultiplierName { .. } => "multiplier-name",
+            MechError::ModesRolling => "modes-rolling-constraint",
+            MechError::OffConstraint { .. } => "off-constraint",
+            MechError::NotConstrainedEquilibrium { .. } => "not-constrained-equilibrium",
+            MechError::ModesNoFreedom => "no-freedom",
             MechError::Overflow { .. } => "overflow",
             MechError::UndefinedConstant { .. } => "undefined-constant",
             MechError::ExplicitTime { .. } => "explicit-time",
@@ -260,6 +281,16 @@ impl MechError {
             MechError::MultiplierName { name } => {
                 format!("rename `{name}` (the multipliers are lambda1, lambda2, …)")
             }
+            MechError::ModesRolling => {
+                "simulate the motion, or write the system in coordinates that satisfy the rolling condition".into()
+            }
+            MechError::OffConstraint { .. } => {
+                "choose a point that satisfies every constraint".into()
+            }
+            MechError::NotConstrainedEquilibrium { .. } => {
+                "choose a point where the forces are balanced by the constraint forces".into()
+            }
+            MechError::ModesNoFreedom => "drop a constraint".into(),
             MechError::Overflow { .. } => {
                 "choose units in which the quantities are moderate numbers".into()
             }

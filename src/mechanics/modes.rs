@@ -1,7 +1,10 @@
-//! Small oscillations about an equilibrium: M₀ = M(q₀) and K = −∂f/∂q at (q₀, q' = 0); the
-//! generalized eigenproblem K v = ω² M₀ v gives frequencies, mode shapes and growth rates.
-//! When velocity-linear terms survive at the equilibrium (rotating frames), the first-order
-//! 2n×2n problem is solved instead. The symbolic analysis is in
+//! Small oscillations about an equilibrium: the linearized equations M δq̈ + C δq̇ + K δq = 0
+//! (see [`linearize`](super::linearize), on the constraint manifold when there are
+//! constraints). Without velocity terms and with a symmetric K, the generalized symmetric
+//! eigenproblem K v = ω² M v gives frequencies, mode shapes and growth rates; otherwise the
+//! quadratic eigenproblem (see [`quadratic`](super::quadratic)) gives frequencies, damping and
+//! growth. ω² = 0 (a free direction: a cart, a translating chain) is decided relative to the
+//! matrices' scale, never by the sign of rounding. The symbolic analysis is in
 //! [`symbolic_modes`](super::symbolic_modes).
 
 use nalgebra::DMatrix;
@@ -9,46 +12,81 @@ use nalgebra::DMatrix;
 use super::derive::Derivation;
 use super::equilibria::{EIGENVALUE_ZERO, Stability, Statics};
 use super::error::MechError;
-use super::system::System;
-
+use super::linalg::generalized_eigen;
+use super::linearize::Linear;
+use super::quadratic::{self, Damped};
 pub use super::symbolic_modes::SymbolicModes;
-use crate::expr::Id;
+use super::system::System;
 
 /// One normal mode.
 #[derive(Clone, Debug)]
 pub struct Mode {
-    /// The eigenvalue ω² (negative for an unstable direction).
+    /// The eigenvalue ω² (negative for an unstable direction; exactly 0 for a free motion).
     pub omega_squared: f64,
-    /// Shape, normalized so that the largest component is 1 (empty when not available).
+    /// Shape, normalized so that the largest component is 1, rounding set to 0 (empty when
+    /// not available).
     pub shape: Vec<f64>,
 }
 
 /// The small-oscillation analysis at one point.
 #[derive(Clone, Debug)]
 pub struct Modes {
+    /// The point analysed, one value per coordinate.
     pub point: Vec<f64>,
+    /// Unstable if anything grows, marginal with a zero mode, otherwise stable.
     pub stability: Stability,
-    /// Angular frequencies ω of the oscillating modes, ascending.
+    /// Angular frequencies ω of the undamped modes, ascending, with 0 for each free motion.
     pub frequencies: Vec<f64>,
-    /// Growth rates of the unstable directions, ascending.
+    /// Growth rates of the unstable modes, ascending.
     pub growth_rates: Vec<f64>,
+    /// The normal modes (only without velocity terms, where shapes are real).
     pub modes: Vec<Mode>,
-    /// Velocity-linear terms survive, so the first-order problem was solved.
+    /// Antisymmetric velocity terms (rotating frames, magnetic fields) survive.
     pub gyroscopic: bool,
+    /// Symmetric velocity terms (friction, drag) survive.
+    pub damping: bool,
+    /// Damped oscillations: frequency, decay rate, damping ratio.
+    pub damped: Vec<Damped>,
+    /// Decay rates of modes that decay without oscillating.
+    pub decay_rates: Vec<f64>,
+    /// Directions along which a displacement is not restored (ω = 0), largest component 1.
+    pub free_directions: Vec<Vec<f64>>,
 }
 
 impl Modes {
-    /// For two coordinates: "in phase" / "antiphase" with the amplitude ratio q₂/q₁.
+    /// What each mode's shape means, where it means something: "only x moves" when one
+    /// coordinate moves; in phase / antiphase with the ratio when exactly two move; a free
+    /// motion for ω = 0; nothing otherwise.
     pub fn describe(&self, names: &[String]) -> Vec<String> {
         self.modes
             .iter()
             .map(|m| {
-                if m.shape.len() != 2 || m.shape[0].abs() < 1e-12 {
-                    return String::new();
+                let moving: Vec<usize> =
+                    (0..m.shape.len()).filter(|&i| m.shape[i] != 0.0).collect();
+                let name = |i: usize| names.get(i).map_or("?", String::as_str);
+                let w2 = m.omega_squared;
+                let degenerate = self
+                    .modes
+                    .iter()
+                    .filter(|o| (o.omega_squared - w2).abs() <= 1e-9 * w2.abs())
+                    .count()
+                    > 1;
+                match moving[..] {
+                    _ if w2 == 0.0 => "free motion (ω = 0)".into(),
+                    // Any combination of modes with one ω² is a mode: no shape is special.
+                    _ if degenerate => {
+                        "degenerate: any combination of the modes with this ω² is a mode".into()
+                    }
+                    // With one coordinate there is nothing to compare.
+                    [_] if m.shape.len() == 1 => String::new(),
+                    [i] => format!("only {} moves", name(i)),
+                    [i, j] => {
+                        let r = m.shape[j] / m.shape[i];
+                        let kind = if r > 0.0 { "in phase" } else { "antiphase" };
+                        format!("{kind}, {}/{} = {:.6}", name(j), name(i), r)
+                    }
+                    _ => String::new(),
                 }
-                let r = m.shape[1] / m.shape[0];
-                let kind = if r > 0.0 { "in phase" } else { "antiphase" };
-                format!("{kind}, {}/{} = {:.6}", names[1], names[0], r)
             })
             .collect()
     }
@@ -62,161 +100,121 @@ impl System {
         params: &[f64],
         q0: &[f64],
     ) -> Result<Modes, MechError> {
-        let statics = Statics::new(self, d, params)?;
-        let n = self.n();
-        let (stability, vals, vecs) = statics.stability(q0)?;
-        // Velocity-linear terms at the equilibrium: C = ∂f/∂q' at (q₀, 0).
-        if let Some(c) = self.velocity_coupling(d, params, q0)? {
-            return self.first_order_modes(d, params, q0, c);
-        }
-        let mut modes = Vec::with_capacity(n);
-        let mut frequencies = Vec::new();
-        let mut growth_rates = Vec::new();
-        for (k, &w2) in vals.iter().enumerate() {
-            let col: Vec<f64> = (0..n).map(|r| vecs[(r, k)]).collect();
-            modes.push(Mode {
-                omega_squared: w2,
-                shape: normalize_shape(&col),
-            });
-            if w2 > 0.0 {
-                frequencies.push(w2.sqrt());
-            } else if w2 < 0.0 {
-                growth_rates.push((-w2).sqrt());
-            }
-        }
-        frequencies.sort_by(f64::total_cmp);
-        growth_rates.sort_by(f64::total_cmp);
-        Ok(Modes {
-            point: q0.to_vec(),
-            stability,
-            frequencies,
-            growth_rates,
-            modes,
-            gyroscopic: false,
-        })
-    }
-
-    /// C = ∂f/∂q' at (q₀, 0), or `None` when every entry is zero up to rounding relative to
-    /// its own terms (never relative to 1: a Coriolis term 2·m·Ω with m = 1e-15 is real).
-    fn velocity_coupling(
-        &mut self,
-        d: &Derivation,
-        params: &[f64],
-        q0: &[f64],
-    ) -> Result<Option<DMatrix<f64>>, MechError> {
-        let n = self.n();
-        let coords = self.coordinate_syms();
-        let mut roots = Vec::with_capacity(n * n);
-        for &f in &d.forcing {
-            for &c in &coords {
-                roots.push(self.pool.diff(f, c, 1));
-            }
-        }
-        let v = self
-            .magnitudes(&roots)?
-            .eval(&self.state_layout().at_rest(q0, params))
-            .ok_or_else(|| MechError::Undefined {
-                what: "the linearized equations".into(),
-            })?;
-        if v.iter().all(|x| x.negligible()) {
-            return Ok(None);
-        }
-        Ok(Some(DMatrix::from_fn(n, n, |r, c| v[r * n + c].value)))
-    }
-
-    /// The values of `roots` at rest at `q0` (for the linearized equations).
-    fn values_at_rest(
-        &self,
-        roots: &[Id],
-        params: &[f64],
-        q0: &[f64],
-    ) -> Result<Vec<f64>, MechError> {
-        let prog = self.compile(roots)?;
-        prog.eval(&self.state_layout().at_rest(q0, params))
-            .map_err(|_| MechError::Undefined {
-                what: "the linearized equations".into(),
-            })
-    }
-
-    /// The first-order problem ẋ = A x, x = (δq, δq'), A = [[0, I], [M⁻¹(−K), M⁻¹C]].
-    fn first_order_modes(
-        &mut self,
-        d: &Derivation,
-        params: &[f64],
-        q0: &[f64],
-        c: DMatrix<f64>,
-    ) -> Result<Modes, MechError> {
-        let n = self.n();
-        let coords = self.coordinate_syms();
-        let mut roots: Vec<Id> = d.mass.iter().flatten().copied().collect();
-        for &f in &d.forcing {
-            for &q in &coords {
-                roots.push(self.pool.diff(f, q, 0));
-            }
-        }
-        let v = self.values_at_rest(&roots, params, q0)?;
-        let m = DMatrix::from_fn(n, n, |r, cc| v[r * n + cc]);
-        let fq = DMatrix::from_fn(n, n, |r, cc| v[n * n + r * n + cc]);
-        let minv = m.try_inverse().ok_or(MechError::SingularMassHere)?;
-        let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
-        for i in 0..n {
-            a[(i, n + i)] = 1.0;
-        }
-        let lower_left = &minv * fq;
-        let lower_right = &minv * c;
-        for i in 0..n {
-            for j in 0..n {
-                a[(n + i, j)] = lower_left[(i, j)];
-                a[(n + i, n + j)] = lower_right[(i, j)];
-            }
-        }
-        let eig = a.complex_eigenvalues();
-        let scale = eig.iter().fold(0.0f64, |s, z| s.max(z.norm())).max(1e-300);
-        let mut frequencies = Vec::new();
-        let mut growth_rates = Vec::new();
-        for z in eig.iter() {
-            if z.re > EIGENVALUE_ZERO * scale {
-                growth_rates.push(z.re);
-            } else if z.im > EIGENVALUE_ZERO * scale {
-                frequencies.push(z.im);
-            }
-        }
-        frequencies.sort_by(f64::total_cmp);
-        growth_rates.sort_by(f64::total_cmp);
-        let stability = if !growth_rates.is_empty() {
-            Stability::Unstable
-        } else if frequencies.len() == n {
-            Stability::Stable
+        // The static analysis refuses what it cannot analyse; its refusals hold here too.
+        Statics::new(self, d, params)?;
+        let lin = self.linearize(d, params, q0)?;
+        if lin.conservative() {
+            symmetric_modes(&lin, q0)
         } else {
-            Stability::Marginal
-        };
-        Ok(Modes {
-            point: q0.to_vec(),
-            stability,
-            frequencies,
-            growth_rates,
-            modes: Vec::new(),
-            gyroscopic: true,
-        })
+            quadratic_modes(&lin, q0)
+        }
     }
 }
 
-fn normalize_shape(v: &[f64]) -> Vec<f64> {
-    let k = v
+/// How many rounding units (ε) of the scale an eigenvalue of the symmetric problem may be off
+/// by: generous for the reduction and the QR iterations of a small matrix.
+const RESOLUTION: f64 = 1e3 * f64::EPSILON;
+
+/// The condition number of the (symmetric positive definite) mass matrix: how much the
+/// reduction by its Cholesky factor can magnify rounding.
+fn condition(m: &DMatrix<f64>) -> f64 {
+    let e = m.clone().symmetric_eigenvalues();
+    let (lo, hi) = e.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
+        (lo.min(x.abs()), hi.max(x.abs()))
+    });
+    if lo > 0.0 && hi.is_finite() {
+        hi / lo
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// K v = ω² M v, with ω² = 0 decided relative to the scale of K's terms and eigenvalues.
+fn symmetric_modes(lin: &Linear, q0: &[f64]) -> Result<Modes, MechError> {
+    let k = (&lin.k + lin.k.transpose()) * 0.5;
+    let (vals, vecs) = generalized_eigen(&k, &lin.m)?;
+    let scale = vals.iter().fold(lin.k_size, |a, v| a.max(v.abs()));
+    // Zero within what the arithmetic can resolve: K's entries carry their own rounding (terms
+    // that cancel are already exactly 0), and the Cholesky-reduced eigen-solve adds about
+    // ε·cond(M)·‖K‖. Beyond that an ω² is real, however small beside the others (a spring
+    // 1e-12 as stiff as its neighbour is a restoring force, not a free motion).
+    let tol = (RESOLUTION * condition(&lin.m) * scale).min(EIGENVALUE_ZERO * scale);
+    let full = &lin.tangent * vecs;
+    let mut out = empty(q0);
+    for (col, &w2) in vals.iter().enumerate() {
+        let w2 = if w2.abs() <= tol { 0.0 } else { w2 };
+        let shape = shape_of(&full.column(col).iter().copied().collect::<Vec<_>>());
+        if w2 > 0.0 {
+            out.frequencies.push(w2.sqrt());
+        } else if w2 < 0.0 {
+            out.growth_rates.push((-w2).sqrt());
+        } else {
+            out.frequencies.push(0.0);
+            out.free_directions.push(shape.clone());
+        }
+        out.modes.push(Mode {
+            omega_squared: w2,
+            shape,
+        });
+    }
+    out.frequencies.sort_by(f64::total_cmp);
+    out.growth_rates.sort_by(f64::total_cmp);
+    out.stability = if !out.growth_rates.is_empty() {
+        Stability::Unstable
+    } else if out.free_directions.is_empty() {
+        Stability::Stable
+    } else {
+        Stability::Marginal
+    };
+    Ok(out)
+}
+
+/// λ² M + λ C + K = 0 through the companion form.
+fn quadratic_modes(lin: &Linear, q0: &[f64]) -> Result<Modes, MechError> {
+    let floor = lin.k_size.sqrt().max(lin.c_size);
+    let s = quadratic::solve(&lin.m, &lin.c, &lin.k, floor)?;
+    let gyro = &lin.c - lin.c.transpose();
+    let damp = &lin.c + lin.c.transpose();
+    let mut out = empty(q0);
+    out.stability = s.stability;
+    out.frequencies = s.frequencies;
+    out.growth_rates = s.growth_rates;
+    out.gyroscopic = gyro.iter().any(|x| *x != 0.0);
+    out.damping = damp.iter().any(|x| *x != 0.0);
+    if out.damping {
+        out.damped = s.damped;
+        out.decay_rates = s.decay_rates;
+    }
+    // Without damping the spectrum is symmetric under λ → −λ: a decaying λ is only the
+    // time-reversed partner of a growing one, not a mode of its own.
+    out.free_directions = s
+        .free_directions
         .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        .map_or(0, |(i, _)| i);
-    let big = v.get(k).copied().unwrap_or(1.0);
-    if big == 0.0 {
-        return v.to_vec();
+        .map(|v| {
+            let full = &lin.tangent * DMatrix::from_column_slice(v.len(), 1, v);
+            shape_of(full.as_slice())
+        })
+        .collect();
+    Ok(out)
+}
+
+fn empty(q0: &[f64]) -> Modes {
+    Modes {
+        point: q0.to_vec(),
+        stability: Stability::Marginal,
+        frequencies: Vec::new(),
+        growth_rates: Vec::new(),
+        modes: Vec::new(),
+        gyroscopic: false,
+        damping: false,
+        damped: Vec::new(),
+        decay_rates: Vec::new(),
+        free_directions: Vec::new(),
     }
-    // Largest component 1; then make the first nonzero component positive.
-    let mut s: Vec<f64> = v.iter().map(|x| x / big).collect();
-    if let Some(first) = s.iter().find(|x| x.abs() > 1e-12)
-        && *first < 0.0
-    {
-        s.iter_mut().for_each(|x| *x = -*x);
-    }
-    s
+}
+
+/// Largest component 1, first nonzero positive, and components that are rounding relative
+/// to the largest set to exactly 0 (so that "θ/x = 0.000000" is never shown as a ratio).
+fn shape_of(v: &[f64]) -> Vec<f64> {
+    quadratic::normalize(&nalgebra::DVector::from_column_slice(v))
 }

@@ -85,6 +85,16 @@ pub enum ModesError {
     /// The steady-motion reduction failed.
     #[error(transparent)]
     Steady(#[from] crate::mechanics::steady::SteadyError),
+    /// The equilibrium search does not follow constraints: the point must be given.
+    #[error(
+        "with constraints the equilibria are not searched for (the search would ignore the constraints)"
+    )]
+    ConstrainedNeedsPoint,
+    /// The closed forms do not include constraints.
+    #[error(
+        "the closed forms ignore constraints, so they would be wrong here; the numeric modes are linearized on the constraints"
+    )]
+    SymbolicConstrained,
 }
 
 /// A `name=value` item that is not one.
@@ -111,6 +121,8 @@ pub struct ModesReport {
     /// det(K − ω²M), when closed forms were asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub characteristic_polynomial: Option<Formula>,
+    /// How many holonomic constraints the modes were linearized on.
+    pub constraints: usize,
     /// Every point of the search range is an equilibrium.
     pub continuum: bool,
     /// The equilibria analysed.
@@ -141,14 +153,33 @@ pub struct SearchCoverage {
     pub starts: Vec<usize>,
 }
 
+/// A damped oscillation.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct DampedMode {
+    /// The decay rate γ = −Re λ.
+    pub decay_rate: f64,
+    /// The damping ratio ζ = γ/|λ|.
+    pub damping_ratio: f64,
+    /// The damped angular frequency ω_d = Im λ.
+    pub frequency: f64,
+}
+
 /// One equilibrium and its small oscillations.
 #[derive(Clone, Debug, Serialize)]
 pub struct EquilibriumModes {
-    /// Oscillation frequencies ω.
+    /// Damped oscillations (with damping terms).
+    pub damped: Vec<DampedMode>,
+    /// Symmetric velocity terms (friction, drag) survive.
+    pub damping: bool,
+    /// Decay rates of the modes that decay without oscillating.
+    pub decay_rates: Vec<f64>,
+    /// Directions along which a displacement is not restored (ω = 0), largest component 1.
+    pub free_directions: Vec<Vec<f64>>,
+    /// Undamped oscillation frequencies ω, 0 for each free motion.
     pub frequencies: Vec<f64>,
     /// Growth rates of unstable directions.
     pub growth_rates: Vec<f64>,
-    /// Velocity-dependent terms survive: solved as a first-order system.
+    /// Gyroscopic (antisymmetric velocity) terms survive: rotating frames, magnetic fields.
     pub gyroscopic: bool,
     /// The mode shapes, one per mode.
     pub modes: Vec<Vec<f64>>,
@@ -238,6 +269,9 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         }
         .into());
     }
+    if opts.symbolic && !sys.constraints.is_empty() {
+        return Err(ModesError::SymbolicConstrained);
+    }
     let symbolic = match (&at, opts.symbolic) {
         (Some(ids), true) => {
             check_symbolic_point(&mut sys, &d, ids, opts)?;
@@ -251,6 +285,7 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         characteristic_polynomial: symbolic
             .as_ref()
             .map(|s| Formula::factored(pool, &s.characteristic_shown)),
+        constraints: sys.constraints.len(),
         continuum,
         search,
         equilibria,
@@ -356,6 +391,9 @@ fn numeric_modes(
         m.stability = across_family(m.stability, &shape);
         return Ok((vec![(m, shape)], false, None));
     }
+    if !sys.constraints.is_empty() {
+        return Err(ModesError::ConstrainedNeedsPoint);
+    }
     let eq = sys.equilibria(d, &[])?;
     if !eq.continuum && eq.points.is_empty() {
         return Err(MechError::NoEquilibrium.into());
@@ -387,6 +425,18 @@ fn constant(sys: &System, e: Id) -> Option<f64> {
 
 fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) -> EquilibriumModes {
     EquilibriumModes {
+        damped: m
+            .damped
+            .iter()
+            .map(|d| DampedMode {
+                decay_rate: d.decay_rate,
+                damping_ratio: d.damping_ratio,
+                frequency: d.frequency,
+            })
+            .collect(),
+        damping: m.damping,
+        decay_rates: m.decay_rates.clone(),
+        free_directions: m.free_directions.clone(),
         frequencies: m.frequencies.clone(),
         growth_rates: m.growth_rates.clone(),
         gyroscopic: m.gyroscopic,
@@ -422,6 +472,14 @@ impl ModesReport {
             writeln!(
                 o,
                 "every point in the search range is an equilibrium: they are not isolated (neutral)"
+            )?;
+        }
+        if self.constraints > 0 && !self.equilibria.is_empty() {
+            writeln!(
+                o,
+                "linearized on the constraint manifold ({} constraint{}): the shapes are tangent to it",
+                self.constraints,
+                if self.constraints == 1 { "" } else { "s" }
             )?;
         }
         for m in &self.equilibria {
@@ -478,12 +536,7 @@ impl ModesReport {
             writeln!(o, "  {name} = {}", fmt_value(*v))?;
         }
         write_shape(m, paint, o)?;
-        if m.gyroscopic {
-            writeln!(
-                o,
-                "  velocity-dependent terms survive here: solved as a first-order system"
-            )?;
-        }
+        render_velocity_terms(m, o)?;
         let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
         if !m.frequencies.is_empty() {
             writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "))?;
@@ -491,21 +544,73 @@ impl ModesReport {
         if !m.growth_rates.is_empty() {
             writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "))?;
         }
-        for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
-            let desc = m.descriptions.get(k).map_or("", String::as_str);
+        for d in &m.damped {
             writeln!(
                 o,
-                "  mode {}: ω² = {}, shape ({}){}",
-                k + 1,
-                fmt_value(*w2),
-                list(shape).join(", "),
-                if desc.is_empty() {
-                    String::new()
-                } else {
-                    format!(" — {desc}")
-                }
+                "  damped oscillation: ω = {}, decay rate γ = {}, damping ratio ζ = {}",
+                fmt_value(d.frequency),
+                fmt_value(d.decay_rate),
+                fmt_value(d.damping_ratio)
             )?;
         }
-        Ok(())
+        if !m.decay_rates.is_empty() {
+            writeln!(
+                o,
+                "  decay without oscillation, rates: {}",
+                list(&m.decay_rates).join(", ")
+            )?;
+        }
+        if m.modes.is_empty() {
+            for f in &m.free_directions {
+                writeln!(
+                    o,
+                    "  ω = 0: a displacement along ({}) is not restored",
+                    list(f).join(", ")
+                )?;
+            }
+        }
+        render_shapes(m, o)
     }
+}
+
+/// Which velocity terms survive at the equilibrium, and how they were solved.
+fn render_velocity_terms(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
+    let what = match (m.gyroscopic, m.damping) {
+        (true, true) => "gyroscopic and damping terms survive here",
+        (true, false) => "gyroscopic (velocity-coupling) terms survive here",
+        (false, true) => "damping terms survive here",
+        (false, false) => return Ok(()),
+    };
+    writeln!(o, "  {what}: solved as M ẍ + C ẋ + K x = 0 (C = G + D)")
+}
+
+/// One line per normal mode: ω = 0 as a free motion, otherwise ω², the shape and what the
+/// shape means where it means something.
+fn render_shapes(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
+    let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
+    for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
+        if *w2 == 0.0 {
+            writeln!(
+                o,
+                "  mode {}: ω = 0: free motion along ({})",
+                k + 1,
+                list(shape).join(", ")
+            )?;
+            continue;
+        }
+        let desc = m.descriptions.get(k).map_or("", String::as_str);
+        writeln!(
+            o,
+            "  mode {}: ω² = {}, shape ({}){}",
+            k + 1,
+            fmt_value(*w2),
+            list(shape).join(", "),
+            if desc.is_empty() {
+                String::new()
+            } else {
+                format!(" — {desc}")
+            }
+        )?;
+    }
+    Ok(())
 }

@@ -378,3 +378,22 @@ answer = ["x1 = 0, x2 = 0"]
     assert!(f[0].1.contains("along (1, 1)"), "{f:?}");
     assert!(!f[0].1.contains("x1 = -3"), "{f:?}");
 }
+
+/// Regression (found when merging): `any` was read as 0 on both sides, so a student's single
+/// point `x = 0, s = 0` passed for the continuum `x = any, s = 0`.
+#[test]
+fn a_point_of_a_continuum_is_not_the_continuum() {
+    let bank = lagrange::bank::embedded::bank();
+    let p = bank.problem("spring-cart").expect("in the bank");
+    let mut c = lagrange::check::Checker::new(p);
+    let v = c.check("equilibria", "x = 0, s = 0").expect("a part");
+    assert_eq!(v.status, lagrange::check::Status::Incorrect);
+    assert!(
+        v.diagnoses.iter().any(|d| d.message.contains("`x = any`")),
+        "{:?}",
+        v.diagnoses
+    );
+    let v = c.check("equilibria", "s = 0, x = any").expect("a part");
+    assert_eq!(v.status, lagrange::check::Status::Correct);
+    assert_eq!(v.reading.unicode, "x = any, s = 0");
+}

@@ -67,6 +67,11 @@ fn every_bank_problem_has_its_steps_in_order() {
         if p.id == "rolling-disk" {
             want.retain(|s| s != "position:2");
         }
+        // The Coriolis terms of the rotating trap survive linearization: no M q'' + K q = 0
+        // or det(K − ω² M) step, which would drop them.
+        if p.id.starts_with("rotating-trap") {
+            want.retain(|s| s != "linearized" && s != "characteristic");
+        }
         assert_eq!(ids(&steps), want, "{}", p.id);
     }
 }

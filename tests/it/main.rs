@@ -16,6 +16,7 @@ mod hostile;
 mod ladder;
 mod literature;
 mod mechanics;
+mod modes13;
 mod notation;
 mod notation_lists;
 mod props;

@@ -188,6 +188,18 @@ fn wrong_step(step: &lagrange::tutor::ladder::Step, reference: &str) -> String {
     if id == "equilibria" && reference.contains("= any") && reference.contains("= 0") {
         return reference.replacen("= 0", "= 1", 1);
     }
+    // One equilibrium of several coordinates (`x = 0, y = 0`): move its first coordinate.
+    let first_name = |x: &str| x.split_once('=').map(|(q, _)| q.trim().to_string());
+    let several_coordinates = reference
+        .split(", ")
+        .any(|x| first_name(x) != first_name(reference));
+    if id == "equilibria"
+        && !reference.contains(';')
+        && several_coordinates
+        && let Some((q, rest)) = reference.split_once('=')
+    {
+        return format!("{q}= 1 +{rest}");
+    }
     if id == "equilibria" || id.starts_with("position:") {
         let items: Vec<&str> = reference.split(", ").collect();
         return match items.as_slice() {

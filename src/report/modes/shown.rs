@@ -76,6 +76,10 @@ pub(super) fn chart_modes(q: &[f64]) -> Modes {
         growth_rates: Vec::new(),
         modes: Vec::new(),
         gyroscopic: false,
+        damping: false,
+        damped: Vec::new(),
+        decay_rates: Vec::new(),
+        free_directions: Vec::new(),
     }
 }
 

@@ -34,6 +34,7 @@
 pub mod build;
 pub mod checker;
 pub mod step;
+mod velocity_terms;
 
 pub use build::ladder;
 pub use checker::{StepChecker, check_step};
