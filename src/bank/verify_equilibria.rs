@@ -8,7 +8,8 @@ use crate::check::points::PointSet;
 use crate::check::prepare::{Prepared, read_point_any, same_coordinate};
 use crate::check::tolerance;
 use crate::expr::Id;
-use crate::mechanics::equilibria::Shape;
+use crate::mechanics::Coordinate;
+use crate::mechanics::equilibria::{Equilibria, Shape};
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, Problem};
 
@@ -155,19 +156,8 @@ fn compare_equilibria(
         return Ok(Some(EquilibriumFinding::Continuum));
     }
     let coords = p.system.coordinates.clone();
-    // A stated point matches an engine's equilibrium when each coordinate agrees, a
-    // coordinate stated `any` exactly where the engine finds it free alone; leniently,
-    // ignoring the coordinates the engine finds free (to name a continuum stated as a point).
     let matches = |j: usize, q: &[f64], shape: &Shape, strict: bool| {
-        (0..q.len()).all(|i| {
-            let (any, free) = (stated.free[j][i], shape.coordinate_free(i));
-            match (any, free) {
-                (_, true) if !strict => true,
-                (true, true) => true,
-                (true, false) | (false, true) => false,
-                (false, false) => same_coordinate(coords[i].periodic, stated.values[j][i], q[i]),
-            }
-        })
+        stated_matches(&coords, stated, j, q, shape, strict)
     };
     for ((q, st), shape) in found.points.iter().zip(&found.shapes) {
         if let Some(f) = unstatable_family(p, q, shape) {
@@ -206,6 +196,40 @@ fn compare_equilibria(
             }));
         }
     }
+    Ok(first_spurious(part, &coords, stated, &found))
+}
+
+/// Whether stated point `j` names the engine's equilibrium `q`: each coordinate agrees, a
+/// coordinate stated `any` exactly where the engine finds it free alone; leniently (not
+/// `strict`), ignoring the coordinates the engine finds free, so that a continuum stated
+/// as a point can be named as such.
+fn stated_matches(
+    coords: &[Coordinate],
+    stated: &StatedPoints,
+    j: usize,
+    q: &[f64],
+    shape: &Shape,
+    strict: bool,
+) -> bool {
+    (0..q.len()).all(|i| {
+        let (any, free) = (stated.free[j][i], shape.coordinate_free(i));
+        match (any, free) {
+            (_, true) if !strict => true,
+            (true, true) => true,
+            (true, false) | (false, true) => false,
+            (false, false) => same_coordinate(coords[i].periodic, stated.values[j][i], q[i]),
+        }
+    })
+}
+
+/// A stated point in range that the engine does not find is spurious; points outside the
+/// search range are not held against the answer, since the search never looked there.
+fn first_spurious(
+    part: &Part,
+    coords: &[Coordinate],
+    stated: &StatedPoints,
+    found: &Equilibria,
+) -> Option<EquilibriumFinding> {
     let in_range = |q: &[f64]| {
         q.iter().enumerate().all(|(i, x)| {
             coords[i].periodic
@@ -214,18 +238,18 @@ fn compare_equilibria(
                     .contains(x)
         })
     };
-    Ok((0..stated.values.len())
+    (0..stated.values.len())
         .find(|&j| {
             in_range(stated.values[j])
                 && !found
                     .points
                     .iter()
                     .zip(&found.shapes)
-                    .any(|((q, _), sh)| matches(j, q, sh, true))
+                    .any(|((q, _), sh)| stated_matches(coords, stated, j, q, sh, true))
         })
         .map(|j| EquilibriumFinding::Spurious {
             item: part.answers[j].clone(),
-        }))
+        })
 }
 
 /// A continuum along a direction that is not a single coordinate, as a finding.

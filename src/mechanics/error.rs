@@ -232,12 +232,6 @@ impl MechError {
             MechError::NoEquilibrium => "widen the ranges, or give the equilibrium".into(),
             MechError::Undefined { .. } => "choose another state".into(),
             MechError::TooManyForces { .. } => "give at most one force per coordinate".into(),
-            MechError::AccelerationInConstraint => {
-                "write the constraint on positions, or on velocities".into()
-            }
-            MechError::NonlinearVelocityConstraint => {
-                "write the velocity constraint as a linear combination of the velocities".into()
-            }
             MechError::UnknownSymbol { .. } => {
                 "use only the system's coordinates and parameters".into()
             }
@@ -253,6 +247,47 @@ impl MechError {
             }
             MechError::ClosedFormTooLarge { .. } | MechError::ClosedFormNotGyroscopic { .. } => {
                 "ask for the numeric modes instead".into()
+            }
+            MechError::ForceWithAcceleration { .. } => {
+                "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
+            }
+            MechError::Overflow { .. } => {
+                "choose units in which the quantities are moderate numbers".into()
+            }
+            MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
+            MechError::TooManyEquilibria { .. } => {
+                "narrow the ranges of the coordinates, or give the equilibrium".into()
+            }
+            MechError::ExplicitTime { .. } => "simulate the motion instead (a numerical integration follows the driven system); for fast driving, an averaged effective potential is an approximation to derive by hand".into(),
+            MechError::NotAnEquilibrium { .. } => {
+                "give a point where every generalized force vanishes, or leave the point out to search for the equilibria".into()
+            }
+            MechError::AccelerationInConstraint
+            | MechError::NonlinearVelocityConstraint
+            | MechError::DependentConstraints
+            | MechError::ConstraintNeverHolds { .. }
+            | MechError::EmptyConstraint { .. }
+            | MechError::TooManyConstraints { .. }
+            | MechError::DependentConstraint { .. }
+            | MechError::MultiplierName { .. }
+            | MechError::ModesRolling
+            | MechError::OffConstraint { .. }
+            | MechError::NotConstrainedEquilibrium { .. }
+            | MechError::ModesNoFreedom => self.constraint_help(),
+            MechError::TooLarge(e) => e.help(),
+            MechError::Name(e) => e.help(),
+        }
+    }
+
+    /// The help for errors in the constraints or in what they allow, kept together because
+    /// their advice is about rewriting or dropping constraints rather than the Lagrangian.
+    fn constraint_help(&self) -> String {
+        match self {
+            MechError::AccelerationInConstraint => {
+                "write the constraint on positions, or on velocities".into()
+            }
+            MechError::NonlinearVelocityConstraint => {
+                "write the velocity constraint as a linear combination of the velocities".into()
             }
             MechError::DependentConstraints => {
                 "drop a redundant constraint, or choose another state".into()
@@ -275,9 +310,6 @@ impl MechError {
             MechError::DependentConstraint { .. } => {
                 "drop the dependent constraint, or correct it if it contradicts the others".into()
             }
-            MechError::ForceWithAcceleration { .. } => {
-                "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
-            }
             MechError::MultiplierName { name } => {
                 format!("rename `{name}` (the multipliers are lambda1, lambda2, …)")
             }
@@ -291,19 +323,7 @@ impl MechError {
                 "choose a point where the forces are balanced by the constraint forces".into()
             }
             MechError::ModesNoFreedom => "drop a constraint".into(),
-            MechError::Overflow { .. } => {
-                "choose units in which the quantities are moderate numbers".into()
-            }
-            MechError::UndefinedConstant { .. } => "remove or correct that term".into(),
-            MechError::TooManyEquilibria { .. } => {
-                "narrow the ranges of the coordinates, or give the equilibrium".into()
-            }
-            MechError::ExplicitTime { .. } => "simulate the motion instead (a numerical integration follows the driven system); for fast driving, an averaged effective potential is an approximation to derive by hand".into(),
-            MechError::NotAnEquilibrium { .. } => {
-                "give a point where every generalized force vanishes, or leave the point out to search for the equilibria".into()
-            }
-            MechError::TooLarge(e) => e.help(),
-            MechError::Name(e) => e.help(),
+            _ => unreachable!("help sends only constraint errors here"),
         }
     }
 }

@@ -7,23 +7,19 @@
 //! always printed.
 
 use std::collections::BTreeMap;
-use std::fmt::{self, Write as _};
 
 use serde::{Serialize, Serializer};
 
-use super::{Formula, Paint, text};
-use crate::check::compare::fmt_value;
-use crate::expr::{Id, ParseError, Program, Style, read_expr};
+use super::Formula;
+use crate::expr::{Id, ParseError, Program, read_expr};
 use crate::mechanics::equilibria::{Coverage, Shape, Stability, across_family};
 
+mod render;
 mod shown;
 
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
-use shown::{
-    chart_modes, check_symbolic_point, given_point, point_text, search_coverage, write_coverage,
-    write_shape,
-};
+use shown::{chart_modes, check_symbolic_point, given_point, search_coverage};
 
 /// What to analyse. Names and values are as a person typed them; values are expressions.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -240,29 +236,18 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         Some(given) => Some(given_point(&mut sys, given, &values)?),
         None => None,
     };
-    let unicode: Vec<String> = coordinate_labels
-        .iter()
-        .map(|l| l.unicode.clone())
-        .collect();
-    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
     let mut equilibria = Vec::new();
     let mut continuum = false;
     let mut search = None;
     if sys.parameters.is_empty() {
-        let (found, coverage);
-        (found, continuum, coverage) = numeric_modes(&mut sys, &d, at.as_deref())?;
-        search = coverage.map(|c| search_coverage(&c, &unicode));
-        equilibria = found
-            .iter()
-            .map(|(m, shape)| equilibrium(m, shape, &names, &unicode))
-            .collect();
-        if let Some(note) = &steady {
-            let points: Vec<Vec<f64>> = found.iter().map(|(m, _)| m.point.clone()).collect();
-            let rates = super::steady::rates_at(note, &mut sys, &values, &points);
-            for (e, r) in equilibria.iter_mut().zip(rates) {
-                e.rates = r;
-            }
-        }
+        (equilibria, continuum, search) = numeric_report(
+            &mut sys,
+            &d,
+            at.as_deref(),
+            steady.as_ref(),
+            &values,
+            &coordinate_labels,
+        )?;
     } else if !opts.symbolic {
         return Err(MechError::MissingValue {
             name: sys.parameters[0].name.clone(),
@@ -299,6 +284,37 @@ pub fn modes(sys: &System, opts: &ModesOptions) -> Result<ModesReport, ModesErro
         coordinate_labels,
         gyroscopic_closed_form: symbolic.as_ref().is_some_and(|s| s.gyroscopic),
     })
+}
+
+/// The equilibria as reported, whether they fill the range, and what the search covered.
+type NumericReport = (Vec<EquilibriumModes>, bool, Option<SearchCoverage>);
+
+/// The numeric half of the report, possible only once every parameter has a number: the
+/// modes at each equilibrium (with a steady motion's cyclic velocities) in the report's terms.
+fn numeric_report(
+    sys: &mut System,
+    d: &Derivation,
+    at: Option<&[Id]>,
+    steady: Option<&super::steady::SteadyNote>,
+    values: &rustc_hash::FxHashMap<(crate::expr::Sym, u8), Id>,
+    labels: &[Formula],
+) -> Result<NumericReport, ModesError> {
+    let unicode: Vec<String> = labels.iter().map(|l| l.unicode.clone()).collect();
+    let names: Vec<String> = sys.coordinates.iter().map(|c| c.name.clone()).collect();
+    let (found, continuum, coverage) = numeric_modes(sys, d, at)?;
+    let search = coverage.map(|c| search_coverage(&c, &unicode));
+    let mut equilibria: Vec<EquilibriumModes> = found
+        .iter()
+        .map(|(m, shape)| equilibrium(m, shape, &names, &unicode))
+        .collect();
+    if let Some(note) = steady {
+        let points: Vec<Vec<f64>> = found.iter().map(|(m, _)| m.point.clone()).collect();
+        let rates = super::steady::rates_at(note, sys, values, &points);
+        for (e, r) in equilibria.iter_mut().zip(rates) {
+            e.rates = r;
+        }
+    }
+    Ok((equilibria, continuum, search))
 }
 
 /// A constant value that does not evaluate to a finite number is its own error, rather than
@@ -456,161 +472,4 @@ fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) ->
         rates: Vec::new(),
         descriptions: m.describe(labels),
     }
-}
-
-impl ModesReport {
-    /// The report as text, expressions and coordinates in `style`, marked up by `paint`.
-    pub fn render(&self, style: Style, paint: &dyn Paint) -> String {
-        text(|o| self.write_text(style, paint, o))
-    }
-
-    fn write_text(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
-        if let Some(s) = &self.steady {
-            s.write_text(style, paint, o)?;
-        }
-        if self.continuum {
-            writeln!(
-                o,
-                "every point in the search range is an equilibrium: they are not isolated (neutral)"
-            )?;
-        }
-        if self.constraints > 0 && !self.equilibria.is_empty() {
-            writeln!(
-                o,
-                "linearized on the constraint manifold ({} constraint{}): the shapes are tangent to it",
-                self.constraints,
-                if self.constraints == 1 { "" } else { "s" }
-            )?;
-        }
-        for m in &self.equilibria {
-            self.render_equilibrium(m, style, paint, o)?;
-        }
-        if let Some(c) = &self.search {
-            write_coverage(c, self.equilibria.len(), o)?;
-        }
-        if let (Some(p), Some(ws)) = (&self.characteristic_polynomial, &self.omega_squared) {
-            let det = if self.gyroscopic_closed_form {
-                "det(K − ω²M − iωC)"
-            } else {
-                "det(K − ω²M)"
-            };
-            writeln!(
-                o,
-                "{} {det} = {}",
-                paint.heading("characteristic polynomial:"),
-                p.get(style)
-            )?;
-            for w in ws {
-                writeln!(o, "ω² = {}", paint.good(w.get(style)))?;
-            }
-            if ws.is_empty() {
-                writeln!(
-                    o,
-                    "(no closed-form roots: ω² = 0 and the decoupled roots do not split the polynomial into factors of degree ≤ 2 in ω²)"
-                )?;
-            }
-        }
-        Ok(())
-    }
-
-    fn render_equilibrium(
-        &self,
-        m: &EquilibriumModes,
-        style: Style,
-        paint: &dyn Paint,
-        o: &mut String,
-    ) -> fmt::Result {
-        let point = point_text(&self.coordinate_labels, m, style);
-        let st = match m.stability {
-            Stability::Stable => paint.good("stable"),
-            Stability::Unstable => paint.bad("unstable"),
-            Stability::Marginal => paint.warn("marginal"),
-        };
-        writeln!(
-            o,
-            "{} {}: {st}",
-            paint.heading("equilibrium"),
-            point.join(", ")
-        )?;
-        for (name, v) in &m.rates {
-            writeln!(o, "  {name} = {}", fmt_value(*v))?;
-        }
-        write_shape(m, paint, o)?;
-        render_velocity_terms(m, o)?;
-        let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
-        if !m.frequencies.is_empty() {
-            writeln!(o, "  frequencies ω: {}", list(&m.frequencies).join(", "))?;
-        }
-        if !m.growth_rates.is_empty() {
-            writeln!(o, "  growth rates: {}", list(&m.growth_rates).join(", "))?;
-        }
-        for d in &m.damped {
-            writeln!(
-                o,
-                "  damped oscillation: ω = {}, decay rate γ = {}, damping ratio ζ = {}",
-                fmt_value(d.frequency),
-                fmt_value(d.decay_rate),
-                fmt_value(d.damping_ratio)
-            )?;
-        }
-        if !m.decay_rates.is_empty() {
-            writeln!(
-                o,
-                "  decay without oscillation, rates: {}",
-                list(&m.decay_rates).join(", ")
-            )?;
-        }
-        if m.modes.is_empty() {
-            for f in &m.free_directions {
-                writeln!(
-                    o,
-                    "  ω = 0: a displacement along ({}) is not restored",
-                    list(f).join(", ")
-                )?;
-            }
-        }
-        render_shapes(m, o)
-    }
-}
-
-/// Which velocity terms survive at the equilibrium, and how they were solved.
-fn render_velocity_terms(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
-    let what = match (m.gyroscopic, m.damping) {
-        (true, true) => "gyroscopic and damping terms survive here",
-        (true, false) => "gyroscopic (velocity-coupling) terms survive here",
-        (false, true) => "damping terms survive here",
-        (false, false) => return Ok(()),
-    };
-    writeln!(o, "  {what}: solved as M ẍ + C ẋ + K x = 0 (C = G + D)")
-}
-
-/// One line per normal mode: ω = 0 as a free motion, otherwise ω², the shape and what the
-/// shape means where it means something.
-fn render_shapes(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
-    let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
-    for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
-        if *w2 == 0.0 {
-            writeln!(
-                o,
-                "  mode {}: ω = 0: free motion along ({})",
-                k + 1,
-                list(shape).join(", ")
-            )?;
-            continue;
-        }
-        let desc = m.descriptions.get(k).map_or("", String::as_str);
-        writeln!(
-            o,
-            "  mode {}: ω² = {}, shape ({}){}",
-            k + 1,
-            fmt_value(*w2),
-            list(shape).join(", "),
-            if desc.is_empty() {
-                String::new()
-            } else {
-                format!(" — {desc}")
-            }
-        )?;
-    }
-    Ok(())
 }
