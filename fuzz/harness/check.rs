@@ -387,7 +387,13 @@ fn wrong_equilibria(r: &mut Rng, items: &[String]) -> Option<(String, String)> {
 /// A wrong list of values: one item scaled, or squared when ω is asked.
 fn wrong_values(r: &mut Rng, part: &Part) -> Option<(String, String)> {
     let mut out = part.answers.clone();
-    let k = below(r, out.len());
+    // Scaling or squaring a 0 (a free motion's ω = 0) leaves it right: only a nonzero item
+    // can be made wrong this way.
+    let nonzero: Vec<usize> = (0..out.len()).filter(|&i| out[i].trim() != "0").collect();
+    if nonzero.is_empty() {
+        return None;
+    }
+    let k = nonzero[below(r, nonzero.len())];
     let how = if !part.squared && chance(r, 0.3) {
         out[k] = format!("({})^2", out[k]);
         format!("squared: item {k}")

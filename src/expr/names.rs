@@ -177,13 +177,18 @@ pub(crate) fn fraction_char(n: i64, d: i64) -> Option<char> {
 /// The normal form of a symbol name: a trailing `_` before digits is dropped, so `m_1`,
 /// `m1` and `m₁` are one symbol.
 pub fn normalize(name: &str) -> String {
-    if let Some(i) = name.rfind('_') {
-        let tail = &name[i + 1..];
+    // Repeated until nothing changes, so that normalizing is idempotent: `m_1301_1301` is
+    // `m13011301` (one pass would leave `m_13011301`, which reads back as another name).
+    let mut out = name.to_string();
+    while let Some(i) = out.rfind('_') {
+        let tail = &out[i + 1..];
         if i > 0 && !tail.is_empty() && tail.bytes().all(|b| b.is_ascii_digit()) {
-            return format!("{}{}", &name[..i], tail);
+            out = format!("{}{}", &out[..i], tail);
+        } else {
+            break;
         }
     }
-    name.to_string()
+    out
 }
 
 /// Splits a name into its letters and its trailing digits (`theta12` → (`theta`, `12`)).
@@ -203,6 +208,9 @@ mod tests {
             ("m1", "m1"),
             ("q_dot", "q_dot"),
             ("_1", "_1"),
+            // Regression (fuzz parse, seed 4242): one pass left `m_13011301`.
+            ("m_1301_1301", "m13011301"),
+            ("em_13011301", "em13011301"),
         ] {
             assert_eq!(normalize(input), want);
         }
