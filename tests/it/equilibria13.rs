@@ -79,6 +79,11 @@ fn a_degenerate_minimum_is_one_equilibrium_and_not_harmonic() {
     assert_eq!(r.equilibria[0].coordinates, vec![0.0]);
     assert!(r.equilibria[0].not_harmonic);
     assert_eq!(r.equilibria[0].stability, Stability::Marginal);
+    // Regression (found using it): its zero mode was printed as "free motion along (1)", but
+    // V = x⁴ restores; it is not free.
+    let text = r.render(lagrange::expr::Style::Plain, &lagrange::report::Plain);
+    assert!(!text.contains("free motion"), "{text}");
+    assert!(text.contains("no linear restoring force"), "{text}");
 }
 
 #[test]

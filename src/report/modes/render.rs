@@ -142,9 +142,17 @@ fn render_shapes(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
     let list = |xs: &[f64]| xs.iter().map(|x| fmt_value(*x)).collect::<Vec<_>>();
     for (k, (w2, shape)) in m.omega_squared.iter().zip(&m.modes).enumerate() {
         if *w2 == 0.0 {
+            // A zero mode across a degenerate point (V = x⁴) is not a free motion: there is a
+            // restoring force, only not a linear one.
+            let free = !m.not_harmonic || m.free.iter().any(|d| parallel(d, shape));
+            let what = if free {
+                "free motion"
+            } else {
+                "no linear restoring force (not harmonic, not free)"
+            };
             writeln!(
                 o,
-                "  mode {}: ω = 0: free motion along ({})",
+                "  mode {}: ω = 0: {what} along ({})",
                 k + 1,
                 list(shape).join(", ")
             )?;
@@ -165,4 +173,12 @@ fn render_shapes(m: &EquilibriumModes, o: &mut String) -> fmt::Result {
         )?;
     }
     Ok(())
+}
+
+/// Whether two directions are parallel (to rounding).
+fn parallel(a: &[f64], b: &[f64]) -> bool {
+    let dot: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+    let aa: f64 = a.iter().map(|x| x * x).sum();
+    let bb: f64 = b.iter().map(|x| x * x).sum();
+    aa > 0.0 && bb > 0.0 && (aa * bb - dot * dot).abs() <= 1e-9 * aa * bb
 }
