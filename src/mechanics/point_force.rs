@@ -94,3 +94,33 @@ impl super::System {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::mechanics::System;
+
+    #[test]
+    fn a_force_on_a_bead_on_a_helix_projects_on_its_tangent() {
+        // r = (R cos s, R sin s, c s), F = (0, 0, −m g): Q_s = F·∂r/∂s = −m g c.
+        let mut s = System::from_lagrangian("1/2*m*(R^2 + c^2)*s'^2", &["s"]).unwrap();
+        s.add_point_force(&["R*cos(s)", "R*sin(s)", "c*s"], &["0", "0", "-m*g"])
+            .unwrap();
+        let ctx = s.open_context();
+        let want = s.read("-m*g*c", "test", &ctx).unwrap();
+        let d = s.pool.sub(s.forces[0], want);
+        assert!(s.is_zero(d));
+    }
+
+    #[test]
+    fn ill_posed_point_forces_are_refused() {
+        let mut s = System::from_lagrangian("1/2*x'^2", &["x"]).unwrap();
+        let e = s.add_point_force(&["x", "0"], &["1"]).unwrap_err();
+        assert_eq!(e.code(), "force-dimension");
+        let e = s.add_point_force(&["x'", "0"], &["1", "0"]).unwrap_err();
+        assert_eq!(e.code(), "velocity-in-position");
+        let e = s.add_point_force(&["x", "0"], &["x''", "0"]).unwrap_err();
+        assert_eq!(e.code(), "force-with-acceleration");
+        let e = s.add_point_force(&["x"], &["1"]).unwrap_err();
+        assert_eq!(e.code(), "bad-components");
+    }
+}

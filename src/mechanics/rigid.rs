@@ -286,3 +286,86 @@ fn check_inertia(
         Inertia::Principal(_) => Ok(()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::System;
+
+    /// A system of `coords` to read expressions in, whose Lagrangian names `params` (so
+    /// that they are parameters the zero test samples).
+    fn sys(coords: &[&str], params: &str) -> System {
+        System::from_lagrangian(params, coords).unwrap()
+    }
+
+    fn read(s: &mut System, texts: &[&str]) -> Vec<Id> {
+        let ctx = s.open_context();
+        texts
+            .iter()
+            .map(|t| s.read(t, "test", &ctx).unwrap())
+            .collect()
+    }
+
+    /// `e` equals the text `want` in `s`.
+    fn equals(s: &mut System, e: Id, want: &str) -> bool {
+        let w = read(s, &[want])[0];
+        let d = s.pool.sub(e, w);
+        s.is_zero(d)
+    }
+
+    #[test]
+    fn a_spherical_body_from_euler_angles_has_the_textbook_rotational_energy() {
+        // I₁ = I₂ = I₃ = I: |ω|² = φ̇² + θ̇² + ψ̇² + 2 φ̇ ψ̇ cos θ (Goldstein).
+        let mut s = sys(&["phi", "theta", "psi"], "m + I");
+        let v = read(&mut s, &["m", "0", "0", "0", "I", "phi", "theta", "psi"]);
+        let inertia = Inertia::Principal(vec![v[4]; 3]);
+        let orient = Orientation::Euler([v[5], v[6], v[7]]);
+        let r = Rigid::new(&mut s.pool, v[0], v[1..4].to_vec(), inertia, orient).unwrap();
+        let coords = s.coordinate_syms();
+        let t = r.kinetic_energy(&mut s.pool, &coords);
+        let want = "1/2*I*(phi'^2 + theta'^2 + psi'^2 + 2*phi'*psi'*cos(theta))";
+        assert!(equals(&mut s, t, want));
+    }
+
+    #[test]
+    fn a_tensor_with_products_of_inertia_couples_the_rates() {
+        // ω = (a', b', 0) with I₁₂ = I₂₁ = P: T = ½ (A a'² + 2 P a' b' + B b'²).
+        let mut s = sys(&["a", "b"], "m + A + P + B + C");
+        let v = read(
+            &mut s,
+            &["m", "0", "0", "0", "A", "P", "B", "C", "a'", "b'"],
+        );
+        let z = s.pool.zero();
+        let t = [[v[4], v[5], z], [v[5], v[6], z], [z, z, v[7]]];
+        let orient = Orientation::BodyRates([v[8], v[9], z]);
+        let r = Rigid::new(
+            &mut s.pool,
+            v[0],
+            v[1..4].to_vec(),
+            Inertia::Tensor(t),
+            orient,
+        )
+        .unwrap();
+        let coords = s.coordinate_syms();
+        let t = r.kinetic_energy(&mut s.pool, &coords);
+        assert!(equals(&mut s, t, "1/2*(A*a'^2 + 2*P*a'*b' + B*b'^2)"));
+    }
+
+    #[test]
+    fn shapes_that_do_not_fit_are_refused() {
+        let mut s = sys(&["x"], "m + I");
+        let v = read(&mut s, &["m", "x", "0", "0", "I", "x'"]);
+        let planar = || Orientation::Planar(v[1]);
+        let one = || Inertia::Principal(vec![v[4]]);
+        let e = Rigid::new(&mut s.pool, v[0], vec![v[1]], one(), planar()).unwrap_err();
+        assert_eq!(e.code(), "bad-components");
+        let e = Rigid::new(&mut s.pool, v[0], v[1..4].to_vec(), one(), planar()).unwrap_err();
+        assert_eq!(e.code(), "plane-mismatch");
+        let three = Inertia::Principal(vec![v[4]; 3]);
+        let e = Rigid::new(&mut s.pool, v[0], v[1..3].to_vec(), three, planar()).unwrap_err();
+        assert_eq!(e.code(), "inertia-shape");
+        let e = Rigid::new(&mut s.pool, v[0], vec![v[1], v[5]], one(), planar()).unwrap_err();
+        assert_eq!(e.code(), "velocity-in-position");
+        assert!(!e.help().is_empty());
+    }
+}

@@ -386,3 +386,35 @@ fn command_line_rigid_body_gravity_and_force_at() {
     assert_eq!(code, 2);
     assert!(err.contains("inertia-shape"), "{err}");
 }
+
+#[test]
+fn the_derivation_ladder_walks_a_rigid_body() {
+    // The rod's ladder: its centre of mass, that point's speed², the angular speed², then T
+    // — every step's own reference accepted by the checker.
+    use lagrange::check::Status;
+    use lagrange::tutor::ladder::{check_step, ladder};
+    let p = problem(
+        "rod",
+        r#"[{ name = "theta", periodic = true }]"#,
+        &format!("parts = []\n{ROD}"),
+    );
+    let steps = ladder(&p).unwrap();
+    let ids: Vec<&str> = steps.iter().map(|s| s.id.as_str()).collect();
+    assert!(
+        ids.starts_with(&[
+            "position:1",
+            "speed-squared:1",
+            "angular-speed-squared:1",
+            "kinetic"
+        ]),
+        "{ids:?}"
+    );
+    let top = problem("top", TOP_COORDS, &format!("parts = []\n{TOP}"));
+    for p in [&p, &top] {
+        for s in ladder(p).unwrap() {
+            let answer = s.reference_text(p.system.coordinates.len());
+            let v = check_step(p, &s, &answer).unwrap();
+            assert_eq!(v.status, Status::Correct, "{} `{answer}`", s.id);
+        }
+    }
+}
