@@ -1,10 +1,11 @@
 //! Bodies and point forces on the command line: `--point "mass=m; at=x, y"`,
 //! `--rigid "mass=M; at=…; inertia=I; angle=theta"` (or `moments=…`/`tensor=…` with
-//! `omega=…`/`euler=…`), `--gravity "g"` or `"g, z"`, and `--force-at "x, y: Fx, Fy"`.
+//! `omega=…`/`euler=…`), `--gravity "g"` or `"g, z"`, `--spring "k=k; from=1; to=0, 0"`, and
+//! `--force-at "x, y: Fx, Fy"`.
 //! The text is split here; the physics is the library's (`mechanics::rigid`).
 
 use lagrange::expr::Id;
-use lagrange::mechanics::bodies::{Body, Potential};
+use lagrange::mechanics::bodies::{Anchor, Body, Potential};
 use lagrange::mechanics::{Inertia, MechError, Orientation, Rigid, System};
 
 use super::system_args::CliError;
@@ -83,6 +84,7 @@ pub(super) struct BodyFlags<'a> {
     pub points: &'a [String],
     pub rigids: &'a [String],
     pub gravity: Option<&'a str>,
+    pub springs: &'a [String],
     pub potential: Option<&'a str>,
 }
 
@@ -126,6 +128,9 @@ impl BodyFlags<'_> {
             };
             let g = one(&mut base, parts[0], "--gravity")?;
             potentials.push(Potential::Gravity { g, axis });
+        }
+        for s in self.springs {
+            potentials.push(spring(&mut base, s, bodies.len())?);
         }
         if let Some(v) = self.potential {
             potentials.push(Potential::Explicit(one(&mut base, v, "--potential")?));
@@ -186,6 +191,30 @@ fn rigid(sys: &mut System, text: &str) -> Result<Body, CliError> {
     let r =
         Rigid::new(&mut sys.pool, mass, position, inertia, orientation).map_err(MechError::from)?;
     Ok(Body::Rigid(Box::new(r)))
+}
+
+/// `--spring "k=k; from=1; to=0, 0; natural=l0"`: ends are body numbers (1-based, in the
+/// order --point then --rigid) or fixed points.
+fn spring(sys: &mut System, text: &str, n_bodies: usize) -> Result<Potential, CliError> {
+    let f = fields("--spring", text, &["k", "from", "to", "natural"])?;
+    let get = |k: &str| f.iter().find(|(o, _)| *o == k).map(|(_, v)| *v);
+    let (Some(from), Some(to)) = (get("from"), get("to")) else {
+        return Err(CliError::usage("--spring needs from=… and to=…"));
+    };
+    let k = one(sys, get("k").unwrap_or("k"), "--spring k")?;
+    let natural = one(sys, get("natural").unwrap_or("0"), "--spring natural")?;
+    let mut end = |text: &str| -> Result<Anchor, CliError> {
+        match text.parse::<usize>() {
+            Ok(i) if (1..=n_bodies).contains(&i) => Ok(Anchor::Body(i - 1)),
+            Ok(i) => Err(CliError::Usage(format!(
+                "--spring: {i} is not a body number (1 to {n_bodies})"
+            ))),
+            Err(_) => Ok(Anchor::Fixed(list(sys, text, "--spring end")?)),
+        }
+    };
+    let a = end(from)?;
+    let b = end(to)?;
+    Ok(Potential::Spring { k, natural, a, b })
 }
 
 /// `--force-at "x, y: Fx, Fy"`: a force vector at a point, added to the generalized forces.

@@ -43,6 +43,10 @@ pub struct SystemArgs {
     /// Uniform gravity on the bodies, "g" (down the y axis) or "g, z" (down the z axis).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
     pub gravity: Option<String>,
+    /// A spring between bodies or fixed points, "k=k; from=1; to=0, 0; natural=l0" (ends:
+    /// a body number, 1-based in the order --point then --rigid, or a point); repeat.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
+    pub spring: Vec<String>,
     /// The generalized coordinates, comma-separated, e.g. "theta1,theta2".
     #[arg(long, short = 'q', default_value = "")]
     pub coords: String,
@@ -94,11 +98,12 @@ impl SystemArgs {
             points: &self.point,
             rigids: &self.rigid,
             gravity: self.gravity.as_deref(),
+            springs: &self.spring,
             potential: potential.as_deref(),
         };
-        if self.gravity.is_some() && !bodies.any() {
+        if (self.gravity.is_some() || !self.spring.is_empty()) && !bodies.any() {
             return Err(CliError::usage(
-                "--gravity acts on bodies: give --point or --rigid",
+                "--gravity and --spring act on bodies: give --point or --rigid",
             ));
         }
         let mut sys = match (lagrangian, kinetic, potential.as_deref()) {

@@ -418,3 +418,61 @@ fn the_derivation_ladder_walks_a_rigid_body() {
         }
     }
 }
+
+#[test]
+fn heavy_top_steady_precession_from_the_rigid_body() {
+    // Steady precession at θ₀ with φ̇ = Ω and spin ω₃ = ψ̇ + φ̇ cos θ₀ needs
+    // m g l = Ω (I₃ ω₃ − I₁ Ω cos θ₀), I₁ = A + m l² about the tip (Goldstein §5.7). Choose g
+    // so that it holds; the Routhian's equilibrium with p_ψ = I₃ ω₃ and
+    // p_φ = I₁ Ω sin²θ₀ + I₃ ω₃ cos θ₀ is then θ₀.
+    let p = problem("top", TOP_COORDS, &format!("parts = []\n{TOP}"));
+    let (m, l, a, c) = (1.0, 0.5, 0.2, 0.3);
+    let (theta0, omega, spin) = (0.6_f64, 2.0, 10.0);
+    let i1 = a + m * l * l;
+    let g = omega * (c * spin - i1 * omega * theta0.cos()) / (m * l);
+    let p_psi = c * spin;
+    let p_phi = i1 * omega * theta0.sin().powi(2) + c * spin * theta0.cos();
+    let num = |x: f64| format!("{x:.17}");
+    let opts = ModesOptions {
+        params: vec![
+            ("m".into(), num(m)),
+            ("l".into(), num(l)),
+            ("A".into(), num(a)),
+            ("C".into(), num(c)),
+            ("g".into(), num(g)),
+        ],
+        steady: vec![("p_phi".into(), num(p_phi)), ("p_psi".into(), num(p_psi))],
+        ..ModesOptions::default()
+    };
+    let rep = modes(&p.system, &opts).unwrap();
+    let found: Vec<f64> = rep.equilibria.iter().map(|e| e.coordinates[0]).collect();
+    assert!(
+        found.iter().any(|&t| (t - theta0).abs() < 1e-6),
+        "{found:?} vs {theta0}"
+    );
+}
+
+#[test]
+fn command_line_points_and_a_spring() {
+    // Two masses m joined by a spring k on a line: ω = 0 (free translation) and √(2k/m).
+    let (code, out, err) = lagrange(&[
+        "modes",
+        "-q",
+        "x1,x2",
+        "--point",
+        "mass=m; at=x1, 0",
+        "--point",
+        "mass=m; at=x2, 0",
+        "--spring",
+        "k=k; from=1; to=2; natural=a",
+        "--params",
+        "m=2, k=4, a=1",
+        "--at",
+        "x1=0, x2=1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("frequencies ω: 0, 2\n"), "{out}");
+    let (code, _, err) = lagrange(&["derive", "-q", "x", "--spring", "from=0, 0; to=x, 0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("act on bodies"), "{err}");
+}
