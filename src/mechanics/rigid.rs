@@ -209,9 +209,11 @@ impl Rigid {
             }
             Inertia::Tensor(t) => {
                 let mut terms = Vec::new();
-                for (r, row) in t.iter().enumerate() {
-                    for (c, &i) in row.iter().enumerate() {
-                        terms.push(pool.product([i, omega[r], omega[c]]));
+                // zip, not indexing: a body built without `new` (a planar ω of one
+                // component with a tensor) must not panic.
+                for (row, &wr) in t.iter().zip(&omega) {
+                    for (&i, &wc) in row.iter().zip(&omega) {
+                        terms.push(pool.product([i, wr, wc]));
                     }
                 }
                 pool.sum(terms)
