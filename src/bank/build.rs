@@ -78,6 +78,8 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     }
     system.parameters = declared;
     let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
+    // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
+    reader.point_forces(&pf, &mut system)?;
     let parts = b.parts(&pf, &mut system)?;
     Ok(Problem {
         file: file.to_string(),

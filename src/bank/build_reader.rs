@@ -37,6 +37,19 @@ pub(super) struct Reader<'a> {
 }
 
 impl Reader<'_> {
+    /// Reads each of `srcs` (see [`read`](Self::read)).
+    pub(super) fn read_all(
+        &self,
+        pool: &mut Pool,
+        srcs: &[String],
+        line: usize,
+        what: &str,
+    ) -> Result<Vec<Id>, Finding> {
+        srcs.iter()
+            .map(|x| self.read(pool, x, line, what))
+            .collect()
+    }
+
     /// Reads `src` (the file's `what` at `line`); an unknown name is `undeclared-symbol`.
     pub(super) fn read(
         &self,
@@ -58,7 +71,7 @@ impl Reader<'_> {
         })
     }
 
-    /// The `[[bodies]]`: point masses and rotors.
+    /// The `[[bodies]]`: point masses, rotors and rigid bodies.
     pub(super) fn bodies(&self, pf: &ProblemFile, pool: &mut Pool) -> Result<Vec<Body>, Finding> {
         let mut bodies = Vec::new();
         for spec in &pf.bodies {
@@ -93,8 +106,9 @@ impl Reader<'_> {
                 let angle = self.read(pool, a, line, "angle")?;
                 Ok(Body::Rotor { inertia, angle })
             }
+            "rigid" => self.rigid(b, line, pool),
             other => Err(bad(format!(
-                "unknown body kind `{other}` (use point or rotor)"
+                "unknown body kind `{other}` (use point, rotor or rigid)"
             ))),
         }
     }

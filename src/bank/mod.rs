@@ -5,6 +5,7 @@
 pub(crate) mod build;
 mod build_part;
 mod build_reader;
+mod build_rigid;
 pub mod embedded;
 pub mod finding;
 pub mod load;

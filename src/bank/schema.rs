@@ -33,6 +33,9 @@ pub struct ProblemFile {
     pub bodies: Vec<Spanned<BodySpec>>,
     #[serde(default)]
     pub potentials: Vec<Spanned<PotentialSpec>>,
+    /// Forces given as a vector at a point: Qᵢ = F·∂r/∂qᵢ, added to `forces`.
+    #[serde(default)]
+    pub point_forces: Vec<Spanned<PointForceSpec>>,
     pub parts: Vec<Spanned<PartSpec>>,
 }
 
@@ -62,7 +65,9 @@ pub struct ParameterSpec {
     pub description: Option<String>,
 }
 
-/// A body: `kind = "point"` (mass, position) or `kind = "rotor"` (inertia, angle).
+/// A body: `kind = "point"` (mass, position), `kind = "rotor"` (inertia, angle) or
+/// `kind = "rigid"` (mass, centre-of-mass position, inertia or moments or tensor, and one of
+/// angle, omega_body, euler).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
@@ -71,6 +76,22 @@ pub struct BodySpec {
     pub position: Option<Vec<String>>,
     pub inertia: Option<String>,
     pub angle: Option<String>,
+    /// Principal moments about the centre of mass (rigid, 3-D).
+    pub moments: Option<Vec<String>>,
+    /// The inertia tensor about the centre of mass in the body frame, 3 rows of 3 (rigid).
+    pub tensor: Option<Vec<Vec<String>>>,
+    /// Body-frame angular-velocity components (rigid, 3-D).
+    pub omega_body: Option<Vec<String>>,
+    /// z-x-z Euler angles φ, θ, ψ (rigid, 3-D).
+    pub euler: Option<Vec<String>>,
+}
+
+/// A force `vector` applied at the point `at`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointForceSpec {
+    pub at: Vec<String>,
+    pub vector: Vec<String>,
 }
 
 /// One end of a spring: a body number (1-based) or a fixed point.

@@ -1,6 +1,7 @@
 //! Argument definitions (clap) and dispatch. Clap types stay in the binary; the library
 //! never sees them.
 
+mod body_args;
 mod check;
 mod derive;
 mod grade;

@@ -28,15 +28,35 @@ pub struct SystemArgs {
         conflicts_with = "lagrangian"
     )]
     pub kinetic: Option<String>,
-    /// The potential energy (with --kinetic).
-    #[arg(long, short = 'V', requires = "kinetic", allow_hyphen_values = true)]
+    /// The potential energy (with --kinetic, or added to the bodies' potentials).
+    #[arg(long, short = 'V', allow_hyphen_values = true)]
     pub potential: Option<String>,
+    /// A point body, "mass=m; at=x, y" (its position in the coordinates); repeat for several.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
+    pub point: Vec<String>,
+    /// A rigid body, "mass=M; at=xc, yc; inertia=I; angle=theta" (planar: centre of mass,
+    /// moment about it, orientation angle) or in 3-D "mass=M; at=x, y, z; moments=I1, I2, I3"
+    /// (or tensor=nine entries row by row) with "euler=phi, theta, psi" (z-x-z) or
+    /// "omega=w1, w2, w3" (body-frame angular velocity); repeat for several.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
+    pub rigid: Vec<String>,
+    /// Uniform gravity on the bodies, "g" (down the y axis) or "g, z" (down the z axis).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
+    pub gravity: Option<String>,
+    /// A spring between bodies or fixed points, "k=k; from=1; to=0, 0; natural=l0" (ends:
+    /// a body number, 1-based in the order --point then --rigid, or a point); repeat.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
+    pub spring: Vec<String>,
     /// The generalized coordinates, comma-separated, e.g. "theta1,theta2".
     #[arg(long, short = 'q', default_value = "")]
     pub coords: String,
     /// Generalized non-conservative forces, one per coordinate, separated by `;`.
     #[arg(long, allow_hyphen_values = true)]
     pub force: Option<String>,
+    /// A force vector at a point, "x, y: Fx, Fy" (or 3-D): Qᵢ = F·∂r/∂qᵢ is added to the
+    /// generalized forces; repeat for several.
+    #[arg(long, allow_hyphen_values = true)]
+    pub force_at: Vec<String>,
     /// A constraint f = 0 (or lhs = rhs); repeat for several. Velocity-linear constraints
     /// are nonholonomic.
     #[arg(long, allow_hyphen_values = true)]
@@ -74,18 +94,39 @@ impl SystemArgs {
         let lagrangian = text("--lagrangian", &self.lagrangian)?;
         let kinetic = text("--kinetic", &self.kinetic)?;
         let potential = text("--potential", &self.potential)?;
-        let mut sys = match (lagrangian, kinetic, potential) {
+        let bodies = super::body_args::BodyFlags {
+            points: &self.point,
+            rigids: &self.rigid,
+            gravity: self.gravity.as_deref(),
+            springs: &self.spring,
+            potential: potential.as_deref(),
+        };
+        if (self.gravity.is_some() || !self.spring.is_empty()) && !bodies.any() {
+            return Err(CliError::usage(
+                "--gravity and --spring act on bodies: give --point or --rigid",
+            ));
+        }
+        let mut sys = match (lagrangian, kinetic, potential.as_deref()) {
+            _ if bodies.any() => bodies.build(System::from_lagrangian("0", &coords)?)?,
+            (Some(_), _, Some(_)) => {
+                return Err(CliError::usage(
+                    "--potential goes with --kinetic or bodies, not --lagrangian",
+                ));
+            }
             (Some(l), _, _) => System::from_lagrangian(&l, &coords)?,
             // A kinetic energy alone is a free system: V = 0.
-            (None, Some(t), v) => System::from_energies(&t, v.as_deref().unwrap_or("0"), &coords)?,
+            (None, Some(t), v) => System::from_energies(&t, v.unwrap_or("0"), &coords)?,
             _ => {
                 return Err(CliError::usage(
-                    "give --lagrangian, or --kinetic (and --potential)",
+                    "give --lagrangian, --kinetic (and --potential), or bodies (--point, --rigid)",
                 ));
             }
         };
         if let Some(f) = text("--force", &self.force)? {
             sys.set_forces(&f)?;
+        }
+        for f in &self.force_at {
+            super::body_args::force_at(&mut sys, &expression("--force-at", f)?)?;
         }
         for c in &self.constraint {
             sys.add_constraint(&expression("--constraint", c)?)?;

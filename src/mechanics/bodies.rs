@@ -1,8 +1,9 @@
 //! Bodies and potentials: point masses with Cartesian positions as functions of (q, t) in 2D
-//! or 3D, rigid bodies rotating about a fixed axis, uniform gravity, springs and explicit
-//! potentials. From them follow T and V.
+//! or 3D, rigid bodies rotating about a fixed axis, free rigid bodies (see `rigid.rs`),
+//! uniform gravity, springs and explicit potentials. From them follow T and V.
 
 use super::coordinate::Coordinate;
+use super::rigid::Rigid;
 use crate::expr::{Id, Pool, Sym};
 
 /// A body.
@@ -12,6 +13,20 @@ pub enum Body {
     Point { mass: Id, position: Vec<Id> },
     /// A rigid body turning about a fixed axis by `angle`, with moment of inertia `inertia`.
     Rotor { inertia: Id, angle: Id },
+    /// A rigid body with a moving centre of mass and an orientation (boxed: it is large).
+    Rigid(Box<Rigid>),
+}
+
+impl Body {
+    /// The mass and the position gravity and springs act at: a point mass's position, a
+    /// rigid body's centre of mass; none for a rotor about a fixed axis.
+    pub fn mass_at(&self) -> Option<(Id, &[Id])> {
+        match self {
+            Body::Point { mass, position } => Some((*mass, position)),
+            Body::Rigid(r) => Some((r.mass, &r.position)),
+            Body::Rotor { .. } => None,
+        }
+    }
 }
 
 /// One end of a spring.
@@ -40,7 +55,7 @@ pub enum Potential {
     Explicit(Id),
 }
 
-/// T = Σ ½ m |ṙ|² + Σ ½ I (d angle/dt)².
+/// T = Σ ½ m |ṙ|² + Σ ½ I (d angle/dt)² + Σ (½ M |v_cm|² + ½ ωᵀ I ω).
 pub(crate) fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies: &[Body]) -> Id {
     let coords: Vec<Sym> = coordinates.iter().map(|c| c.sym).collect();
     let half = pool.ratio(1, 2);
@@ -61,12 +76,13 @@ pub(crate) fn kinetic_energy(pool: &mut Pool, coordinates: &[Coordinate], bodies
                 let w2 = pool.powi(w, 2);
                 terms.push(pool.product([half, *inertia, w2]));
             }
+            Body::Rigid(r) => terms.push(r.kinetic_energy(pool, &coords)),
         }
     }
     pool.sum(terms)
 }
 
-/// V from the potentials (gravity acts on the point masses).
+/// V from the potentials (gravity acts on the point masses and rigid bodies' centres of mass).
 pub(crate) fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[Potential]) -> Id {
     let half = pool.ratio(1, 2);
     let mut terms = Vec::new();
@@ -74,10 +90,10 @@ pub(crate) fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[P
         match p {
             Potential::Gravity { g, axis } => {
                 for b in bodies {
-                    if let Body::Point { mass, position } = b
+                    if let Some((mass, position)) = b.mass_at()
                         && let Some(&h) = position.get(*axis)
                     {
-                        terms.push(pool.product([*mass, *g, h]));
+                        terms.push(pool.product([mass, *g, h]));
                     }
                 }
             }
@@ -110,9 +126,10 @@ pub(crate) fn potential_energy(pool: &mut Pool, bodies: &[Body], potentials: &[P
 fn anchor(bodies: &[Body], a: &Anchor) -> Vec<Id> {
     match a {
         Anchor::Fixed(p) => p.clone(),
-        Anchor::Body(i) => match bodies.get(*i) {
-            Some(Body::Point { position, .. }) => position.clone(),
-            _ => Vec::new(),
-        },
+        Anchor::Body(i) => bodies
+            .get(*i)
+            .and_then(Body::mass_at)
+            .map(|(_, p)| p.to_vec())
+            .unwrap_or_default(),
     }
 }

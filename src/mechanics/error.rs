@@ -158,6 +158,9 @@ pub enum MechError {
     /// A name given as a coordinate cannot be one (time, π, a function, listed twice).
     #[error(transparent)]
     Name(#[from] super::naming::NameError),
+    /// A rigid body or a point force is ill-posed.
+    #[error(transparent)]
+    Rigid(#[from] super::rigid::RigidError),
     /// A derivative grew past the size limit.
     #[error(transparent)]
     TooLarge(#[from] crate::expr::pool::TooLarge),
@@ -211,6 +214,7 @@ impl MechError {
             MechError::NotAnEquilibrium { .. } => "not-an-equilibrium",
             MechError::TooLarge(_) => "too-large",
             MechError::Name(e) => e.code(),
+            MechError::Rigid(e) => e.code(),
         }
     }
 
@@ -276,6 +280,7 @@ impl MechError {
             | MechError::ModesNoFreedom => self.constraint_help(),
             MechError::TooLarge(e) => e.help(),
             MechError::Name(e) => e.help(),
+            MechError::Rigid(e) => e.help(),
         }
     }
 

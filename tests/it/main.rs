@@ -23,6 +23,7 @@ mod props;
 mod pty;
 mod repl;
 mod resources;
+mod rigid13;
 mod scale;
 mod session;
 mod soundness;

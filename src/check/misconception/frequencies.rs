@@ -205,7 +205,7 @@ fn body_masses(part: &Part, p: &mut Prepared) -> Vec<Id> {
         .iter()
         .filter_map(|b| match b {
             Body::Point { mass, .. } => Some(p.system.pool.substitute(*mass, &map)),
-            Body::Rotor { .. } => None,
+            Body::Rotor { .. } | Body::Rigid(_) => None,
         })
         .collect()
 }

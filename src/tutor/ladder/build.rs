@@ -6,8 +6,10 @@ use rustc_hash::FxHashMap;
 
 use super::step::{LadderError, Step};
 use crate::expr::{Id, Style, Sym, read_expr};
-use crate::mechanics::{Body, System};
+use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Problem, Quantity};
+
+mod bodies;
 
 /// The ladder of `problem`, in the order a student climbs it.
 pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
@@ -126,57 +128,6 @@ impl Builder<'_> {
             vec![answer],
         );
         p.quantity = Quantity::Lagrangian;
-    }
-
-    /// The position and speed-squared steps of body `n` (1-based). A rotor has no position;
-    /// its step is its angular speed squared.
-    fn body(&mut self, n: usize, body: &Body) {
-        let coords = self.sys.coordinate_syms();
-        let positive = self.sys.parameter_syms();
-        match body {
-            Body::Point { position, .. } => {
-                let axes = ["x", "y", "z"];
-                let names = axes[..position.len().min(3)].join(", ");
-                let answers = position.iter().map(|&x| self.plain(x)).collect();
-                let prompt = format!(
-                    "Write the Cartesian position of body {n} (its {names} components, in that order) in terms of {}, separated by commas.",
-                    self.coordinate_list()
-                );
-                self.push(format!("position:{n}"), prompt, PartKind::Values, answers);
-                let mut squares = Vec::new();
-                for &x in position {
-                    let vx = self.sys.pool.dt(x, &coords);
-                    squares.push(self.sys.pool.powi(vx, 2));
-                }
-                let v2 = self.sys.pool.sum(squares);
-                let v2 = self.sys.pool.simplify(v2, &positive);
-                let answer = self.plain(v2);
-                let prompt = format!(
-                    "Differentiate the position in time: write the square of body {n}'s speed (the sum of the squares of its velocity components)."
-                );
-                self.push(
-                    format!("speed-squared:{n}"),
-                    prompt,
-                    PartKind::Expression,
-                    vec![answer],
-                );
-            }
-            Body::Rotor { angle, .. } => {
-                let w = self.sys.pool.dt(*angle, &coords);
-                let w2 = self.sys.pool.powi(w, 2);
-                let w2 = self.sys.pool.simplify(w2, &positive);
-                let answer = self.plain(w2);
-                let prompt = format!(
-                    "Body {n} turns about a fixed axis: write the square of its angular velocity."
-                );
-                self.push(
-                    format!("speed-squared:{n}"),
-                    prompt,
-                    PartKind::Expression,
-                    vec![answer],
-                );
-            }
-        }
     }
 
     /// For each coordinate: p, d/dt p, ∂L/∂q and the equation of motion.
