@@ -422,12 +422,12 @@ impl DerivationReport {
 /// Why h is or is not conserved, as the text says it.
 fn conservation_text(c: Conservation) -> &'static str {
     match c {
-        Conservation::Conserved => "yes (∂L/∂t = 0 and no non-conservative forces)",
+        Conservation::Conserved => "yes (∂L/∂t = 0 and no generalized force doing work)",
         Conservation::ConservedPowerlessForces => {
             "yes (∂L/∂t = 0 and the forces do no work: Σ Q q̇ = 0)"
         }
         Conservation::ExplicitTime => "no (L depends explicitly on t)",
-        Conservation::ForcesDoWork => "no (the non-conservative forces do work)",
+        Conservation::ForcesDoWork => "no (the generalized forces given do work; a conservative force belongs in V, where it would be counted)",
         Conservation::MovingConstraint => "no (a constraint depends on t: its force does work)",
     }
 }
