@@ -41,6 +41,10 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
+    if args.at.is_none() && !args.params.trim().is_empty() {
+        let e = CliError::usage("--params gives values for --at: give the state with --at too");
+        return Ok(report(&e, color));
+    }
     let derived = args.system.build(problems).and_then(|sys| match &args.at {
         None => {
             // The derivation first: its validation names a malformed constraint (`1 = 0`).

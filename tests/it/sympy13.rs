@@ -148,6 +148,34 @@ fn rolling_disc_with_two_conditions_at_a_state() {
     close(s.multipliers[1], 1.5 * ay);
 }
 
+/// A parallelogram four-bar linkage (crank = rocker = l, coupler = ground = d; masses m at
+/// the crank's and the rocker's tips, the coupler's mass neglected but its moment of inertia J
+/// kept so that M is regular), three angles and two closure
+/// conditions: with the coupler level the two tips swing as one pendulum,
+/// θ̈₁ = θ̈₃ = −(g/l) sin θ, θ̈₂ = 0, and the coupler carries no force (each tip moves as a free
+/// pendulum would), so both multipliers are 0.
+#[test]
+fn four_bar_linkage_at_a_state() {
+    let mut sys = System::from_lagrangian(
+        "1/2*m*l^2*(a'^2 + c'^2) + 1/2*J*b'^2 + m*g*l*(cos(a) + cos(c))",
+        &["a", "b", "c"],
+    )
+    .unwrap();
+    sys.add_constraint("l*sin(a) + d*cos(b) - d - l*sin(c) = 0")
+        .unwrap();
+    sys.add_constraint("-l*cos(a) + d*sin(b) + l*cos(c) = 0")
+        .unwrap();
+    let params = pairs("m=0.7, l=1.3, d=2, g=9.81, J=0.2");
+    let r = derivation_at(&sys, &params, &pairs("a=0.4, b=0, c=0.4, a'=1.1, c'=1.1")).unwrap();
+    let s = r.at.unwrap();
+    let want = -9.81 / 1.3 * 0.4f64.sin();
+    close(s.accelerations[0], want);
+    close(s.accelerations[1], 0.0);
+    close(s.accelerations[2], want);
+    close(s.multipliers[0], 0.0);
+    close(s.multipliers[1], 0.0);
+}
+
 #[test]
 fn a_state_off_the_constraints_is_refused_with_its_residual() {
     let mut sys = System::from_lagrangian("1/2*m*(x'^2 + y'^2) - m*g*y", &["x", "y"]).unwrap();
@@ -241,6 +269,10 @@ fn derive_at_prints_accelerations_and_multipliers() {
     // At the bottom with speed 1: tension m(v²/l + g) = 22, λ = −11, ÿ = v²/l = 1.
     assert_eq!(v["at"]["multipliers"][0].as_f64(), Some(-11.0));
     assert_eq!(v["at"]["accelerations"][1].as_f64(), Some(1.0));
+    // Values without a state would be silently unused: refused.
+    let (code, _, err) = lagrange(&args[..args.len() - 2]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--params gives values for --at"), "{err}");
 }
 
 fn pairs(text: &str) -> Vec<(String, String)> {
