@@ -320,3 +320,53 @@ impl System {
         Ok(Some(least))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle() -> System {
+        let mut sys = System::from_lagrangian("1/2*(x'^2 + y'^2) - 9.81*y", &["x", "y"]).unwrap();
+        sys.add_constraint("x^2 + y^2 = 4").unwrap();
+        sys
+    }
+
+    /// A point at rest at (x, y) with velocity (vx, vy).
+    fn state(sys: &System, q: [f64; 2], v: [f64; 2]) -> Vec<f64> {
+        let layout = sys.state_layout();
+        let mut x = layout.at_rest(&q, &[]);
+        x[layout.qdot(0)] = v[0];
+        x[layout.qdot(1)] = v[1];
+        x
+    }
+
+    #[test]
+    fn violations_are_found_at_each_level() {
+        let mut sys = circle();
+        let on = state(&sys, [1.2, -1.6], [1.6, 1.2]);
+        assert_eq!(sys.constraint_violation(&on).unwrap(), None);
+        let off = state(&sys, [1.2, -1.5], [0.0, 0.0]);
+        let v = sys.constraint_violation(&off).unwrap().unwrap();
+        assert_eq!((v.index, v.level), (0, ConstraintLevel::Position));
+        assert!((v.residual + 0.31).abs() < 1e-12, "{v:?}");
+        let across = state(&sys, [1.2, -1.6], [1.0, 0.0]);
+        let v = sys.constraint_violation(&across).unwrap().unwrap();
+        assert_eq!(v.level, ConstraintLevel::Velocity);
+        assert!((v.residual - 2.4).abs() < 1e-12, "{v:?}");
+    }
+
+    #[test]
+    fn a_constraint_with_no_real_state_is_found_and_others_are_not() {
+        let mut sys = circle();
+        assert_eq!(sys.unsatisfiable_constraint().unwrap(), None);
+        let mut none = System::from_lagrangian("1/2*(x'^2 + y'^2)", &["x", "y"]).unwrap();
+        none.add_constraint("x^2 + (y - 1)^2 = -2").unwrap();
+        let (k, least) = none.unsatisfiable_constraint().unwrap().unwrap();
+        assert_eq!(k, 0);
+        assert!((least - 2.0).abs() < 1e-6, "{least}");
+        // x³ − 3x + 5 has a local minimum 3 at x = 1 but a real root near −2.28.
+        let mut cubic = System::from_lagrangian("1/2*(x'^2 + y'^2)", &["x", "y"]).unwrap();
+        cubic.add_constraint("x^3 - 3*x + 5 = 0").unwrap();
+        assert_eq!(cubic.unsatisfiable_constraint().unwrap(), None);
+    }
+}

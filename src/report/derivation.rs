@@ -95,6 +95,9 @@ pub struct StateSolution {
     pub accelerations: Vec<f64>,
     /// λ₁, λ₂, … there (the constraint forces); empty without constraints.
     pub multipliers: Vec<f64>,
+    /// How the text shows each q̈.
+    #[serde(skip)]
+    pub acceleration_labels: Vec<Formula>,
 }
 
 /// L split by degree in the velocities.
@@ -466,12 +469,12 @@ impl DerivationReport {
         for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
             writeln!(
                 o,
-                "  {} = {}, {} = {}: {}'' = {}",
+                "  {} = {}, {} = {}: {} = {}",
                 q.get(style),
                 s.positions[i],
                 qd.get(style),
                 s.velocities[i],
-                q.get(style),
+                s.acceleration_labels[i].get(style),
                 s.accelerations[i]
             )?;
         }

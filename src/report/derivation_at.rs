@@ -117,6 +117,15 @@ pub fn derivation_at(
         velocities: (0..n).map(|i| point[layout.qdot(i)]).collect(),
         accelerations,
         multipliers,
+        acceleration_labels: num
+            .coordinates
+            .clone()
+            .iter()
+            .map(|c| {
+                let a = num.pool.var(c.sym, 2);
+                super::Formula::new(&num.pool, a)
+            })
+            .collect(),
     });
     Ok(report)
 }
