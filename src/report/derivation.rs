@@ -279,6 +279,7 @@ impl DerivationReport {
             writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex)?;
         }
         self.render_latex_constraints(o)?;
+        self.render_latex_state(o)?;
         writeln!(o, "h &= {}", self.energy_function.latex)?;
         writeln!(o, "\\end{{align*}}")
     }
@@ -456,6 +457,24 @@ fn conservation_text(c: Conservation) -> &'static str {
 }
 
 impl DerivationReport {
+    /// The accelerations and multipliers at the state given (`derive --at`), as LaTeX rows.
+    fn render_latex_state(&self, o: &mut String) -> fmt::Result {
+        let Some(s) = &self.at else {
+            return Ok(());
+        };
+        for (label, a) in s.acceleration_labels.iter().zip(&s.accelerations) {
+            writeln!(o, "{} &= {a} && \\text{{(at the state)}} \\\\", label.latex)?;
+        }
+        for (j, l) in s.multipliers.iter().enumerate() {
+            writeln!(
+                o,
+                "\\lambda_{{{}}} &= {l} && \\text{{(at the state)}} \\\\",
+                j + 1
+            )?;
+        }
+        Ok(())
+    }
+
     /// The accelerations and multipliers at the state given, when there is one.
     fn render_state(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
         let Some(s) = &self.at else {

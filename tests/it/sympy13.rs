@@ -269,6 +269,13 @@ fn derive_at_prints_accelerations_and_multipliers() {
     // At the bottom with speed 1: tension m(v²/l + g) = 22, λ = −11, ÿ = v²/l = 1.
     assert_eq!(v["at"]["multipliers"][0].as_f64(), Some(-11.0));
     assert_eq!(v["at"]["accelerations"][1].as_f64(), Some(1.0));
+    let mut latex = args.to_vec();
+    latex.extend(["--format", "latex"]);
+    let (_, out, _) = lagrange(&latex);
+    assert!(
+        out.contains(r"\lambda_{1} &= -11 && \text{(at the state)}"),
+        "{out}"
+    );
     // Values without a state would be silently unused: refused.
     let (code, _, err) = lagrange(&args[..args.len() - 2]);
     assert_eq!(code, 2);
