@@ -5,8 +5,9 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use super::system_args::{SystemArgs, Terminal, report};
+use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::expr::Style;
+use lagrange::report::modes::assignments;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum Format {
@@ -25,6 +26,13 @@ pub struct DeriveArgs {
     /// Same as --format json.
     #[arg(long)]
     json: bool,
+    /// Also the accelerations and the multipliers at this state, e.g.
+    /// "x=0.6, y=-0.8, x'=0.8, y'=0.6" (velocities default to 0; values may be expressions).
+    #[arg(long, allow_hyphen_values = true)]
+    at: Option<String>,
+    /// Parameter values for --at, e.g. "m=1, g=9.81".
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
+    params: String,
 }
 
 pub fn run(
@@ -33,10 +41,19 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    let derived = args
-        .system
-        .build(problems)
-        .and_then(|sys| Ok(lagrange::report::derivation(&sys)?));
+    if args.at.is_none() && !args.params.trim().is_empty() {
+        let e = CliError::usage("--params gives values for --at: give the state with --at too");
+        return Ok(report(&e, color));
+    }
+    let derived = args.system.build(problems).and_then(|sys| match &args.at {
+        None => {
+            // The derivation first: its validation names a malformed constraint (`1 = 0`).
+            let d = lagrange::report::derivation(&sys)?;
+            lagrange::report::derivation_at::check_real(&sys).map_err(coded)?;
+            Ok(d)
+        }
+        Some(at) => at_state(&sys, at, &args.params),
+    });
     let report_ = match derived {
         Ok(r) => r,
         Err(e) => return Ok(report(&e, color)),
@@ -51,4 +68,35 @@ pub fn run(
         Format::Text => out.push_str(&report_.render(Style::Unicode, &Terminal)),
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The derivation with the accelerations and multipliers at the state `at`.
+fn at_state(
+    sys: &lagrange::mechanics::System,
+    at: &str,
+    params: &str,
+) -> Result<lagrange::report::DerivationReport, CliError> {
+    use lagrange::report::derivation_at::derivation_at;
+    let usage = |e: lagrange::report::modes::BadAssignment| CliError::Usage(e.to_string());
+    let at = assignments(at).map_err(usage)?;
+    let params = assignments(params).map_err(usage)?;
+    derivation_at(sys, &params, &at).map_err(coded)
+}
+
+/// The CLI's error for a state error: a mechanics error as such, the others with their code.
+fn coded(e: lagrange::report::derivation_at::StateError) -> CliError {
+    use lagrange::report::derivation_at::StateError;
+    match e {
+        StateError::Mech(e) => CliError::Mech(e),
+        e @ StateError::NoRealState { .. } => CliError::Coded {
+            code: e.code(),
+            message: e.to_string(),
+            help: e.help(),
+        },
+        e => CliError::Coded {
+            code: e.code(),
+            message: format!("--at: {e}"),
+            help: e.help(),
+        },
+    }
 }

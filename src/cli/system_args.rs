@@ -178,6 +178,12 @@ pub enum CliError {
     Mech(MechError),
     /// A name given to --coords cannot be a coordinate.
     Name(NameError),
+    /// A library error with its own code and help (`derive --at`).
+    Coded {
+        code: &'static str,
+        message: String,
+        help: String,
+    },
 }
 
 impl CliError {
@@ -212,6 +218,11 @@ pub fn report(e: &CliError, color: bool) -> ExitCode {
             format!("--coords: {n}"),
             n.help(),
         )),
+        CliError::Coded {
+            code,
+            message,
+            help,
+        } => render_plain(&Diagnostic::new(*code, message.as_str(), help.as_str())),
     };
     eprint!("{text}");
     ExitCode::from(2)

@@ -17,6 +17,9 @@ use crate::mechanics::{Conservation, ConstraintKind, MechError, System};
 /// Everything `derive` shows about a system.
 #[derive(Clone, Debug, Serialize)]
 pub struct DerivationReport {
+    /// The accelerations and multipliers at the state given (`derive --at`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<StateSolution>,
     /// The equations with multipliers λ, when there are constraints.
     pub augmented_equations: Option<Vec<Formula>>,
     /// The momentum of each cyclic coordinate.
@@ -79,6 +82,24 @@ pub struct DerivationReport {
     pub kinetic_not_quadratic: bool,
 }
 
+/// The accelerations and multipliers at a state.
+#[derive(Clone, Debug, Serialize)]
+pub struct StateSolution {
+    /// Time at the state.
+    pub t: f64,
+    /// The coordinates there, in coordinate order.
+    pub positions: Vec<f64>,
+    /// The velocities there.
+    pub velocities: Vec<f64>,
+    /// The accelerations q̈ there.
+    pub accelerations: Vec<f64>,
+    /// λ₁, λ₂, … there (the constraint forces); empty without constraints.
+    pub multipliers: Vec<f64>,
+    /// How the text shows each q̈.
+    #[serde(skip)]
+    pub acceleration_labels: Vec<Formula>,
+}
+
 /// L split by degree in the velocities.
 #[derive(Clone, Debug, Serialize)]
 pub struct EnergyParts {
@@ -138,6 +159,7 @@ pub fn derivation(sys: &System) -> Result<DerivationReport, MechError> {
         d.steps.iter().map(|s| f(pick(s))).collect::<Vec<_>>()
     };
     Ok(DerivationReport {
+        at: None,
         augmented_equations: augmented.as_deref().map(all),
         conserved_momenta: energy
             .cyclic
@@ -226,7 +248,8 @@ impl DerivationReport {
             }
             self.render_steps(style, paint, o)?;
             self.render_energy(style, paint, o)?;
-            self.render_constraints(style, paint, o)
+            self.render_constraints(style, paint, o)?;
+            self.render_state(style, paint, o)
         })
     }
 
@@ -256,6 +279,7 @@ impl DerivationReport {
             writeln!(o, "{} &= 0 \\\\", self.factored_equations[i].latex)?;
         }
         self.render_latex_constraints(o)?;
+        self.render_latex_state(o)?;
         writeln!(o, "h &= {}", self.energy_function.latex)?;
         writeln!(o, "\\end{{align*}}")
     }
@@ -411,7 +435,7 @@ impl DerivationReport {
             None => {
                 writeln!(
                     o,
-                    "  (the multipliers are solved numerically at a state; the system is too large for a closed form)"
+                    "  (too large for a closed form: the multipliers are solved numerically at a state given with --at)"
                 )?;
             }
         }
@@ -429,5 +453,53 @@ fn conservation_text(c: Conservation) -> &'static str {
         Conservation::ExplicitTime => "no (L depends explicitly on t)",
         Conservation::ForcesDoWork => "no (the generalized forces given do work; a conservative force belongs in V, where it would be counted)",
         Conservation::MovingConstraint => "no (a constraint depends on t: its force does work)",
+    }
+}
+
+impl DerivationReport {
+    /// The accelerations and multipliers at the state given (`derive --at`), as LaTeX rows.
+    fn render_latex_state(&self, o: &mut String) -> fmt::Result {
+        let Some(s) = &self.at else {
+            return Ok(());
+        };
+        for (label, a) in s.acceleration_labels.iter().zip(&s.accelerations) {
+            writeln!(o, "{} &= {a} && \\text{{(at the state)}} \\\\", label.latex)?;
+        }
+        for (j, l) in s.multipliers.iter().enumerate() {
+            writeln!(
+                o,
+                "\\lambda_{{{}}} &= {l} && \\text{{(at the state)}} \\\\",
+                j + 1
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The accelerations and multipliers at the state given, when there is one.
+    fn render_state(&self, style: Style, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+        let Some(s) = &self.at else {
+            return Ok(());
+        };
+        writeln!(
+            o,
+            "\n{}",
+            paint.heading(&format!("At the state (t = {})", s.t))
+        )?;
+        for (i, (q, qd)) in self.coordinate_labels.iter().enumerate() {
+            writeln!(
+                o,
+                "  {} = {}, {} = {}: {} = {}",
+                q.get(style),
+                s.positions[i],
+                qd.get(style),
+                s.velocities[i],
+                s.acceleration_labels[i].get(style),
+                s.accelerations[i]
+            )?;
+        }
+        for (j, l) in s.multipliers.iter().enumerate() {
+            writeln!(o, "  λ{} = {l}", j + 1)?;
+        }
+        Ok(())
     }
 }

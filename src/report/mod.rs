@@ -16,6 +16,7 @@
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers.
 
 pub mod derivation;
+pub mod derivation_at;
 pub mod formula;
 pub mod modes;
 pub mod problems;

@@ -29,5 +29,6 @@ mod session;
 mod soundness;
 mod steady13;
 mod symbolic;
+mod sympy13;
 mod syntax;
 mod tutor_session;
