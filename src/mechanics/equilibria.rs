@@ -400,19 +400,7 @@ impl System {
     /// Whether the candidate equilibrium `point` (one expression per coordinate, in the
     /// parameters) satisfies f(q₀, 0) = 0 at 20 random parameter samples.
     pub fn verify_equilibrium(&mut self, d: &Derivation, point: &[Id]) -> Result<bool, MechError> {
-        let coords = self.coordinate_syms();
-        let zero = self.pool.zero();
-        let mut map: FxHashMap<_, _> = FxHashMap::default();
-        for (&c, &v) in coords.iter().zip(point) {
-            map.insert((c, 0), v);
-            map.insert((c, 1), zero);
-            map.insert((c, 2), zero);
-        }
-        let g: Vec<Id> = d
-            .forcing
-            .iter()
-            .map(|&f| self.pool.substitute(f, &map))
-            .collect();
+        let g = self.forces_at_rest(d, point);
         Ok(g.iter().all(|&gi| self.is_zero(gi)))
     }
 }

@@ -198,7 +198,9 @@ fn quadratic_modes(lin: &Linear, q0: &[f64]) -> Result<Modes, MechError> {
     Ok(out)
 }
 
-fn empty(q0: &[f64]) -> Modes {
+/// No modes yet at `q0`, stability undecided (marginal): what an analysis fills in, and what
+/// is reported where there is nothing to analyse (a singular chart).
+pub fn empty(q0: &[f64]) -> Modes {
     Modes {
         point: q0.to_vec(),
         stability: Stability::Marginal,

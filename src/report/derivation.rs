@@ -451,7 +451,9 @@ fn conservation_text(c: Conservation) -> &'static str {
             "yes (∂L/∂t = 0 and the forces do no work: Σ Q q̇ = 0)"
         }
         Conservation::ExplicitTime => "no (L depends explicitly on t)",
-        Conservation::ForcesDoWork => "no (the generalized forces given do work; a conservative force belongs in V, where it would be counted)",
+        Conservation::ForcesDoWork => {
+            "no (the generalized forces given do work; a conservative force belongs in V, where it would be counted)"
+        }
         Conservation::MovingConstraint => "no (a constraint depends on t: its force does work)",
     }
 }

@@ -7,7 +7,7 @@ use std::fmt::{self, Write as _};
 use super::{EquilibriumModes, ModesError, ModesOptions, SearchCoverage, point};
 use crate::check::compare::fmt_value;
 use crate::expr::{Id, Style};
-use crate::mechanics::equilibria::{Coverage, Stability};
+use crate::mechanics::equilibria::Coverage;
 use crate::mechanics::modes::Modes;
 use crate::mechanics::{Derivation, MechError, System};
 use crate::report::Formula;
@@ -69,18 +69,7 @@ pub(super) fn search_coverage(c: &Coverage, labels: &[String]) -> SearchCoverage
 /// An equilibrium where the coordinates are singular: no modes (the chart's linearization
 /// says nothing), stability undecided.
 pub(super) fn chart_modes(q: &[f64]) -> Modes {
-    Modes {
-        point: q.to_vec(),
-        stability: Stability::Marginal,
-        frequencies: Vec::new(),
-        growth_rates: Vec::new(),
-        modes: Vec::new(),
-        gyroscopic: false,
-        damping: false,
-        damped: Vec::new(),
-        decay_rates: Vec::new(),
-        free_directions: Vec::new(),
-    }
+    crate::mechanics::modes::empty(q)
 }
 
 /// The equilibrium as `x arbitrary, θ = 0` (a coordinate free alone is arbitrary).
