@@ -53,6 +53,9 @@ pub enum DimensionFinding {
     Known(String),
     /// Some symbol has no dimension.
     Unknown,
+    /// Every symbol has a dimension, but a power with a symbolic exponent (`r^n`) has one
+    /// that depends on the exponent's value: it cannot be decided.
+    Undecided,
     /// Terms of different dimensions are added or equated.
     Inconsistent(String),
 }
@@ -110,6 +113,14 @@ pub fn reading(input: &str, opts: &ReadOptions) -> Result<Reading, ParseError> {
     let (coordinates, parameters) = names(&pool, &roots, &ctx);
     let dimension = (!declared.is_empty()).then(|| match dimension_of(&pool, &parsed, &dims) {
         Ok(Some(d)) => DimensionFinding::Known(d.to_string()),
+        Ok(None)
+            if coordinates
+                .iter()
+                .chain(&parameters)
+                .all(|n| declared.contains(n)) =>
+        {
+            DimensionFinding::Undecided
+        }
         Ok(None) => DimensionFinding::Unknown,
         Err(e) => DimensionFinding::Inconsistent(e.to_string()),
     });
@@ -244,6 +255,13 @@ impl Reading {
             }
             Some(DimensionFinding::Unknown) => {
                 writeln!(o, "{} unknown ({give_dimensions})", h("dimension:  "))?;
+            }
+            Some(DimensionFinding::Undecided) => {
+                writeln!(
+                    o,
+                    "{} cannot be decided: a power with a symbolic exponent has a dimension that depends on the exponent's value",
+                    h("dimension:  ")
+                )?;
             }
             Some(DimensionFinding::Inconsistent(e)) => {
                 writeln!(o, "{} {}", h("dimension:  "), paint.bad(e))?;

@@ -479,3 +479,22 @@ answer = "m*x'"
         "{found:?}"
     );
 }
+
+/// `read` says a symbolic exponent's dimension cannot be decided (it used to say "unknown:
+/// give every symbol a dimension", though every symbol had one).
+#[test]
+fn read_says_a_symbolic_exponent_cannot_be_decided() {
+    let (code, out, _) = crate::helpers::lagrange(&[
+        "read",
+        "k*r^n",
+        "--coords",
+        "r",
+        "--dims",
+        "r=L, k=M L^2 T^-2, n=1",
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("cannot be decided"), "{out}");
+    let (_, out, _) =
+        crate::helpers::lagrange(&["read", "k*r^n", "--coords", "r", "--dims", "r=L"]);
+    assert!(out.contains("unknown"), "{out}");
+}
