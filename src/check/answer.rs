@@ -330,6 +330,10 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     }
     v.diagnoses
         .extend(dimension_check(problem, part, p, s, reference));
+    if let Some(d) = rate_for_its_square(part, p, s, reference) {
+        v.diagnoses.push(d);
+        return v;
+    }
     let rel = match relate(&p.system, s, reference, &p.points, part.tolerance) {
         Ok(r) => r,
         Err(e) => {
@@ -357,6 +361,33 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
             .retain(|d| matches!(d.code, Code::UpToConstant | Code::EquivalentLagrangian));
     }
     v
+}
+
+/// A steady-motion part asking for the rate squared (φ'²) answered with the rate: the
+/// answer's square is the reference wherever the answer is defined (where the reference is
+/// negative, outside the physical range, the root is undefined, which is not the mistake).
+fn rate_for_its_square(part: &Part, p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
+    if part.kind != PartKind::SteadyMotion || !part.squared {
+        return None;
+    }
+    let square = p.system.pool.powi(s, 2);
+    let vals = values(&p.system, &[square, reference], &p.points).ok()?;
+    let mut agree = 0;
+    for v in vals.iter().flatten() {
+        if !v[0].is_finite() {
+            continue;
+        }
+        if !super::compare::close(v[0], v[1], 0.0, part.tolerance) {
+            return None;
+        }
+        agree += 1;
+    }
+    (agree > 0 && agree >= vals.len() / 2).then(|| {
+        Diagnosis::new(
+            Code::OmegaRoot,
+            "that is the rate, but this part asks for its square: square it",
+        )
+    })
 }
 
 /// Same Euler–Lagrange equations (up to a nonzero factor) for two Lagrangians.

@@ -487,12 +487,17 @@ fn wrong_factor(
     let pool = &p.system.pool;
     let (message, named) = match (wrong.as_slice(), lacking.as_slice()) {
         ([w], _) => {
+            // A power of a function (1/sin α, cos²θ) is judged by the function inside.
+            let base = match pool.node(*w) {
+                Node::Pow(b, _) => *b,
+                _ => *w,
+            };
             let why = if matches!(
-                pool.node(*w),
+                pool.node(base),
                 Node::Func(crate::expr::Func::Sin | crate::expr::Func::Cos, _)
             ) {
                 "check sin against cos, and the angle inside"
-            } else if matches!(pool.node(*w), Node::Func(..)) {
+            } else if matches!(pool.node(base), Node::Func(..)) {
                 "check the function and what is inside it"
             } else if is_state(p, *w) {
                 "check its power and what is inside"
