@@ -263,6 +263,9 @@ pub struct VerifiedProblem {
     pub parts: usize,
     /// What is wrong with it (empty: every part proved).
     pub findings: Vec<String>,
+    /// What verification could not decide and so did not check (not failures).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 /// Verifies every problem of `bank`.
@@ -292,10 +295,29 @@ pub fn verification(bank: &Bank) -> Verification {
                     id: p.id.clone(),
                     parts: p.parts.len(),
                     findings,
+                    notes: undecided_dimensions(p),
                 }
             })
             .collect(),
         failures: failures(bank),
+    }
+}
+
+/// The problem's Lagrangian has a dimension that cannot be decided (a power with a symbolic
+/// exponent, `k·r^n`): said, since the dimension check then proves nothing about it.
+fn undecided_dimensions(p: &crate::problem::Problem) -> Vec<String> {
+    let declared = p
+        .system
+        .coordinates
+        .iter()
+        .map(|c| c.name.as_str())
+        .chain(p.system.parameters.iter().map(|q| q.name.as_str()))
+        .all(|n| p.dims.get(n).is_some());
+    match p.system.pool.dimension(p.system.lagrangian, &p.dims) {
+        Ok(None) if declared => vec![
+            "the dimension of L cannot be decided (a power with a symbolic exponent has one that depends on the exponent's value): it was not checked".into(),
+        ],
+        _ => Vec::new(),
     }
 }
 
@@ -325,6 +347,9 @@ impl Verification {
                     visible(&p.id),
                     p.parts
                 )?;
+                for n in &p.notes {
+                    writeln!(o, "  note: {n}")?;
+                }
             } else {
                 writeln!(o, "{} {}", paint.bad("✗"), visible(&p.id))?;
                 for f in &p.findings {

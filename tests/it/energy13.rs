@@ -498,3 +498,19 @@ fn read_says_a_symbolic_exponent_cannot_be_decided() {
         crate::helpers::lagrange(&["read", "k*r^n", "--coords", "r", "--dims", "r=L"]);
     assert!(out.contains("unknown"), "{out}");
 }
+
+/// A problem file whose L has a symbolic exponent (`k*r^n`) verifies, and says that the
+/// dimension of L could not be decided rather than passing silently or refusing.
+#[test]
+fn verify_says_a_symbolic_exponent_was_not_checked() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/problems13/power-law.toml"
+    );
+    let (code, out, err) = crate::helpers::lagrange(&["problems", "verify", path]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("note: the dimension of L cannot be decided"),
+        "{out}"
+    );
+}
