@@ -592,8 +592,8 @@ fn diagnose_expression(
         Some(d) => mistakes.push(Mistake::Found(d)),
         None => mistakes.extend(term_mistakes(p, s, reference)),
     }
-    // The one call site for the literature's detectors (`super::misconception`, issue 12):
-    // they add to `mistakes` here, after the term-level search and before the limits.
+    // A limit is the last resort: the literature's detectors (`super::misconception`) run
+    // after the whole diagnosis, in the caller, and name the principle when one applies.
     if mistakes.is_empty()
         && let Some(d) = limits::right_in_limit(p, s, reference)
     {

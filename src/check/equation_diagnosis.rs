@@ -168,8 +168,8 @@ pub(super) fn diagnose_equation(
         v.diagnoses.push(d);
         return;
     }
-    // The one call site for the literature's detectors (`super::misconception`, issue 12):
-    // they push to `v.diagnoses` here, after the term-level search and before the limits.
+    // A limit is the last resort: the literature's detectors (`super::misconception`) run
+    // after the whole diagnosis, in the caller, and name the principle when one applies.
     if let Some(d) = term {
         v.diagnoses.push(d);
         return;
