@@ -592,8 +592,8 @@ fn diagnose_expression(
         Some(d) => mistakes.push(Mistake::Found(d)),
         None => mistakes.extend(term_mistakes(p, s, reference)),
     }
-    // A limit is the last resort: the literature's detectors (`super::misconception`) run
-    // after the whole diagnosis, in the caller, and name the principle when one applies.
+    // A limit is the last resort; the literature's detectors (`super::misconception`) run
+    // once this whole diagnosis is done, and name the principle when one applies.
     if mistakes.is_empty()
         && let Some(d) = limits::right_in_limit(p, s, reference)
     {

@@ -168,8 +168,8 @@ pub(super) fn diagnose_equation(
         v.diagnoses.push(d);
         return;
     }
-    // A limit is the last resort: the literature's detectors (`super::misconception`) run
-    // after the whole diagnosis, in the caller, and name the principle when one applies.
+    // A limit is the last resort; the literature's detectors (`super::misconception`) run
+    // once this whole diagnosis is done, and name the principle when one applies.
     if let Some(d) = term {
         v.diagnoses.push(d);
         return;
