@@ -222,6 +222,18 @@ impl Work {
     }
 }
 
+impl Work {
+    /// The cubic Hermite data of an accepted step (no extra evaluations): y, ynew, h·k₁, h·k₁₃.
+    fn hermite(&mut self, y: &[f64], h: f64) {
+        for i in 0..self.n {
+            self.rcont[0][i] = y[i];
+            self.rcont[1][i] = self.ynew[i];
+            self.rcont[2][i] = h * self.k[1][i];
+            self.rcont[3][i] = h * self.k[13][i];
+        }
+    }
+}
+
 /// Hairer's initial step: an explicit Euler step sized from |y|/|f|, then the second
 /// derivative estimated from it, so that h⁸ · max(|f|, |y''|) ≈ 0.01.
 fn initial_step(
@@ -261,6 +273,20 @@ fn initial_step(
     Ok((100.0 * h).min(h1).min(tol.max_step))
 }
 
+/// The interpolant `tol` asks for, once its settings are checked.
+fn dense_kind(tol: &Tolerances) -> Result<Dense, SimError> {
+    if !(tol.rtol > 0.0 && tol.atol >= 0.0 && tol.max_step > 0.0) {
+        return Err(SimError::Invalid(
+            "rtol must be positive, atol non-negative and the largest step positive".into(),
+        ));
+    }
+    Ok(if tol.dense {
+        Dense::Dop853
+    } else {
+        Dense::Hermite
+    })
+}
+
 /// Integrates y' = F(t, y) from (t0, y0) to t_end with DOP853 under `tol`.
 pub fn dop853(
     ode: &mut dyn Ode,
@@ -270,13 +296,8 @@ pub fn dop853(
     tol: &Tolerances,
 ) -> Result<Trajectory, SimError> {
     check_start(ode, t0, y0, t_end)?;
-    if !(tol.rtol > 0.0 && tol.atol >= 0.0 && tol.max_step > 0.0) {
-        return Err(SimError::Invalid(
-            "rtol must be positive, atol non-negative and the largest step positive".into(),
-        ));
-    }
+    let mut traj = Trajectory::new(Method::Dop853, dense_kind(tol)?, t0, y0);
     let mut w = Work::new(y0.len());
-    let mut traj = Trajectory::new(Method::Dop853, Dense::Dop853, t0, y0);
     let mut y = y0.to_vec();
     let mut t = t0;
     w.evals += 1;
@@ -313,8 +334,14 @@ pub fn dop853(
         w.evals += 1;
         let (k13, ynew) = (&mut w.k[13], &w.ynew);
         ode.eval(t_new, ynew, k13)?;
-        w.dense(ode, (t, &y, h))?;
-        traj.push_step(t, h, w.rcont.iter().map(|v| v.as_slice()), &w.ynew);
+        if tol.dense {
+            w.dense(ode, (t, &y, h))?;
+        } else {
+            w.hermite(&y, h);
+        }
+        let width = if tol.dense { 8 } else { 4 };
+        let coef = w.rcont.iter().take(width).map(|v| v.as_slice());
+        traj.push_step(t, h, coef, &w.ynew);
         traj.stats.accepted += 1;
         y.copy_from_slice(&w.ynew);
         w.k.swap(1, 13);

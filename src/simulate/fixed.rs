@@ -20,6 +20,10 @@ struct Work {
     f0: Vec<f64>,
     f1: Vec<f64>,
     ynew: Vec<f64>,
+    /// h·F at the end of the step (interpolation data).
+    d1: Vec<f64>,
+    /// Whether k[0], k[1] hold the previous Gauss step's stage slopes.
+    have_stages: bool,
     evals: usize,
 }
 
@@ -32,6 +36,8 @@ impl Work {
             f0: z(),
             f1: z(),
             ynew: z(),
+            d1: z(),
+            have_stages: false,
             evals: 0,
         }
     }
@@ -65,13 +71,26 @@ impl Work {
     }
 
     /// One 2-stage Gauss–Legendre step: stage slopes K₁, K₂ (in k[0], k[1]) by fixed-point
-    /// iteration from F(t, y), then y + h (K₁ + K₂)/2.
+    /// iteration, then y + h (K₁ + K₂)/2. The first guess extrapolates the previous step's
+    /// collocation polynomial (its derivative is the line through (c₁, K₁), (c₂, K₂)), or is
+    /// F(t, y) on the first step.
     fn gauss(&mut self, ode: &mut dyn Ode, t: f64, y: &[f64], h: f64) -> Result<(), SimError> {
         let r = 3f64.sqrt() / 6.0;
         let (c1, c2) = (0.5 - r, 0.5 + r);
         let (a11, a12, a21, a22) = (0.25, 0.25 - r, 0.25 + r, 0.25);
-        self.k[0].copy_from_slice(&self.f0);
-        self.k[1].copy_from_slice(&self.f0);
+        if self.have_stages {
+            let [k0, k1, ..] = &mut self.k;
+            let (w1, w2) = (1.0 / (c2 - c1), (1.0 + c2 - c1) / (c2 - c1));
+            for (a, b) in k0.iter_mut().zip(k1.iter_mut()) {
+                let (p, q) = (*a, *b);
+                *a = p + w1 * (q - p);
+                *b = p + w2 * (q - p);
+            }
+        } else {
+            self.k[0].copy_from_slice(&self.f0);
+            self.k[1].copy_from_slice(&self.f0);
+        }
+        self.have_stages = true;
         let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
         for _ in 0..GAUSS_ITERATIONS {
             let [k0, k1, k2, k3] = &mut self.k;
@@ -134,9 +153,9 @@ fn integrate(
         ode.eval(t_next, &w.ynew, &mut w.f1)?;
         for i in 0..y.len() {
             w.tmp[i] = h * w.f0[i];
-            w.k[0][i] = h * w.f1[i];
+            w.d1[i] = h * w.f1[i];
         }
-        let coef = [y.as_slice(), &w.ynew, &w.tmp, &w.k[0]];
+        let coef = [y.as_slice(), &w.ynew, &w.tmp, &w.d1];
         traj.push_step(t, t_next - t, coef, &w.ynew);
         y.copy_from_slice(&w.ynew);
         std::mem::swap(&mut w.f0, &mut w.f1);

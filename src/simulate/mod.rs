@@ -111,16 +111,21 @@ pub struct Tolerances {
     pub max_step: f64,
     /// The largest number of steps (accepted and rejected).
     pub max_steps: usize,
+    /// DOP853's 7th-degree dense output (3 more evaluations per step); without it the
+    /// trajectory interpolates each step by a cubic Hermite polynomial (as SciPy without
+    /// `dense_output`: 12 evaluations per step).
+    pub dense: bool,
 }
 
 impl Tolerances {
-    /// rtol and atol, no step limit, at most a million steps.
+    /// rtol and atol, no step limit, at most a million steps, dense output.
     pub fn new(rtol: f64, atol: f64) -> Self {
         Tolerances {
             rtol,
             atol,
             max_step: f64::INFINITY,
             max_steps: 1_000_000,
+            dense: true,
         }
     }
 }

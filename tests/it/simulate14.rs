@@ -315,3 +315,36 @@ fn a_mass_matrix_that_becomes_singular_is_reported_with_its_time() {
             .starts_with("the mass matrix became singular at t = 1")
     );
 }
+
+#[test]
+fn without_dense_output_dop853_takes_the_same_steps_with_twelve_evaluations_each() {
+    let mut rhs = double_pendulum();
+    let y0 = [2.0, 2.0, 0.0, 0.0];
+    let mut tol = Tolerances::new(1e-10, 1e-10);
+    let dense = dop853(&mut rhs, 0.0, &y0, 20.0, &tol).unwrap();
+    tol.dense = false;
+    let lean = dop853(&mut rhs, 0.0, &y0, 20.0, &tol).unwrap();
+    assert_eq!(lean.y_final, dense.y_final);
+    let s = lean.stats;
+    assert_eq!(s.rhs_evals, 2 + 12 * s.accepted + 11 * s.rejected);
+    // The Hermite interpolant is cruder than the dense output, but continuous and close.
+    let (a, b) = (lean.at(3.3).unwrap(), dense.at(3.3).unwrap());
+    assert!((a[0] - b[0]).abs() < 1e-4, "{a:?} {b:?}");
+}
+
+#[test]
+fn gauss_keeps_the_double_pendulum_energy_bounded() {
+    let mut rhs = double_pendulum();
+    let (y0, dt, t_end) = ([0.5, 0.5, 0.0, 0.0], 0.02, 200.0);
+    let g = gauss(&mut rhs, 0.0, &y0, t_end, dt).unwrap();
+    let r = rk4(&mut rhs, 0.0, &y0, t_end, dt).unwrap();
+    let g_all = max_rel_energy_error(&mut rhs, &g, 0.0);
+    let g_late = max_rel_energy_error(&mut rhs, &g, 0.8 * t_end);
+    let r_all = max_rel_energy_error(&mut rhs, &r, 0.0);
+    eprintln!(
+        "double pendulum dt = {dt}, {t_end} s: gauss max {g_all:.2e} (last fifth {g_late:.2e}), \
+         rk4 max {r_all:.2e}; gauss {:?}",
+        g.stats
+    );
+    assert!(g_late <= g_all * 1.0001 && r_all > 5.0 * g_all);
+}
