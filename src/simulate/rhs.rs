@@ -138,6 +138,23 @@ fn solve_in_place(n: usize, m: &mut [f64], f: &mut [f64]) -> Option<()> {
     if !(scale > 0.0 && scale.is_finite()) {
         return None;
     }
+    if n == 2 {
+        // Cramer's rule, singular when |det| is rounding next to the products forming it.
+        let det = m[0] * m[3] - m[1] * m[2];
+        if det.abs()
+            <= SINGULAR
+                * (m[0] * m[3])
+                    .abs()
+                    .max((m[1] * m[2]).abs())
+                    .max(scale * scale)
+        {
+            return None;
+        }
+        let (f0, f1) = (f[0], f[1]);
+        f[0] = (f0 * m[3] - m[1] * f1) / det;
+        f[1] = (m[0] * f1 - m[2] * f0) / det;
+        return Some(());
+    }
     for k in 0..n {
         let p = (k..n).max_by(|&a, &b| m[a * n + k].abs().total_cmp(&m[b * n + k].abs()))?;
         if m[p * n + k].abs() <= SINGULAR * scale {
