@@ -5,6 +5,7 @@
 //!   simplify, print, dimensions;
 //! - [`mechanics`]: Euler–Lagrange equations, accelerations, conserved quantities,
 //!   constraint forces, equilibria and normal modes;
+//! - [`simulate`]: numerical integration of the equations of motion (DOP853, RK4, Gauss);
 //! - [`problem`]: problems and parts as data (what the bank builds and the checker reads);
 //! - [`check`]: numeric equivalence of answers (sampling, relations, accelerations);
 //! - [`bank`]: the problem format, loading, verification and the embedded bank;
@@ -23,6 +24,7 @@ const LAYERS: &[&str] = &[
     "expr",
     "diagnostic",
     "mechanics",
+    "simulate",
     "problem",
     "check",
     "bank",
@@ -40,6 +42,7 @@ pub mod expr;
 pub mod mechanics;
 pub mod problem;
 pub mod report;
+pub mod simulate;
 pub mod tutor;
 
 // What a library user needs, in one place (the modules hold the rest).

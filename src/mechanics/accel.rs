@@ -49,6 +49,32 @@ impl Dynamics {
         Ok((m, f))
     }
 
+    /// Number of coordinates.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// M (row-major, n·n) and f (n) at `point` into the caller's buffers, without
+    /// allocating: the hot path of an ODE right-hand side. `Err` when the program is
+    /// undefined there.
+    pub fn mass_and_forcing_into(
+        &self,
+        point: &[f64],
+        scratch: &mut [f64],
+        m: &mut [f64],
+        f: &mut [f64],
+    ) -> Result<(), crate::expr::Undefined> {
+        let n = self.n;
+        self.program.run(point, scratch)?;
+        for (k, v) in m.iter_mut().enumerate().take(n * n) {
+            *v = self.program.output(k, scratch);
+        }
+        for (r, v) in f.iter_mut().enumerate().take(n) {
+            *v = self.program.output(n * n + r, scratch);
+        }
+        Ok(())
+    }
+
     /// A scratch buffer for [`accelerations`](Self::accelerations).
     pub fn scratch(&self) -> Vec<f64> {
         self.program.scratch()

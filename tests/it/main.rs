@@ -26,6 +26,7 @@ mod resources;
 mod rigid13;
 mod scale;
 mod session;
+mod simulate14;
 mod soundness;
 mod steady13;
 mod symbolic;

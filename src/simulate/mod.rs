@@ -1,0 +1,157 @@
+//! Simulation: the equations of motion of a [`System`](crate::mechanics::System) as a
+//! first-order system y' = F(t, y), y = (q, q'), and the integrators that advance it.
+//!
+//! - [`Rhs`]: M and f compiled once; each call solves M q'' = f in reused buffers;
+//! - [`dop853`]: adaptive Dormand–Prince 8(5,3) (Hairer's DOP853 error control, dense output);
+//! - [`rk4`]: the classical fixed-step Runge–Kutta method;
+//! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic).
+//!
+//! Every integrator returns a [`Trajectory`]: step counts, the final state and a continuous
+//! solution that can be sampled anywhere in the interval. No printing, files or threads.
+//! The methods are written here (no ODE crate: none of them shares the project's nalgebra
+//! 0.35 without a second copy, and these need no linear algebra beyond n × n solves).
+
+mod dop853;
+mod dop853_tableau;
+mod fixed;
+mod rhs;
+mod trajectory;
+
+pub use dop853::dop853;
+pub use fixed::{gauss, rk4};
+pub use rhs::Rhs;
+pub use trajectory::{Method, Stats, Trajectory};
+
+use crate::mechanics::MechError;
+
+/// What can go wrong setting up or running a simulation.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// Constraints are not eliminated by the simulator yet.
+    #[error(
+        "the system has {count} constraint(s); simulation needs them eliminated (choose independent coordinates)"
+    )]
+    Constraints { count: usize },
+    /// A parameter of the system has no value.
+    #[error("no value was given for the parameter `{name}`")]
+    MissingParameter { name: String },
+    /// A value was given for something that is not a parameter.
+    #[error("`{name}` is not a parameter of the system (its parameters: {known})")]
+    UnknownParameter { name: String, known: String },
+    /// The initial state has the wrong length.
+    #[error("the initial state has {got} values where {want} were expected (q then q')")]
+    StateLength { got: usize, want: usize },
+    /// A tolerance, step or interval that cannot work.
+    #[error("invalid setting: {0}")]
+    Invalid(String),
+    /// M became singular along the motion.
+    #[error("the mass matrix became singular at t = {t}")]
+    Singular { t: f64 },
+    /// The solution or the right-hand side stopped being finite.
+    #[error("the solution diverges near t = {t}")]
+    Diverges { t: f64 },
+    /// The adaptive step fell below rounding of t.
+    #[error("the step size underflowed at t = {t} (the problem is too stiff or singular there)")]
+    StepUnderflow { t: f64 },
+    /// More steps than allowed.
+    #[error("more than {max} steps were needed before t = {t}")]
+    TooManySteps { max: usize, t: f64 },
+    /// The implicit stage equations did not converge.
+    #[error("the implicit Gauss step did not converge at t = {t} (try a smaller step)")]
+    NoConvergence { t: f64 },
+    /// Building the equations failed.
+    #[error(transparent)]
+    Mechanics(#[from] MechError),
+}
+
+/// A first-order system y' = F(t, y) of fixed dimension.
+pub trait Ode {
+    /// The dimension of y.
+    fn dim(&self) -> usize;
+    /// Writes F(t, y) into `dy`.
+    fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError>;
+}
+
+/// A closure as an [`Ode`] (tests, hand-coded right-hand sides).
+pub struct FnOde<F> {
+    dim: usize,
+    f: F,
+}
+
+impl<F: FnMut(f64, &[f64], &mut [f64])> FnOde<F> {
+    /// The system of dimension `dim` whose F is `f`.
+    pub fn new(dim: usize, f: F) -> Self {
+        FnOde { dim, f }
+    }
+}
+
+impl<F: FnMut(f64, &[f64], &mut [f64])> Ode for FnOde<F> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+
+    fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        (self.f)(t, y, dy);
+        if dy.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(SimError::Diverges { t })
+        }
+    }
+}
+
+/// Error control and limits of [`dop853`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerances {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// The largest step (∞ for none).
+    pub max_step: f64,
+    /// The largest number of steps (accepted and rejected).
+    pub max_steps: usize,
+    /// DOP853's 7th-degree dense output (3 more evaluations per step); without it the
+    /// trajectory interpolates each step by a cubic Hermite polynomial (as SciPy without
+    /// `dense_output`: 12 evaluations per step).
+    pub dense: bool,
+}
+
+impl Tolerances {
+    /// rtol and atol, no step limit, at most a million steps, dense output.
+    pub fn new(rtol: f64, atol: f64) -> Self {
+        Tolerances {
+            rtol,
+            atol,
+            max_step: f64::INFINITY,
+            max_steps: 1_000_000,
+            dense: true,
+        }
+    }
+}
+
+impl Default for Tolerances {
+    /// rtol = 1e-8, atol = 1e-10.
+    fn default() -> Self {
+        Tolerances::new(1e-8, 1e-10)
+    }
+}
+
+/// Checks the interval and initial state shared by every method.
+fn check_start(ode: &dyn Ode, t0: f64, y0: &[f64], t_end: f64) -> Result<(), SimError> {
+    if y0.len() != ode.dim() {
+        return Err(SimError::StateLength {
+            got: y0.len(),
+            want: ode.dim(),
+        });
+    }
+    if !(t0.is_finite() && t_end.is_finite() && t_end > t0) {
+        return Err(SimError::Invalid(format!(
+            "the end time {t_end} must be finite and after the start {t0}"
+        )));
+    }
+    if !y0.iter().all(|v| v.is_finite()) {
+        return Err(SimError::Invalid("the initial state is not finite".into()));
+    }
+    Ok(())
+}

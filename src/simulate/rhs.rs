@@ -1,0 +1,226 @@
+//! The right-hand side y' = F(t, y) of a system, y = (q, q'): M and f compiled once with the
+//! parameter values fixed; each call loads the state into the sample point and solves
+//! M q'' = f by Gaussian elimination with partial pivoting in reused buffers (no allocation).
+
+use super::{Ode, SimError};
+use crate::expr::Program;
+use crate::mechanics::accel::Dynamics;
+use crate::mechanics::{Layout, System};
+
+/// A pivot below this fraction of the largest entry of M makes M singular.
+const SINGULAR: f64 = 1e-13;
+
+/// The compiled equations of motion of one system at fixed parameter values.
+#[derive(Clone, Debug)]
+pub struct Rhs {
+    dynamics: Dynamics,
+    layout: Layout,
+    names: Vec<String>,
+    /// The sample point: t, q, q', q'' and the parameters (fixed).
+    point: Vec<f64>,
+    scratch: Vec<f64>,
+    m: Vec<f64>,
+    f: Vec<f64>,
+    energy: Program,
+    energy_scratch: Vec<f64>,
+}
+
+impl Rhs {
+    /// Derives `sys`, compiles M, f and the energy function h, with every parameter given a
+    /// value in `params` (by name). Systems with constraints are refused.
+    pub fn new(sys: &mut System, params: &[(&str, f64)]) -> Result<Rhs, SimError> {
+        if !sys.constraints.is_empty() {
+            return Err(SimError::Constraints {
+                count: sys.constraints.len(),
+            });
+        }
+        let values = parameter_values(sys, params)?;
+        let d = sys.derive()?;
+        let dynamics = Dynamics::new(sys, &d)?;
+        let h = sys.energy(&d).function;
+        let energy = sys.compile(&[h])?;
+        let layout = sys.state_layout();
+        let n = sys.n();
+        let mut point = vec![0.0; layout.params_start()];
+        point.extend_from_slice(&values);
+        Ok(Rhs {
+            energy_scratch: energy.scratch(),
+            energy,
+            scratch: dynamics.scratch(),
+            dynamics,
+            layout,
+            names: sys.coordinates.iter().map(|c| c.name.clone()).collect(),
+            point,
+            m: vec![0.0; n * n],
+            f: vec![0.0; n],
+        })
+    }
+
+    /// The coordinate names, in the order of q in y.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Where q and q' sit in y.
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// The energy function h = Σ qᵢ' ∂L/∂qᵢ' − L at (t, y).
+    pub fn energy(&mut self, t: f64, y: &[f64]) -> Result<f64, SimError> {
+        self.layout.load_phase(t, y, &mut self.point);
+        self.energy
+            .run(&self.point, &mut self.energy_scratch)
+            .map_err(|_| SimError::Diverges { t })?;
+        Ok(self.energy.output(0, &self.energy_scratch))
+    }
+}
+
+impl Ode for Rhs {
+    fn dim(&self) -> usize {
+        self.layout.phase_len()
+    }
+
+    fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        let n = self.layout.coordinates();
+        if !y.iter().all(|v| v.is_finite()) {
+            return Err(SimError::Diverges { t });
+        }
+        self.layout.load_phase(t, y, &mut self.point);
+        self.dynamics
+            .mass_and_forcing_into(&self.point, &mut self.scratch, &mut self.m, &mut self.f)
+            .map_err(|_| SimError::Diverges { t })?;
+        solve_in_place(n, &mut self.m, &mut self.f).ok_or(SimError::Singular { t })?;
+        for i in 0..n {
+            dy[self.layout.phase_q(i)] = y[self.layout.phase_qdot(i)];
+            dy[self.layout.phase_qdot(i)] = self.f[i];
+        }
+        Ok(())
+    }
+}
+
+/// The parameter values in the system's order, every one given exactly once.
+fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, SimError> {
+    let known = || {
+        sys.parameters
+            .iter()
+            .map(|p| p.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if let Some((name, _)) = params
+        .iter()
+        .find(|(name, _)| !sys.parameters.iter().any(|p| p.name == *name))
+    {
+        return Err(SimError::UnknownParameter {
+            name: (*name).to_string(),
+            known: known(),
+        });
+    }
+    sys.parameters
+        .iter()
+        .map(|p| {
+            params
+                .iter()
+                .find(|(name, _)| *name == p.name)
+                .map(|&(_, v)| v)
+                .ok_or_else(|| SimError::MissingParameter {
+                    name: p.name.clone(),
+                })
+        })
+        .collect()
+}
+
+/// Solves M x = f for the row-major n × n `m` in place (x overwrites `f`) by Gaussian
+/// elimination with partial pivoting; `None` when M is singular relative to its largest entry.
+fn solve_in_place(n: usize, m: &mut [f64], f: &mut [f64]) -> Option<()> {
+    let scale = m.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    if n == 2 {
+        // Cramer's rule, singular when |det| is rounding next to the products forming it.
+        let det = m[0] * m[3] - m[1] * m[2];
+        if det.abs()
+            <= SINGULAR
+                * (m[0] * m[3])
+                    .abs()
+                    .max((m[1] * m[2]).abs())
+                    .max(scale * scale)
+        {
+            return None;
+        }
+        let (f0, f1) = (f[0], f[1]);
+        f[0] = (f0 * m[3] - m[1] * f1) / det;
+        f[1] = (m[0] * f1 - m[2] * f0) / det;
+        return Some(());
+    }
+    for k in 0..n {
+        let p = (k..n).max_by(|&a, &b| m[a * n + k].abs().total_cmp(&m[b * n + k].abs()))?;
+        if m[p * n + k].abs() <= SINGULAR * scale {
+            return None;
+        }
+        if p != k {
+            for c in 0..n {
+                m.swap(k * n + c, p * n + c);
+            }
+            f.swap(k, p);
+        }
+        let pivot = m[k * n + k];
+        for r in k + 1..n {
+            let factor = m[r * n + k] / pivot;
+            if factor != 0.0 {
+                for c in k..n {
+                    m[r * n + c] -= factor * m[k * n + c];
+                }
+                f[r] -= factor * f[k];
+            }
+        }
+    }
+    for k in (0..n).rev() {
+        let mut s = f[k];
+        for c in k + 1..n {
+            s -= m[k * n + c] * f[c];
+        }
+        f[k] = s / m[k * n + k];
+    }
+    Some(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pivoting_solve_matches_a_hand_solution() {
+        // [[0, 2], [3, 1]] x = [4, 5] → x = (1, 2).
+        let mut m = [0.0, 2.0, 3.0, 1.0];
+        let mut f = [4.0, 5.0];
+        assert!(solve_in_place(2, &mut m, &mut f).is_some());
+        assert!((f[0] - 1.0).abs() < 1e-15 && (f[1] - 2.0).abs() < 1e-15);
+        let mut m = [1.0, 2.0, 2.0, 4.0];
+        assert!(solve_in_place(2, &mut m, &mut [1.0, 1.0]).is_none());
+    }
+
+    #[test]
+    fn parameters_are_checked_by_name() {
+        let mut sys = System::from_lagrangian("m*x'^2/2 - k*x^2/2", &["x"]).unwrap();
+        let e = Rhs::new(&mut sys, &[("m", 1.0)]).unwrap_err();
+        assert_eq!(e, SimError::MissingParameter { name: "k".into() });
+        let e = Rhs::new(&mut sys, &[("m", 1.0), ("k", 1.0), ("c", 2.0)]).unwrap_err();
+        assert!(matches!(e, SimError::UnknownParameter { .. }));
+        let mut rhs = Rhs::new(&mut sys, &[("m", 2.0), ("k", 8.0)]).unwrap();
+        let mut dy = [0.0; 2];
+        rhs.eval(0.0, &[1.0, 3.0], &mut dy).unwrap();
+        assert_eq!(dy, [3.0, -4.0]);
+        assert!((rhs.energy(0.0, &[1.0, 3.0]).unwrap() - 13.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn constraints_are_refused() {
+        let mut sys = System::from_lagrangian("m*(x'^2 + y'^2)/2", &["x", "y"]).unwrap();
+        sys.add_constraint("x - y").unwrap();
+        let e = Rhs::new(&mut sys, &[("m", 1.0)]).unwrap_err();
+        assert_eq!(e, SimError::Constraints { count: 1 });
+    }
+}
