@@ -8,6 +8,7 @@ mod grade;
 mod modes;
 pub(crate) mod problems;
 mod read;
+mod simulate;
 pub(crate) mod system_args;
 
 use std::io::IsTerminal;
@@ -52,6 +53,8 @@ enum Command {
     /// List, show and verify the problems of the bank.
     #[command(subcommand)]
     Problems(problems::ProblemsCommand),
+    /// Integrate a system's motion: a summary, states at asked times, JSON or a CSV grid.
+    Simulate(simulate::SimulateArgs),
     /// Grade a class from a CSV file: results, a gradebook, a summary of the mistakes.
     Grade(grade::GradeArgs),
     /// Practise the problems: answers checked as you type them, hints, progress kept.
@@ -96,6 +99,7 @@ pub fn run() -> anyhow::Result<ExitCode> {
         Command::Derive(args) => derive::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Check(args) => check::run(&args, cli.problems.as_deref(), color, &mut out),
+        Command::Simulate(args) => simulate::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
         Command::Grade(args) => return grade::run(&args, cli.problems.as_deref()),
         Command::Repl(args) => {

@@ -13,7 +13,8 @@
 //! - [`read`]: [`Reading`], how an input is understood (`lagrange read`);
 //! - [`derivation`]: [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
 //! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
-//! - [`problems`]: the bank's list, one problem's sheet and the verification of answers.
+//! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
+//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`).
 
 pub mod derivation;
 pub mod derivation_at;
@@ -21,6 +22,7 @@ pub mod formula;
 pub mod modes;
 pub mod problems;
 pub mod read;
+pub mod simulation;
 pub mod steady;
 
 pub use derivation::{DerivationReport, derivation};
@@ -31,6 +33,7 @@ pub use problems::{
     verification,
 };
 pub use read::{ReadOptions, Reading, reading};
+pub use simulation::{SimulationError, SimulationOptions, SimulationReport, simulation};
 
 /// Runs a renderer that writes into a `String`, and returns the text: the one place where a
 /// renderer's [`std::fmt::Result`] is turned into text. Writing into a `String` never fails, and

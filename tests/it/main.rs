@@ -27,6 +27,7 @@ mod rigid13;
 mod scale;
 mod session;
 mod simulate14;
+mod simulate_cli;
 mod soundness;
 mod steady13;
 mod symbolic;

@@ -1,0 +1,174 @@
+//! `lagrange simulate`: integrates a system's motion from given initial values and prints a
+//! summary (work, energy drift, states at asked times and at the end) or JSON; `--out`
+//! writes the even grid as CSV (atomically: a temporary file, then a rename).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+
+use super::system_args::{CliError, SystemArgs, Terminal, report};
+use lagrange::diagnostic::{Diagnostic, render_plain};
+use lagrange::report::modes::assignments;
+use lagrange::report::{SimulationError, SimulationOptions};
+use lagrange::simulate::{Method, SimError};
+
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    system: SystemArgs,
+    /// Parameter values, e.g. "m1=1, m2=1, l1=1, l2=1, g=9.81".
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
+    params: String,
+    /// Initial values, e.g. "theta1=2, theta2=2, theta1'=0"; velocities not given start at 0.
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
+    init: String,
+    /// The end time (the motion starts at t = 0).
+    #[arg(long, allow_hyphen_values = true)]
+    t_end: f64,
+    /// Relative tolerance of dop853.
+    #[arg(long, default_value_t = 1e-10)]
+    rtol: f64,
+    /// Absolute tolerance of dop853.
+    #[arg(long, default_value_t = 1e-10)]
+    atol: f64,
+    /// The integrator.
+    #[arg(long, value_enum, default_value_t = MethodArg::Dop853)]
+    method: MethodArg,
+    /// The fixed step of rk4 and gauss.
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Times at which to print the state, e.g. "10, 20".
+    #[arg(long, default_value = "")]
+    report_at: String,
+    /// Write t, every q, every q' and h on an even grid to this CSV file.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Points of the even grid (energy drift and --out).
+    #[arg(long, default_value_t = 1000)]
+    samples: usize,
+    /// JSON output.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum MethodArg {
+    Dop853,
+    Rk4,
+    Gauss,
+}
+
+pub fn run(
+    args: &SimulateArgs,
+    problems: Option<&Path>,
+    color: bool,
+    out: &mut String,
+) -> anyhow::Result<ExitCode> {
+    let opts = match options(args) {
+        Ok(o) => o,
+        Err(e) => return Ok(report(&e, color)),
+    };
+    let mut sys = match args.system.build(problems) {
+        Ok(s) => s,
+        Err(e) => return Ok(report(&e, color)),
+    };
+    let report_ = match lagrange::report::simulation(&mut sys, &opts) {
+        Ok(r) => r,
+        Err(e) => return Ok(failure(&e)),
+    };
+    if let Some(path) = &args.out
+        && let Err(e) = write_atomic(path, report_.csv().as_bytes())
+    {
+        let message = format!("--out {}: cannot write the file: {e}", path.display());
+        return Ok(report(&CliError::Usage(message), color));
+    }
+    if args.json {
+        out.push_str(&serde_json::to_string_pretty(&report_)?);
+        out.push('\n');
+    } else {
+        out.push_str(&report_.render(&Terminal));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The library's options from the flags.
+fn options(args: &SimulateArgs) -> Result<SimulationOptions, CliError> {
+    Ok(SimulationOptions {
+        params: numbers("--params", &args.params)?,
+        init: numbers("--init", &args.init)?,
+        t_end: args.t_end,
+        method: match args.method {
+            MethodArg::Dop853 => Method::Dop853,
+            MethodArg::Rk4 => Method::Rk4,
+            MethodArg::Gauss => Method::Gauss,
+        },
+        rtol: args.rtol,
+        atol: args.atol,
+        dt: args.dt,
+        report_at: args
+            .report_at
+            .split(',')
+            .map(str::trim)
+            .filter(|x| !x.is_empty())
+            .map(|x| {
+                x.parse::<f64>()
+                    .map_err(|_| CliError::Usage(format!("--report-at: `{x}` is not a number")))
+            })
+            .collect::<Result<_, _>>()?,
+        samples: args.samples,
+    })
+}
+
+/// "a=1, b=2" as names and numbers.
+fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
+    let pairs = assignments(text).map_err(|e| CliError::Usage(format!("{flag}: {e}")))?;
+    pairs
+        .into_iter()
+        .map(|(name, value)| match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok((name, v)),
+            _ => Err(CliError::Usage(format!(
+                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
+            ))),
+        })
+        .collect()
+}
+
+/// Prints a simulation error; exit 1 when the motion could not be followed, 2 for input.
+fn failure(e: &SimulationError) -> ExitCode {
+    let (code, help) = match e {
+        SimulationError::Sim(SimError::MissingParameter { name }) => {
+            ("usage", format!("add `{name}=<value>` to --params"))
+        }
+        SimulationError::Sim(SimError::Singular { .. }) => (
+            "singular",
+            "the coordinates degenerate there; choose other coordinates or start elsewhere".into(),
+        ),
+        _ if e.along_the_way() => (
+            "numerics",
+            "shorten --t-end, or loosen the step (--rtol, --dt)".into(),
+        ),
+        _ => ("usage", "check the input".into()),
+    };
+    eprint!(
+        "{}",
+        render_plain(&Diagnostic::new(code, e.to_string(), help))
+    );
+    ExitCode::from(if e.along_the_way() { 1 } else { 2 })
+}
+
+/// Writes `bytes` to `path` through a temporary file beside it and a rename.
+fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::File::create(&tmp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
+        .and_then(|()| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

@@ -1,0 +1,367 @@
+//! [`SimulationReport`]: what `lagrange simulate` shows — the work done by the integrator, the
+//! energy function h at the start and end with its largest relative drift over an even grid,
+//! the state at asked times and at the end — and the even grid for a CSV file. The face
+//! writes the file; this module only builds the rows.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+use serde::ser::SerializeMap;
+
+use super::{Paint, text};
+use crate::mechanics::System;
+use crate::simulate::{Method, Rhs, SimError, Tolerances, Trajectory, dop853, gauss, rk4};
+
+/// The most grid samples a run may ask for (`--samples`).
+pub const MAX_SAMPLES: usize = 1_000_000;
+/// The most report times a run may ask for (`--report-at`).
+pub const MAX_REPORTS: usize = 10_000;
+
+/// What to simulate and how.
+#[derive(Clone, Debug)]
+pub struct SimulationOptions {
+    /// Every parameter's value.
+    pub params: Vec<(String, f64)>,
+    /// Initial values by name: `theta1` or `theta1'`; the rest start at 0.
+    pub init: Vec<(String, f64)>,
+    /// The end time (the start is 0).
+    pub t_end: f64,
+    /// The integrator.
+    pub method: Method,
+    /// DOP853's tolerances.
+    pub rtol: f64,
+    pub atol: f64,
+    /// The fixed step of RK4 and Gauss.
+    pub dt: Option<f64>,
+    /// Times at which to report the state.
+    pub report_at: Vec<f64>,
+    /// Points of the even grid (energy error and CSV rows).
+    pub samples: usize,
+}
+
+/// Why a simulation could not be set up (input) or could not be finished (numerics).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimulationError {
+    /// An initial value names no coordinate or velocity.
+    #[error("`{name}` in --init is not a coordinate or velocity of the system{}", suggestion.as_ref().map_or(String::new(), |s| format!(" (did you mean `{s}`?)")))]
+    UnknownCoordinate {
+        name: String,
+        suggestion: Option<String>,
+    },
+    /// The same value given twice.
+    #[error("`{name}` is given twice in --init")]
+    Repeated { name: String },
+    /// The end time is not positive.
+    #[error("--t-end must be a positive number of seconds, not {0}")]
+    TEnd(f64),
+    /// A fixed-step method without its step.
+    #[error("--method {0} is a fixed-step method: give its step with --dt")]
+    MissingDt(&'static str),
+    /// Too many samples or report times.
+    #[error("{what} asks for {got} points, over the limit of {max}")]
+    TooMany {
+        what: &'static str,
+        got: usize,
+        max: usize,
+    },
+    /// A report time outside (0, t_end].
+    #[error("--report-at {t} is outside the simulated interval [0, {t_end}]")]
+    ReportTime { t: f64, t_end: f64 },
+    /// The library's error (setup or along the motion).
+    #[error(transparent)]
+    Sim(#[from] SimError),
+}
+
+impl SimulationError {
+    /// Whether the input was fine but the motion could not be followed (singular M,
+    /// divergence, step underflow): a "no" rather than a usage error.
+    pub fn along_the_way(&self) -> bool {
+        matches!(
+            self,
+            SimulationError::Sim(
+                SimError::Singular { .. }
+                    | SimError::Diverges { .. }
+                    | SimError::StepUnderflow { .. }
+                    | SimError::TooManySteps { .. }
+                    | SimError::NoConvergence { .. }
+            )
+        )
+    }
+}
+
+/// A state as a map from names (`theta1`, `theta1'`) to values, in the order of y.
+#[derive(Clone, Debug, PartialEq)]
+pub struct State(pub Vec<(String, f64)>);
+
+impl Serialize for State {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.len()))?;
+        for (k, v) in &self.0 {
+            m.serialize_entry(k, v)?;
+        }
+        m.end()
+    }
+}
+
+/// The state at one asked time.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TimedState {
+    pub t: f64,
+    pub state: State,
+}
+
+/// Everything `simulate` shows.
+#[derive(Clone, Debug, Serialize)]
+pub struct SimulationReport {
+    pub method: Method,
+    /// Accepted steps.
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub h_start: f64,
+    pub h_end: f64,
+    /// max |h(t) − h(0)| / |h(0)| over the even grid (absolute when h(0) = 0).
+    pub max_rel_energy_error: f64,
+    pub reports: Vec<TimedState>,
+    #[serde(rename = "final")]
+    pub final_state: State,
+    /// Whether h is expected to be constant (no explicit t, no forces doing work).
+    #[serde(skip)]
+    pub h_conserved: bool,
+    /// The end time.
+    #[serde(skip)]
+    pub t_end: f64,
+    /// The even grid: t, y and h per row.
+    #[serde(skip)]
+    pub grid: Vec<(f64, Vec<f64>, f64)>,
+    /// The names of y's entries.
+    #[serde(skip)]
+    pub names: Vec<String>,
+}
+
+/// Simulates `sys` from rest-or-given initial values to `opts.t_end`.
+pub fn simulation(
+    sys: &mut System,
+    opts: &SimulationOptions,
+) -> Result<SimulationReport, SimulationError> {
+    check_options(opts)?;
+    let params: Vec<(&str, f64)> = opts.params.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    let mut rhs = Rhs::new(sys, &params)?;
+    let d = sys.derive().map_err(SimError::from)?;
+    let h_conserved = sys.energy(&d).conserved;
+    let names = state_names(rhs.names());
+    let y0 = initial_state(&names, &opts.init)?;
+    let traj = integrate(&mut rhs, &y0, opts)?;
+    let grid = traj
+        .sample_even(opts.samples)
+        .into_iter()
+        .map(|(t, y)| rhs.energy(t, &y).map(|h| (t, y, h)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let h_start = rhs.energy(0.0, &traj.y0)?;
+    let h_end = rhs.energy(traj.t_end, &traj.y_final)?;
+    let scale = if h_start == 0.0 { 1.0 } else { h_start.abs() };
+    let max_rel_energy_error = grid
+        .iter()
+        .map(|(_, _, h)| (h - h_start).abs() / scale)
+        .fold(0.0, f64::max);
+    let reports = opts
+        .report_at
+        .iter()
+        .map(|&t| {
+            let y = traj.at(t)?;
+            Ok(TimedState {
+                t,
+                state: state(&names, &y),
+            })
+        })
+        .collect::<Result<Vec<_>, SimError>>()?;
+    Ok(SimulationReport {
+        method: traj.method,
+        steps: traj.stats.accepted,
+        rejected: traj.stats.rejected,
+        rhs_evals: traj.stats.rhs_evals,
+        h_start,
+        h_end,
+        max_rel_energy_error,
+        reports,
+        final_state: state(&names, &traj.y_final),
+        h_conserved,
+        t_end: traj.t_end,
+        grid,
+        names,
+    })
+}
+
+/// The checks that need no system.
+fn check_options(opts: &SimulationOptions) -> Result<(), SimulationError> {
+    if !(opts.t_end.is_finite() && opts.t_end > 0.0) {
+        return Err(SimulationError::TEnd(opts.t_end));
+    }
+    for (what, got, max) in [
+        ("--samples", opts.samples, MAX_SAMPLES),
+        ("--report-at", opts.report_at.len(), MAX_REPORTS),
+    ] {
+        if got > max {
+            return Err(SimulationError::TooMany { what, got, max });
+        }
+    }
+    if let Some(&t) = opts
+        .report_at
+        .iter()
+        .find(|&&t| !(0.0..=opts.t_end).contains(&t))
+    {
+        return Err(SimulationError::ReportTime {
+            t,
+            t_end: opts.t_end,
+        });
+    }
+    match (opts.method, opts.dt) {
+        (Method::Rk4, None) => Err(SimulationError::MissingDt("rk4")),
+        (Method::Gauss, None) => Err(SimulationError::MissingDt("gauss")),
+        _ => Ok(()),
+    }
+}
+
+/// Runs the chosen integrator from t = 0.
+fn integrate(rhs: &mut Rhs, y0: &[f64], opts: &SimulationOptions) -> Result<Trajectory, SimError> {
+    match (opts.method, opts.dt) {
+        (Method::Dop853, _) => {
+            let tol = Tolerances::new(opts.rtol, opts.atol);
+            dop853(rhs, 0.0, y0, opts.t_end, &tol)
+        }
+        (Method::Rk4, Some(dt)) => rk4(rhs, 0.0, y0, opts.t_end, dt),
+        (Method::Gauss, Some(dt)) => gauss(rhs, 0.0, y0, opts.t_end, dt),
+        (_, None) => Err(SimError::Invalid("a fixed-step method needs a step".into())),
+    }
+}
+
+/// `q…` then `q'…`.
+fn state_names(coords: &[String]) -> Vec<String> {
+    let mut names = coords.to_vec();
+    names.extend(coords.iter().map(|c| format!("{c}'")));
+    names
+}
+
+fn state(names: &[String], y: &[f64]) -> State {
+    State(names.iter().cloned().zip(y.iter().copied()).collect())
+}
+
+/// y0 from the given values, zero elsewhere.
+fn initial_state(names: &[String], init: &[(String, f64)]) -> Result<Vec<f64>, SimulationError> {
+    let mut y0 = vec![0.0; names.len()];
+    let mut seen = vec![false; names.len()];
+    for (name, value) in init {
+        let Some(i) = names.iter().position(|n| n == name) else {
+            return Err(SimulationError::UnknownCoordinate {
+                name: name.clone(),
+                suggestion: did_you_mean(name, names),
+            });
+        };
+        if std::mem::replace(&mut seen[i], true) {
+            return Err(SimulationError::Repeated { name: name.clone() });
+        }
+        y0[i] = *value;
+    }
+    Ok(y0)
+}
+
+/// The closest name within a third of its length in edits (at least 1).
+fn did_you_mean(name: &str, names: &[String]) -> Option<String> {
+    let limit = (name.chars().count() / 3).max(1);
+    names
+        .iter()
+        .map(|n| (edits(name, n), n))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, n)| n.clone())
+}
+
+/// Levenshtein distance.
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (prev + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            prev = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}
+
+impl SimulationReport {
+    /// The summary as text.
+    pub fn render(&self, paint: &dyn Paint) -> String {
+        text(|o| {
+            let method = match self.method {
+                Method::Dop853 => "dop853",
+                Method::Rk4 => "rk4",
+                Method::Gauss => "gauss",
+            };
+            writeln!(
+                o,
+                "{} {method}, t = 0 … {}",
+                paint.heading("Method:"),
+                self.t_end
+            )?;
+            writeln!(
+                o,
+                "{} {} accepted, {} rejected, {} right-hand-side evaluations",
+                paint.heading("Steps:"),
+                self.steps,
+                self.rejected,
+                self.rhs_evals
+            )?;
+            writeln!(
+                o,
+                "{} h(0) = {:.12e}, h(end) = {:.12e}, largest relative drift {:.3e}",
+                paint.heading("Energy:"),
+                self.h_start,
+                self.h_end,
+                self.max_rel_energy_error
+            )?;
+            if !self.h_conserved {
+                let note =
+                    "h is not expected to be constant here (explicit time or forces doing work)";
+                writeln!(o, "  {}", paint.warn(note))?;
+            }
+            for r in &self.reports {
+                writeln!(
+                    o,
+                    "{} {}",
+                    paint.heading(&format!("t = {}:", r.t)),
+                    line(&r.state)
+                )?;
+            }
+            writeln!(o, "{} {}", paint.heading("Final:"), line(&self.final_state))
+        })
+    }
+
+    /// The even grid as CSV: `t, q…, q'…, h`.
+    pub fn csv(&self) -> String {
+        text(|o| {
+            writeln!(o, "t,{},h", self.names.join(","))?;
+            for (t, y, h) in &self.grid {
+                write!(o, "{t}")?;
+                for v in y {
+                    write!(o, ",{v}")?;
+                }
+                writeln!(o, ",{h}")?;
+            }
+            Ok(())
+        })
+    }
+}
+
+/// `theta1 = 1.0, theta1' = 0.0`.
+fn line(s: &State) -> String {
+    s.0.iter()
+        .map(|(n, v)| format!("{n} = {v:.10}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
