@@ -140,7 +140,7 @@ fn failure(e: &SimulationError) -> ExitCode {
         SimulationError::Sim(SimError::MissingParameter { name }) => {
             ("usage", format!("add `{name}=<value>` to --params"))
         }
-        SimulationError::Sim(SimError::Singular { .. }) => (
+        SimulationError::Singular { .. } => (
             "singular",
             "the coordinates degenerate there; choose other coordinates or start elsewhere".into(),
         ),

@@ -67,6 +67,9 @@ pub enum SimulationError {
     /// A report time outside (0, t_end].
     #[error("--report-at {t} is outside the simulated interval [0, {t_end}]")]
     ReportTime { t: f64, t_end: f64 },
+    /// M became singular along the motion.
+    #[error("the mass matrix became singular at t = {t}, where {state}")]
+    Singular { t: f64, state: String },
     /// The library's error (setup or along the motion).
     #[error(transparent)]
     Sim(#[from] SimError),
@@ -78,13 +81,14 @@ impl SimulationError {
     pub fn along_the_way(&self) -> bool {
         matches!(
             self,
-            SimulationError::Sim(
-                SimError::Singular { .. }
-                    | SimError::Diverges { .. }
-                    | SimError::StepUnderflow { .. }
-                    | SimError::TooManySteps { .. }
-                    | SimError::NoConvergence { .. }
-            )
+            SimulationError::Singular { .. }
+                | SimulationError::Sim(
+                    SimError::Singular { .. }
+                        | SimError::Diverges { .. }
+                        | SimError::StepUnderflow { .. }
+                        | SimError::TooManySteps { .. }
+                        | SimError::NoConvergence { .. }
+                )
         )
     }
 }
@@ -151,7 +155,13 @@ pub fn simulation(
     let h_conserved = sys.energy(&d).conserved;
     let names = state_names(rhs.names());
     let y0 = initial_state(&names, &opts.init)?;
-    let traj = integrate(&mut rhs, &y0, opts)?;
+    let traj = integrate(&mut rhs, &y0, opts).map_err(|e| match e {
+        SimError::Singular { t, y } => SimulationError::Singular {
+            t,
+            state: line(&state(&names, &y)),
+        },
+        e => SimulationError::Sim(e),
+    })?;
     let grid = traj
         .sample_even(opts.samples)
         .into_iter()

@@ -44,9 +44,9 @@ pub enum SimError {
     /// A tolerance, step or interval that cannot work.
     #[error("invalid setting: {0}")]
     Invalid(String),
-    /// M became singular along the motion.
+    /// M became singular along the motion, at the state `y` = (q, q').
     #[error("the mass matrix became singular at t = {t}")]
-    Singular { t: f64 },
+    Singular { t: f64, y: Vec<f64> },
     /// The solution or the right-hand side stopped being finite.
     #[error("the solution diverges near t = {t}")]
     Diverges { t: f64 },

@@ -90,7 +90,8 @@ impl Ode for Rhs {
         self.dynamics
             .mass_and_forcing_into(&self.point, &mut self.scratch, &mut self.m, &mut self.f)
             .map_err(|_| SimError::Diverges { t })?;
-        solve_in_place(n, &mut self.m, &mut self.f).ok_or(SimError::Singular { t })?;
+        solve_in_place(n, &mut self.m, &mut self.f)
+            .ok_or_else(|| SimError::Singular { t, y: y.to_vec() })?;
         for i in 0..n {
             dy[self.layout.phase_q(i)] = y[self.layout.phase_qdot(i)];
             dy[self.layout.phase_qdot(i)] = self.f[i];
