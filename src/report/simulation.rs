@@ -149,7 +149,13 @@ pub fn simulation(
     opts: &SimulationOptions,
 ) -> Result<SimulationReport, SimulationError> {
     check_options(opts)?;
-    let params: Vec<(&str, f64)> = opts.params.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    let unused = unused_parameters(sys, &opts.params);
+    let params: Vec<(&str, f64)> = opts
+        .params
+        .iter()
+        .map(|(n, v)| (n.as_str(), *v))
+        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
+        .collect();
     let mut rhs = Rhs::new(sys, &params)?;
     let d = sys.derive().map_err(SimError::from)?;
     let h_conserved = sys.energy(&d).conserved;
@@ -200,6 +206,21 @@ pub fn simulation(
         grid,
         names,
     })
+}
+
+/// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
+/// problem declares parameters for all its parts): any value does for them.
+fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+    let mut used = sys.pool.variables(sys.lagrangian);
+    for &f in &sys.forces {
+        used.extend(sys.pool.variables(f));
+    }
+    sys.parameters
+        .iter()
+        .filter(|p| !used.iter().any(|(s, _)| *s == p.sym))
+        .filter(|p| !given.iter().any(|(n, _)| *n == p.name))
+        .map(|p| p.name.clone())
+        .collect()
 }
 
 /// The checks that need no system.

@@ -100,6 +100,23 @@ fn the_double_pendulum_keeps_its_energy_to_4e_9() {
 }
 
 #[test]
+fn a_problem_of_the_bank_needs_only_the_parameters_of_its_motion() {
+    let v = json(&[
+        "simulate",
+        "double-pendulum",
+        "--params",
+        DP_PARAMS,
+        "--init",
+        "theta1=2, theta2=2",
+        "--t-end",
+        "20",
+        "--json",
+    ]);
+    let e = v["max_rel_energy_error"].as_f64().unwrap();
+    assert!(e <= 4e-9, "{e}");
+}
+
+#[test]
 fn gauss_and_rk4_run_at_a_fixed_step() {
     for method in ["gauss", "rk4"] {
         let v = json(&[
