@@ -285,7 +285,7 @@ fn initial_state(names: &[String], init: &[(String, f64)]) -> Result<Vec<f64>, S
         let Some(i) = names.iter().position(|n| n == name) else {
             return Err(SimulationError::UnknownCoordinate {
                 name: name.clone(),
-                suggestion: did_you_mean(name, names),
+                suggestion: crate::diagnostic::did_you_mean(name, names.iter().map(String::as_str)),
             });
         };
         if std::mem::replace(&mut seen[i], true) {
@@ -294,35 +294,6 @@ fn initial_state(names: &[String], init: &[(String, f64)]) -> Result<Vec<f64>, S
         y0[i] = *value;
     }
     Ok(y0)
-}
-
-/// The closest name within a third of its length in edits (at least 1).
-fn did_you_mean(name: &str, names: &[String]) -> Option<String> {
-    let limit = (name.chars().count() / 3).max(1);
-    names
-        .iter()
-        .map(|n| (edits(name, n), n))
-        .filter(|(d, _)| *d <= limit)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, n)| n.clone())
-}
-
-/// Levenshtein distance.
-fn edits(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let next = (prev + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(row[j + 1] + 1);
-            prev = row[j + 1];
-            row[j + 1] = next;
-        }
-    }
-    row[b.len()]
 }
 
 impl SimulationReport {

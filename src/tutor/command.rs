@@ -285,31 +285,7 @@ fn command(name: &str, rest: &str) -> Result<Command, CommandError> {
     })
 }
 
-/// The candidate closest to `name`: one it starts or ends, else one within a small edit
-/// distance (with transpositions; more allowed for longer names); ties go to the first.
-pub fn did_you_mean<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<String> {
-    let name = name.trim();
-    if name.is_empty() {
-        return None;
-    }
-    let n = name.chars().count();
-    let limit = if n <= 3 { 1 } else { 2 + n / 8 };
-    let mut best: Option<(usize, &str)> = None;
-    for c in candidates {
-        if c.eq_ignore_ascii_case(name) {
-            return Some(c.to_string());
-        }
-        let d = if n >= 3 && (c.starts_with(name) || c.ends_with(name)) {
-            1
-        } else {
-            strsim::damerau_levenshtein(name, c)
-        };
-        if d <= limit && best.is_none_or(|(bd, _)| d < bd) {
-            best = Some((d, c));
-        }
-    }
-    best.map(|(_, c)| c.to_string())
-}
+pub use crate::diagnostic::did_you_mean;
 
 #[cfg(test)]
 mod tests {
