@@ -128,7 +128,7 @@ fn target(
     Some(Unit { module, file })
 }
 
-/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`, `grade/`) are the
+/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`, `grade/`, `plot/`) are the
 /// binary's, not the library's, and are left out.
 fn library_files(src: &Path) -> Vec<(Unit, String)> {
     let mut out = Vec::new();
@@ -144,7 +144,7 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
             .unwrap_or("")
             .to_string();
         if path.is_dir() {
-            if name == "cli" || name == "repl" || name == "grade" {
+            if name == "cli" || name == "repl" || name == "grade" || name == "plot" {
                 continue;
             }
             for (file, text) in rs_files(&path) {

@@ -6,6 +6,7 @@
 
 mod cli;
 mod grade;
+mod plot;
 mod repl;
 
 use std::process::ExitCode;

@@ -10,7 +10,7 @@ use clap::{Args, ValueEnum};
 use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
 use lagrange::report::modes::assignments;
-use lagrange::report::{SimulationError, SimulationOptions};
+use lagrange::report::{SimulationError, SimulationOptions, SimulationReport};
 use lagrange::simulate::{Method, SimError};
 
 #[derive(Args, Debug)]
@@ -50,6 +50,15 @@ pub struct SimulateArgs {
     /// JSON output.
     #[arg(long)]
     json: bool,
+    /// Draw q(t) for every coordinate to this SVG file; `-` draws a terminal chart on stdout.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Draw the phase portrait (q against q') of every coordinate to this SVG file.
+    #[arg(long)]
+    phase: Option<PathBuf>,
+    /// Draw the relative energy error over time to this SVG file.
+    #[arg(long)]
+    energy: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -65,6 +74,10 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
+    if args.json && args.plot.as_deref() == Some(Path::new("-")) {
+        let message = "--plot - and --json both write to stdout; give --plot a file".into();
+        return Ok(report(&CliError::Usage(message), color));
+    }
     let opts = match options(args) {
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
@@ -83,13 +96,35 @@ pub fn run(
         let message = format!("--out {}: cannot write the file: {e}", path.display());
         return Ok(report(&CliError::Usage(message), color));
     }
+    if let Err(e) = pictures(args, &report_) {
+        return Ok(report(&CliError::Usage(e), color));
+    }
     if args.json {
         out.push_str(&serde_json::to_string_pretty(&report_)?);
         out.push('\n');
     } else {
         out.push_str(&report_.render(&Terminal));
     }
+    if args.plot.as_deref() == Some(Path::new("-")) {
+        out.push_str(&crate::plot::terminal_chart(&report_));
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Writes the asked SVG pictures; the error names the flag and the file.
+fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
+    type Draw = fn(&SimulationReport, &Path) -> Result<(), String>;
+    let asked: [(&str, Option<&PathBuf>, Draw); 3] = [
+        ("--plot", args.plot.as_ref(), crate::plot::qt_svg),
+        ("--phase", args.phase.as_ref(), crate::plot::phase_svg),
+        ("--energy", args.energy.as_ref(), crate::plot::energy_svg),
+    ];
+    for (flag, path, draw) in asked {
+        if let Some(path) = path.filter(|p| p.as_path() != Path::new("-")) {
+            draw(r, path).map_err(|e| format!("{flag} {}: cannot draw: {e}", path.display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// The library's options from the flags.

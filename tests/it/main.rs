@@ -19,6 +19,7 @@ mod mechanics;
 mod modes13;
 mod notation;
 mod notation_lists;
+mod plot;
 mod props;
 mod pty;
 mod repl;

@@ -1,0 +1,151 @@
+//! Issue 14, item 4: `lagrange simulate --plot/--phase/--energy` write SVG files with the
+//! coordinates' Unicode names on the axes and one polyline of `--samples` points per curve;
+//! `--plot -` prints a terminal chart.
+
+use std::path::{Path, PathBuf};
+
+use crate::helpers::lagrange;
+
+const DP_PARAMS: &str = "m1=1, m2=1, l1=1, l2=1, g=9.81";
+
+/// A fresh directory for this test's files.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lagrange-plot-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn svg(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(
+        text.starts_with("<svg") || text.starts_with("<?xml"),
+        "{}",
+        &text[..text.len().min(100)]
+    );
+    assert!(text.trim_end().ends_with("</svg>"));
+    text
+}
+
+/// The number of points of each data curve (the blue polylines; the mesh is black).
+fn curves(svg: &str) -> Vec<usize> {
+    svg.lines()
+        .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#0000FF\""))
+        .map(|l| {
+            let points = l
+                .split("points=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap();
+            points.split_whitespace().count()
+        })
+        .collect()
+}
+
+#[test]
+fn the_double_pendulum_draws_q_of_t_its_phase_portrait_and_its_energy_error() {
+    let d = dir("dp");
+    let (q, p, e) = (d.join("q.svg"), d.join("phase.svg"), d.join("energy.svg"));
+    let (code, out, err) = lagrange(&[
+        "simulate",
+        "double-pendulum",
+        "--params",
+        DP_PARAMS,
+        "--init",
+        "theta1=2, theta2=2",
+        "--t-end",
+        "5",
+        "--samples",
+        "300",
+        "--plot",
+        q.to_str().unwrap(),
+        "--phase",
+        p.to_str().unwrap(),
+        "--energy",
+        e.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Final:"), "{out}");
+    let q = svg(&q);
+    assert!(
+        q.contains(">\nθ₁\n</text>") && q.contains(">\nθ₂\n</text>"),
+        "{q}"
+    );
+    assert!(q.contains(">\nt\n</text>"));
+    assert_eq!(curves(&q), vec![300, 300]);
+    let p = svg(&p);
+    for label in ["θ₁", "θ\u{307}₁", "θ₂", "θ\u{307}₂"] {
+        assert!(p.contains(&format!(">\n{label}\n</text>")), "{label}");
+    }
+    assert_eq!(curves(&p), vec![300, 300]);
+    let e = svg(&e);
+    assert!(e.contains("(h − h₀)/|h₀|"));
+    assert_eq!(curves(&e), vec![300]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn plot_dash_prints_a_terminal_chart() {
+    let (code, out, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--init",
+        "theta=1",
+        "--t-end",
+        "5",
+        "--plot",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Final:"), "{out}");
+    assert!(out.contains("θ(t)"), "{out}");
+    let braille = out
+        .chars()
+        .filter(|c| ('\u{2801}'..='\u{28ff}').contains(c))
+        .count();
+    assert!(braille > 50, "{out}");
+}
+
+#[test]
+fn plot_dash_with_json_is_a_usage_error() {
+    let (code, out, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--init",
+        "theta=1",
+        "--t-end",
+        "1",
+        "--plot",
+        "-",
+        "--json",
+    ]);
+    assert_eq!(code, 2, "{out}");
+    assert!(err.contains("--plot -"), "{err}");
+}
+
+#[test]
+fn an_unwritable_picture_is_a_usage_error() {
+    let (code, _, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--init",
+        "theta=1",
+        "--t-end",
+        "1",
+        "--phase",
+        "/nonexistent-dir/x/phase.svg",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--phase") && !err.contains("panicked"),
+        "{err}"
+    );
+}
