@@ -149,3 +149,38 @@ fn an_unwritable_picture_is_a_usage_error() {
         "{err}"
     );
 }
+
+/// The README's command makes the committed `docs/pendulum-phase.svg`, byte for byte.
+#[test]
+fn the_readme_phase_portrait_is_what_its_command_draws() {
+    let d = dir("readme");
+    let fresh = d.join("pendulum-phase.svg");
+    let (code, _, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--init",
+        "theta=2.5",
+        "--t-end",
+        "10",
+        "--samples",
+        "500",
+        "--phase",
+        fresh.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/pendulum-phase.svg");
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"));
+    assert!(
+        readme
+            .unwrap()
+            .contains("--t-end 10 --samples 500 --phase docs/pendulum-phase.svg")
+    );
+    assert!(
+        svg(&fresh) == svg(&committed),
+        "docs/pendulum-phase.svg is stale: rerun the README's command"
+    );
+    assert_eq!(curves(&svg(&committed)), vec![500]);
+    let _ = std::fs::remove_dir_all(&d);
+}
