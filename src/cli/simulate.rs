@@ -44,7 +44,7 @@ pub struct SimulateArgs {
     /// Write t, every q, every q' and h on an even grid to this CSV file.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Points of the even grid (energy drift and --out).
+    /// Points of the even grid (energy drift, --out and the pictures).
     #[arg(long, default_value_t = 1000)]
     samples: usize,
     /// JSON output.
