@@ -14,6 +14,7 @@ mod diagnose;
 mod equation_diagnosis;
 pub(crate) mod equations;
 pub mod error;
+mod expression_diagnosis;
 mod fingerprint;
 mod item_reading;
 mod items;
