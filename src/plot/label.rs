@@ -1,57 +1,21 @@
 //! A coordinate's name as it is read: `theta1` → θ₁, `theta1'` → θ̇₁, `x''` → ẍ.
 
-/// Greek letters by their spelled names.
-const GREEK: &[(&str, char)] = &[
-    ("alpha", 'α'),
-    ("beta", 'β'),
-    ("gamma", 'γ'),
-    ("delta", 'δ'),
-    ("epsilon", 'ε'),
-    ("zeta", 'ζ'),
-    ("eta", 'η'),
-    ("theta", 'θ'),
-    ("iota", 'ι'),
-    ("kappa", 'κ'),
-    ("lambda", 'λ'),
-    ("mu", 'μ'),
-    ("nu", 'ν'),
-    ("xi", 'ξ'),
-    ("omicron", 'ο'),
-    ("pi", 'π'),
-    ("rho", 'ρ'),
-    ("sigma", 'σ'),
-    ("tau", 'τ'),
-    ("upsilon", 'υ'),
-    ("phi", 'φ'),
-    ("chi", 'χ'),
-    ("psi", 'ψ'),
-    ("omega", 'ω'),
-];
-
-/// `theta1'` → θ̇₁: a Greek name as its letter, one dot per prime over the letter (combining
-/// U+0307, U+0308 for two), trailing digits (after an optional `_`) as subscripts.
+/// `theta1'` → θ̇₁: the name read and printed in Unicode by the library (Greek letters,
+/// `m_1` and `m1` alike as m₁, one dot per prime); the name itself if it cannot be read.
 pub fn unicode(name: &str) -> String {
-    let primes = name.len() - name.trim_end_matches('\'').len();
     let bare = name.trim_end_matches('\'');
-    let digits_at = bare.trim_end_matches(|c: char| c.is_ascii_digit()).len();
-    let (base, digits) = bare.split_at(digits_at);
-    let base = base.strip_suffix('_').unwrap_or(base);
-    let mut out = match GREEK.iter().find(|(n, _)| *n == base) {
-        Some((_, c)) => c.to_string(),
-        None => base.to_string(),
-    };
-    match primes {
-        0 => {}
-        1 => out.push('\u{307}'),
-        2 => out.push('\u{308}'),
-        k => out.push_str(&"'".repeat(k)),
+    let order = u8::try_from(name.len() - bare.len()).unwrap_or(u8::MAX);
+    let mut pool = lagrange::expr::Pool::new();
+    let coordinate = lagrange::expr::Context::new().with_coordinates([bare]);
+    match lagrange::expr::read_expr(bare, &coordinate, &mut pool) {
+        Ok(id) => match pool.node(id) {
+            lagrange::expr::Node::Var(sym, 0) => {
+                pool.var_name(*sym, order, lagrange::expr::Style::Unicode)
+            }
+            _ => name.to_string(),
+        },
+        Err(_) => name.to_string(),
     }
-    out.extend(
-        digits
-            .chars()
-            .map(|d| char::from_u32(0x2080 + d.to_digit(10).unwrap_or(0)).unwrap_or(d)),
-    );
-    out
 }
 
 #[cfg(test)]
