@@ -157,8 +157,7 @@ pub fn simulation(
         .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
         .collect();
     let mut rhs = Rhs::new(sys, &params)?;
-    let d = sys.derive().map_err(SimError::from)?;
-    let h_conserved = sys.energy(&d).conserved;
+    let h_conserved = rhs.energy_conserved();
     let names = state_names(rhs.names());
     let y0 = initial_state(&names, &opts.init)?;
     let traj = integrate(&mut rhs, &y0, opts).map_err(|e| match e {

@@ -23,6 +23,8 @@ pub struct Rhs {
     f: Vec<f64>,
     energy: Program,
     energy_scratch: Vec<f64>,
+    /// Whether h is conserved (no explicit t, no force doing work), from the derivation.
+    energy_conserved: bool,
 }
 
 impl Rhs {
@@ -37,8 +39,8 @@ impl Rhs {
         let values = parameter_values(sys, params)?;
         let d = sys.derive()?;
         let dynamics = Dynamics::new(sys, &d)?;
-        let h = sys.energy(&d).function;
-        let energy = sys.compile(&[h])?;
+        let energy_analysis = sys.energy(&d);
+        let energy = sys.compile(&[energy_analysis.function])?;
         let layout = sys.state_layout();
         let n = sys.n();
         let mut point = vec![0.0; layout.params_start()];
@@ -53,7 +55,13 @@ impl Rhs {
             point,
             m: vec![0.0; n * n],
             f: vec![0.0; n],
+            energy_conserved: energy_analysis.conserved,
         })
+    }
+
+    /// Whether the energy function is expected to stay constant along the motion.
+    pub fn energy_conserved(&self) -> bool {
+        self.energy_conserved
     }
 
     /// The coordinate names, in the order of q in y.
