@@ -3,6 +3,10 @@
 //!
 //! Every instruction checks its result: a value that is not finite (log of a negative, 1/0,
 //! overflow) stops the run with [`Undefined`] naming the node, instead of a silent NaN.
+//!
+//! Numbers live in a prefix of the slots, copied in once per run rather than executed as
+//! instructions, and [`Program::specialize`] folds inputs that stay fixed (a simulation's
+//! parameters) into that prefix, so per-call work is only what depends on the state.
 
 use num_traits::ToPrimitive;
 use rustc_hash::FxHashMap;
@@ -26,7 +30,6 @@ pub struct Unbound {
 
 #[derive(Clone, Copy, Debug)]
 enum Instr {
-    Const(f64),
     Input(u32),
     Add(u32, u32),
     Mul(u32, u32),
@@ -35,13 +38,71 @@ enum Instr {
     RecipSqrt(u32),
     PowI(u32, i32),
     PowF(u32, u32),
+    // The common functions get their own instructions: one dispatch instead of two.
+    Sin(u32),
+    Cos(u32),
     Func(Func, u32),
 }
 
-/// A compiled program: inputs in a fixed order, one slot per instruction, some outputs.
+impl Instr {
+    /// The value of this instruction, given the values of its operand slots.
+    #[inline(always)]
+    fn apply(self, slot: impl Fn(u32) -> f64, inputs: &[f64]) -> f64 {
+        match self {
+            Instr::Input(k) => inputs.get(k as usize).copied().unwrap_or(f64::NAN),
+            Instr::Add(a, b) => slot(a) + slot(b),
+            Instr::Mul(a, b) => slot(a) * slot(b),
+            Instr::Recip(a) => 1.0 / slot(a),
+            Instr::Sqrt(a) => slot(a).sqrt(),
+            Instr::RecipSqrt(a) => 1.0 / slot(a).sqrt(),
+            Instr::PowI(a, k) => slot(a).powi(k),
+            Instr::PowF(a, b) => slot(a).powf(slot(b)),
+            Instr::Sin(a) => slot(a).sin(),
+            Instr::Cos(a) => slot(a).cos(),
+            Instr::Func(f, a) => f.apply(slot(a)),
+        }
+    }
+
+    /// The slots this instruction reads.
+    fn operands(self) -> [Option<u32>; 2] {
+        match self {
+            Instr::Input(_) => [None, None],
+            Instr::Add(a, b) | Instr::Mul(a, b) | Instr::PowF(a, b) => [Some(a), Some(b)],
+            Instr::Recip(a)
+            | Instr::Sqrt(a)
+            | Instr::RecipSqrt(a)
+            | Instr::PowI(a, _)
+            | Instr::Sin(a)
+            | Instr::Cos(a)
+            | Instr::Func(_, a) => [Some(a), None],
+        }
+    }
+
+    /// The instruction reading `map[slot]` wherever it read `slot`.
+    fn remap(self, map: &[u32]) -> Instr {
+        let m = |a: u32| map[a as usize];
+        match self {
+            Instr::Input(k) => Instr::Input(k),
+            Instr::Add(a, b) => Instr::Add(m(a), m(b)),
+            Instr::Mul(a, b) => Instr::Mul(m(a), m(b)),
+            Instr::PowF(a, b) => Instr::PowF(m(a), m(b)),
+            Instr::Recip(a) => Instr::Recip(m(a)),
+            Instr::Sqrt(a) => Instr::Sqrt(m(a)),
+            Instr::RecipSqrt(a) => Instr::RecipSqrt(m(a)),
+            Instr::PowI(a, k) => Instr::PowI(m(a), k),
+            Instr::Sin(a) => Instr::Sin(m(a)),
+            Instr::Cos(a) => Instr::Cos(m(a)),
+            Instr::Func(f, a) => Instr::Func(f, m(a)),
+        }
+    }
+}
+
+/// A compiled program: inputs in a fixed order; slots are the constants (a prefix) then one
+/// per instruction; some outputs.
 #[derive(Clone, Debug)]
 pub struct Program {
     inputs: Vec<(Sym, u8)>,
+    consts: Vec<f64>,
     code: Vec<Instr>,
     origin: Vec<Id>,
     outputs: Vec<u32>,
@@ -64,14 +125,26 @@ impl Program {
         reach.sort_unstable();
         let mut prog = Program {
             inputs: inputs.to_vec(),
+            consts: Vec::new(),
             code: Vec::with_capacity(reach.len() * 2),
             origin: Vec::with_capacity(reach.len() * 2),
             outputs: Vec::new(),
         };
         let mut slot: FxHashMap<Id, u32> = FxHashMap::default();
         for &n in &reach {
-            let s = prog.node(pool, n, &slot)?;
-            slot.insert(n, s);
+            let value = match pool.node(n) {
+                Node::Num(v) => v.to_f64().unwrap_or(f64::NAN),
+                Node::Pi => std::f64::consts::PI,
+                _ => continue,
+            };
+            slot.insert(n, prog.consts.len() as u32);
+            prog.consts.push(value);
+        }
+        for &n in &reach {
+            if !slot.contains_key(&n) {
+                let s = prog.node(pool, n, &slot)?;
+                slot.insert(n, s);
+            }
         }
         prog.outputs = roots.iter().map(|r| slot[r]).collect();
         Ok(prog)
@@ -85,6 +158,7 @@ impl Program {
         // Every variable is an input, so compiling cannot fail.
         Program::compile(pool, roots, &vars).unwrap_or_else(|_| Program {
             inputs: Vec::new(),
+            consts: Vec::new(),
             code: Vec::new(),
             origin: Vec::new(),
             outputs: Vec::new(),
@@ -94,13 +168,13 @@ impl Program {
     fn emit(&mut self, i: Instr, from: Id) -> u32 {
         self.code.push(i);
         self.origin.push(from);
-        (self.code.len() - 1) as u32
+        (self.consts.len() + self.code.len() - 1) as u32
     }
 
     fn node(&mut self, pool: &Pool, n: Id, slot: &FxHashMap<Id, u32>) -> Result<u32, Unbound> {
         Ok(match pool.node(n) {
-            Node::Num(v) => self.emit(Instr::Const(v.to_f64().unwrap_or(f64::NAN)), n),
-            Node::Pi => self.emit(Instr::Const(std::f64::consts::PI), n),
+            // Numbers were given prefix slots before any instruction.
+            Node::Num(_) | Node::Pi => slot[&n],
             Node::Var(s, o) => {
                 let k = self
                     .inputs
@@ -133,6 +207,8 @@ impl Program {
                         self.emit(Instr::Recip(bs), n)
                     }
                     Some(v) if v.is_integer() => match v.to_integer().to_i32() {
+                        // x·x is exact and cheaper than powi's call.
+                        Some(2) => self.emit(Instr::Mul(bs, bs), n),
                         Some(k) => self.emit(Instr::PowI(bs, k), n),
                         None => self.emit(Instr::PowF(bs, slot[e]), n),
                     },
@@ -145,6 +221,8 @@ impl Program {
                     _ => self.emit(Instr::PowF(bs, slot[e]), n),
                 }
             }
+            Node::Func(Func::Sin, a) => self.emit(Instr::Sin(slot[a]), n),
+            Node::Func(Func::Cos, a) => self.emit(Instr::Cos(slot[a]), n),
             Node::Func(f, a) => self.emit(Instr::Func(*f, slot[a]), n),
         })
     }
@@ -154,45 +232,106 @@ impl Program {
         &self.inputs
     }
 
-    /// Number of instructions (slots).
+    /// Number of slots (constants and instructions).
     pub fn len(&self) -> usize {
-        self.code.len()
+        self.consts.len() + self.code.len()
     }
 
-    /// Whether the program has no instructions.
+    /// Whether the program has no slots.
     pub fn is_empty(&self) -> bool {
-        self.code.is_empty()
+        self.len() == 0
+    }
+
+    /// Number of instructions executed per run (constants are not).
+    pub fn instructions(&self) -> usize {
+        self.code.len()
     }
 
     /// A scratch buffer of the right size for [`run`](Self::run).
     pub fn scratch(&self) -> Vec<f64> {
-        vec![0.0; self.code.len()]
+        vec![0.0; self.len()]
     }
 
     /// Runs the program; afterwards [`output`](Self::output) reads the results from
     /// `scratch`. `inputs` must have one value per input, `scratch` one slot per instruction.
     pub fn run(&self, inputs: &[f64], scratch: &mut [f64]) -> Result<(), Undefined> {
+        let nc = self.consts.len();
+        let scratch = &mut scratch[..self.len()];
+        scratch[..nc].copy_from_slice(&self.consts);
+        // One flag instead of a branch per instruction; on failure the first slot that is
+        // not finite is the instruction that failed (later ones only inherited it).
+        let mut finite = true;
         for (i, ins) in self.code.iter().enumerate() {
-            let v = match *ins {
-                Instr::Const(c) => c,
-                Instr::Input(k) => inputs.get(k as usize).copied().unwrap_or(f64::NAN),
-                Instr::Add(a, b) => scratch[a as usize] + scratch[b as usize],
-                Instr::Mul(a, b) => scratch[a as usize] * scratch[b as usize],
-                Instr::Recip(a) => 1.0 / scratch[a as usize],
-                Instr::Sqrt(a) => scratch[a as usize].sqrt(),
-                Instr::RecipSqrt(a) => 1.0 / scratch[a as usize].sqrt(),
-                Instr::PowI(a, k) => scratch[a as usize].powi(k),
-                Instr::PowF(a, b) => scratch[a as usize].powf(scratch[b as usize]),
-                Instr::Func(f, a) => f.apply(scratch[a as usize]),
-            };
-            if !v.is_finite() {
-                return Err(Undefined {
-                    node: self.origin[i],
-                });
-            }
-            scratch[i] = v;
+            let v = ins.apply(|a| scratch[a as usize], inputs);
+            finite &= v.is_finite();
+            scratch[nc + i] = v;
         }
-        Ok(())
+        if finite {
+            return Ok(());
+        }
+        let i = scratch[nc..].iter().position(|v| !v.is_finite()).unwrap_or(0);
+        Err(Undefined {
+            node: self.origin[i],
+        })
+    }
+
+    /// The same program with the inputs at `fixed` (input index, value) held at those values:
+    /// every instruction depending only on numbers and fixed inputs is evaluated here, once,
+    /// and becomes a constant; instructions no output needs are dropped. An instruction whose
+    /// folded value is not finite is kept, so [`run`](Self::run) still fails there, naming it.
+    /// The values `run` is given for fixed inputs are ignored.
+    pub fn specialize(&self, fixed: &[(usize, f64)]) -> Program {
+        let nc = self.consts.len();
+        let mut known: Vec<Option<f64>> = self.consts.iter().map(|&c| Some(c)).collect();
+        known.resize(self.len(), None);
+        for (i, ins) in self.code.iter().enumerate() {
+            let operands_known = ins
+                .operands()
+                .iter()
+                .flatten()
+                .all(|&a| known[a as usize].is_some());
+            let v = match *ins {
+                Instr::Input(k) => fixed.iter().find(|f| f.0 == k as usize).map(|f| f.1),
+                _ if operands_known => {
+                    Some(ins.apply(|a| known[a as usize].unwrap_or(f64::NAN), &[]))
+                }
+                _ => None,
+            };
+            known[nc + i] = v.filter(|v| v.is_finite());
+        }
+        // Which slots are needed: outputs, and operands of needed instructions (backwards).
+        let mut needed = vec![false; self.len()];
+        for &o in &self.outputs {
+            needed[o as usize] = true;
+        }
+        for (i, ins) in self.code.iter().enumerate().rev() {
+            if needed[nc + i] && known[nc + i].is_none() {
+                for &a in ins.operands().iter().flatten() {
+                    needed[a as usize] = true;
+                }
+            }
+        }
+        let mut out = Program {
+            inputs: self.inputs.clone(),
+            consts: Vec::new(),
+            code: Vec::new(),
+            origin: Vec::new(),
+            outputs: Vec::new(),
+        };
+        let mut map = vec![u32::MAX; self.len()];
+        for (s, v) in known.iter().enumerate() {
+            if let (true, Some(v)) = (needed[s], v) {
+                map[s] = out.consts.len() as u32;
+                out.consts.push(*v);
+            }
+        }
+        for (i, ins) in self.code.iter().enumerate() {
+            if needed[nc + i] && known[nc + i].is_none() {
+                map[nc + i] = out.emit(ins.remap(&map), self.origin[i]);
+            }
+        }
+        out.outputs = self.outputs.iter().map(|&o| map[o as usize]).collect();
+        out
     }
 
     /// Output `k` after a successful [`run`](Self::run).
@@ -277,5 +416,52 @@ mod tests {
         let a = pool.symbol("a");
         let err = Program::compile(&pool, &[e], &[(a, 0)]).unwrap_err();
         assert_eq!(err.name, "b");
+    }
+
+    #[test]
+    fn specializing_folds_fixed_inputs_and_keeps_values() {
+        let mut pool = Pool::new();
+        let src = "(m1 + m2)*l^2*cos(x - y) + g*sin(x)/l + sqrt(m1*g) - 2*pi";
+        let e = read_expr(src, &Context::open(), &mut pool).unwrap();
+        let names = ["x", "y", "m1", "m2", "l", "g"];
+        let inputs: Vec<(Sym, u8)> = names.iter().map(|n| (pool.symbol(n), 0)).collect();
+        let p = Program::compile(&pool, &[e], &inputs).unwrap();
+        let params = [1.5, 0.5, 2.0, 9.81];
+        let fixed: Vec<(usize, f64)> = params
+            .iter()
+            .enumerate()
+            .map(|(j, &v)| (2 + j, v))
+            .collect();
+        let q = p.specialize(&fixed);
+        assert!(
+            q.instructions() < p.instructions(),
+            "{} !< {}",
+            q.instructions(),
+            p.instructions()
+        );
+        for (x, y) in [(0.3, -1.2), (2.0, 2.0), (-3.0, 0.1)] {
+            let full = p.eval(&[x, y, 1.5, 0.5, 2.0, 9.81]).unwrap()[0];
+            // The values given for fixed inputs are ignored.
+            let folded = q.eval(&[x, y, 0.0, 0.0, 0.0, 0.0]).unwrap()[0];
+            assert!(
+                (full - folded).abs() <= 1e-12 * full.abs().max(1.0),
+                "{full} vs {folded}"
+            );
+        }
+    }
+
+    #[test]
+    fn specializing_keeps_undefined_parts_failing() {
+        let mut pool = Pool::new();
+        let e = read_expr("x + 1/(a - 1)", &Context::open(), &mut pool).unwrap();
+        let inputs = [(pool.symbol("x"), 0), (pool.symbol("a"), 0)];
+        let p = Program::compile(&pool, &[e], &inputs)
+            .unwrap()
+            .specialize(&[(1, 1.0)]);
+        assert!(p.eval(&[2.0, 7.0]).is_err());
+        let q = Program::compile(&pool, &[e], &inputs)
+            .unwrap()
+            .specialize(&[(1, 3.0)]);
+        assert_eq!(q.eval(&[2.0, 0.0]).unwrap(), vec![2.5]);
     }
 }

@@ -49,6 +49,16 @@ impl Dynamics {
         Ok((m, f))
     }
 
+    /// The same dynamics with the inputs at `fixed` (index in the standard layout, value)
+    /// folded in as constants: a simulation fixes the parameters once.
+    pub fn specialize(&self, fixed: &[(usize, f64)]) -> Dynamics {
+        Dynamics {
+            program: self.program.specialize(fixed),
+            n: self.n,
+            names: self.names.clone(),
+        }
+    }
+
     /// Number of coordinates.
     pub fn n(&self) -> usize {
         self.n

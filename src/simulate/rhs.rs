@@ -38,10 +38,14 @@ impl Rhs {
         }
         let values = parameter_values(sys, params)?;
         let d = sys.derive()?;
-        let dynamics = Dynamics::new(sys, &d)?;
-        let energy_analysis = sys.energy(&d);
-        let energy = sys.compile(&[energy_analysis.function])?;
         let layout = sys.state_layout();
+        // The parameters never change along a motion: fold them in once.
+        let fixed: Vec<(usize, f64)> = (values.iter().enumerate())
+            .map(|(j, &v)| (layout.param(j), v))
+            .collect();
+        let dynamics = Dynamics::new(sys, &d)?.specialize(&fixed);
+        let energy_analysis = sys.energy(&d);
+        let energy = sys.compile(&[energy_analysis.function])?.specialize(&fixed);
         let n = sys.n();
         let mut point = vec![0.0; layout.params_start()];
         point.extend_from_slice(&values);
