@@ -193,6 +193,20 @@ pub struct Problem {
     pub stated_lagrangian: Option<Id>,
     /// Line of the `lagrangian` key (or of the first body).
     pub lagrangian_line: usize,
+    /// What `simulate` starts from when the user gives nothing else.
+    pub simulation: SimulationDefaults,
+}
+
+/// A problem's suggested numbers for simulating it: parameter values, an initial state and a
+/// duration, each overridden by what the user gives.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SimulationDefaults {
+    /// Parameter values, in the system's parameter order.
+    pub params: Vec<(String, f64)>,
+    /// Initial coordinates and velocities (`theta`, `theta'`).
+    pub init: Vec<(String, f64)>,
+    /// The end time.
+    pub t_end: Option<f64>,
 }
 
 impl Problem {

@@ -81,6 +81,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
     reader.point_forces(&pf, &mut system)?;
     let parts = b.parts(&pf, &mut system)?;
+    let simulation = b.simulation(&pf, &system)?;
     Ok(Problem {
         file: file.to_string(),
         id: b.id,
@@ -93,6 +94,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         parts,
         stated_lagrangian: stated,
         lagrangian_line,
+        simulation,
     })
 }
 

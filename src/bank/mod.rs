@@ -6,6 +6,7 @@ pub(crate) mod build;
 mod build_part;
 mod build_reader;
 mod build_rigid;
+mod build_simulation;
 pub mod embedded;
 pub mod finding;
 pub mod load;

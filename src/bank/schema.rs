@@ -37,6 +37,20 @@ pub struct ProblemFile {
     #[serde(default)]
     pub point_forces: Vec<Spanned<PointForceSpec>>,
     pub parts: Vec<Spanned<PartSpec>>,
+    /// Starting values for `lagrange simulate PROBLEM` (parameters' values are on them).
+    #[serde(default)]
+    pub simulation: Option<Spanned<SimulationSpec>>,
+}
+
+/// The initial state and duration a simulation of the problem starts from by default.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSpec {
+    /// Initial coordinates (`theta`) and velocities (`theta'`); others start at 0.
+    #[serde(default)]
+    pub init: BTreeMap<String, f64>,
+    /// The end time.
+    pub t_end: Option<f64>,
 }
 
 /// A generalized coordinate.
@@ -63,6 +77,8 @@ pub struct ParameterSpec {
     /// Positive sampling range (a list, checked to have two elements).
     pub range: Vec<f64>,
     pub description: Option<String>,
+    /// A typical value, used when the problem is simulated.
+    pub value: Option<f64>,
 }
 
 /// A body: `kind = "point"` (mass, position), `kind = "rotor"` (inertia, angle) or

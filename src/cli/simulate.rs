@@ -9,6 +9,7 @@ use clap::{Args, ValueEnum};
 
 use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
+use lagrange::problem::SimulationDefaults;
 use lagrange::report::modes::assignments;
 use lagrange::report::{SimulationError, SimulationOptions, SimulationReport};
 use lagrange::simulate::{Method, SimError};
@@ -17,15 +18,17 @@ use lagrange::simulate::{Method, SimError};
 pub struct SimulateArgs {
     #[command(flatten)]
     system: SystemArgs,
-    /// Parameter values, e.g. "m1=1, m2=1, l1=1, l2=1, g=9.81".
+    /// Parameter values, e.g. "m1=1, m2=1, l1=1, l2=1, g=9.81" (a bank problem suggests
+    /// values; these override them).
     #[arg(long, default_value = "", allow_hyphen_values = true)]
     params: String,
-    /// Initial values, e.g. "theta1=2, theta2=2, theta1'=0"; velocities not given start at 0.
+    /// Initial values, e.g. "theta1=2, theta2=2, theta1'=0"; values not given start at 0
+    /// (without --init, a bank problem's suggested start).
     #[arg(long, default_value = "", allow_hyphen_values = true)]
     init: String,
-    /// The end time (the motion starts at t = 0).
+    /// The end time (the motion starts at t = 0); a bank problem may suggest one.
     #[arg(long, allow_hyphen_values = true)]
-    t_end: f64,
+    t_end: Option<f64>,
     /// Relative tolerance of dop853.
     #[arg(long, default_value_t = 1e-10)]
     rtol: f64,
@@ -78,12 +81,12 @@ pub fn run(
         let message = "--plot - and --json both write to stdout; give --plot a file".into();
         return Ok(report(&CliError::Usage(message), color));
     }
-    let opts = match options(args) {
-        Ok(o) => o,
+    let (mut sys, defaults) = match args.system.build_with_defaults(problems) {
+        Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
-    let mut sys = match args.system.build(problems) {
-        Ok(s) => s,
+    let opts = match options(args, &defaults) {
+        Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
     let report_ = match lagrange::report::simulation(&mut sys, &opts) {
@@ -127,12 +130,30 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     Ok(())
 }
 
-/// The library's options from the flags.
-fn options(args: &SimulateArgs) -> Result<SimulationOptions, CliError> {
+/// The library's options from the flags, over a bank problem's suggestions: given
+/// parameters replace suggested ones one by one, a given --init replaces the suggested start.
+fn options(
+    args: &SimulateArgs,
+    defaults: &SimulationDefaults,
+) -> Result<SimulationOptions, CliError> {
+    let mut params = numbers("--params", &args.params)?;
+    for (name, v) in &defaults.params {
+        if !params.iter().any(|(n, _)| n == name) {
+            params.push((name.clone(), *v));
+        }
+    }
+    let init = if args.init.trim().is_empty() {
+        defaults.init.clone()
+    } else {
+        numbers("--init", &args.init)?
+    };
+    let t_end = args.t_end.or(defaults.t_end).ok_or_else(|| {
+        CliError::usage("give the end time with --t-end (the motion starts at t = 0)")
+    })?;
     Ok(SimulationOptions {
-        params: numbers("--params", &args.params)?,
-        init: numbers("--init", &args.init)?,
-        t_end: args.t_end,
+        params,
+        init,
+        t_end,
         method: match args.method {
             MethodArg::Dop853 => Method::Dop853,
             MethodArg::Rk4 => Method::Rk4,
@@ -171,20 +192,18 @@ fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
 
 /// Prints a simulation error; exit 1 when the motion could not be followed, 2 for input.
 fn failure(e: &SimulationError) -> ExitCode {
-    let (code, help) = match e {
-        SimulationError::Sim(SimError::MissingParameter { name }) => {
-            ("usage", format!("add `{name}=<value>` to --params"))
-        }
-        SimulationError::Singular { .. } => (
-            "singular",
-            "the coordinates degenerate there; choose other coordinates or start elsewhere".into(),
+    let help = match e {
+        SimulationError::Sim(SimError::MissingParameters { names }) => format!(
+            "add {} to --params",
+            names
+                .iter()
+                .map(|n| format!("`{n}=<value>`"))
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
-        _ if e.along_the_way() => (
-            "numerics",
-            "shorten --t-end, or loosen the step (--rtol, --dt)".into(),
-        ),
-        _ => ("usage", "check the input".into()),
+        _ => e.help(),
     };
+    let code = e.code();
     eprint!(
         "{}",
         render_plain(&Diagnostic::new(code, e.to_string(), help))

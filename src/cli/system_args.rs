@@ -66,6 +66,14 @@ pub struct SystemArgs {
 impl SystemArgs {
     /// Builds the system (from the bank when a problem id is given).
     pub fn build(&self, problems: Option<&std::path::Path>) -> Result<System, CliError> {
+        self.build_with_defaults(problems).map(|(sys, _)| sys)
+    }
+
+    /// The system and, for a bank problem, its suggested simulation numbers.
+    pub fn build_with_defaults(
+        &self,
+        problems: Option<&std::path::Path>,
+    ) -> Result<(System, lagrange::problem::SimulationDefaults), CliError> {
         if let Some(id) = &self.problem {
             if self.lagrangian.is_some() || self.kinetic.is_some() {
                 return Err(CliError::usage(
@@ -77,7 +85,7 @@ impl SystemArgs {
                 .ok_or_else(|| {
                     CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
                 })?;
-            return Ok(p.system);
+            return Ok((p.system, p.simulation));
         }
         let coords: Vec<&str> = self
             .coords
@@ -131,7 +139,7 @@ impl SystemArgs {
         for c in &self.constraint {
             sys.add_constraint(&expression("--constraint", c)?)?;
         }
-        Ok(sys)
+        Ok((sys, Default::default()))
     }
 }
 

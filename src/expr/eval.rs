@@ -269,7 +269,10 @@ impl Program {
         if finite {
             return Ok(());
         }
-        let i = scratch[nc..].iter().position(|v| !v.is_finite()).unwrap_or(0);
+        let i = scratch[nc..]
+            .iter()
+            .position(|v| !v.is_finite())
+            .unwrap_or(0);
         Err(Undefined {
             node: self.origin[i],
         })

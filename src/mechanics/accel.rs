@@ -17,6 +17,8 @@ const SINGULAR: f64 = 1e-12;
 pub struct Dynamics {
     program: Program,
     n: usize,
+    /// Constraint rows compiled after M and f (A, m × n, then r), none when unconstrained.
+    constraints: usize,
     names: Vec<String>,
 }
 
@@ -28,8 +30,43 @@ impl Dynamics {
         Ok(Dynamics {
             program: sys.compile(&roots)?,
             n: sys.n(),
+            constraints: 0,
             names: sys.coordinates.iter().map(|c| c.name.clone()).collect(),
         })
+    }
+
+    /// Compiles M and f of `d` and the constraint rows (A, r) of the system's constraints:
+    /// the augmented equations M q'' − Aᵀλ = f, A q'' = −r.
+    pub fn constrained(sys: &mut System, d: &Derivation) -> Result<Dynamics, MechError> {
+        let rows = sys.constraint_rows();
+        let mut roots: Vec<_> = d.mass.iter().flatten().copied().collect();
+        roots.extend(d.forcing.iter().copied());
+        roots.extend(rows.a.iter().flatten().copied());
+        roots.extend(rows.r.iter().copied());
+        Ok(Dynamics {
+            program: sys.compile(&roots)?,
+            n: sys.n(),
+            constraints: rows.r.len(),
+            names: sys.coordinates.iter().map(|c| c.name.clone()).collect(),
+        })
+    }
+
+    /// Number of constraint rows compiled with M and f.
+    pub fn constraints(&self) -> usize {
+        self.constraints
+    }
+
+    /// A (row-major, m·n) and r (m) after a successful
+    /// [`mass_and_forcing_into`](Self::mass_and_forcing_into) with the same scratch.
+    pub fn constraint_rows_from(&self, scratch: &[f64], a: &mut [f64], r: &mut [f64]) {
+        let (n, m) = (self.n, self.constraints);
+        let base = n * n + n;
+        for (k, v) in a.iter_mut().enumerate().take(m * n) {
+            *v = self.program.output(base + k, scratch);
+        }
+        for (k, v) in r.iter_mut().enumerate().take(m) {
+            *v = self.program.output(base + m * n + k, scratch);
+        }
     }
 
     /// M and f at `point` (the standard layout; accelerations in it are ignored).
@@ -55,6 +92,7 @@ impl Dynamics {
         Dynamics {
             program: self.program.specialize(fixed),
             n: self.n,
+            constraints: self.constraints,
             names: self.names.clone(),
         }
     }

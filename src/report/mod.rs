@@ -16,6 +16,7 @@
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
 //! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`).
 
+mod constraint_watch;
 pub mod derivation;
 pub mod derivation_at;
 pub mod formula;

@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use super::constraint_watch::{ConstraintWatch, off_constraint};
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
@@ -67,6 +68,16 @@ pub enum SimulationError {
     /// A report time outside (0, t_end].
     #[error("--report-at {t} is outside the simulated interval [0, {t_end}]")]
     ReportTime { t: f64, t_end: f64 },
+    /// The initial state is off a constraint.
+    #[error(
+        "the initial state is off constraint {index} ({text} = 0): its {level} miss it by {residual:.3e}; give initial values on it"
+    )]
+    OffConstraint {
+        index: usize,
+        text: String,
+        level: &'static str,
+        residual: f64,
+    },
     /// M became singular along the motion.
     #[error("the mass matrix became singular at t = {t}, where {state}")]
     Singular { t: f64, state: String },
@@ -76,6 +87,47 @@ pub enum SimulationError {
 }
 
 impl SimulationError {
+    /// A short stable code for the diagnostic.
+    pub fn code(&self) -> &'static str {
+        match self {
+            SimulationError::Singular { .. } => "singular",
+            SimulationError::OffConstraint { .. } => "off-constraint",
+            _ if self.along_the_way() => "numerics",
+            _ => "usage",
+        }
+    }
+
+    /// What to do about it, in one line (no flag of any face: the faces add theirs).
+    pub fn help(&self) -> String {
+        match self {
+            SimulationError::Sim(SimError::MissingParameters { names }) => format!(
+                "give {} a value",
+                names
+                    .iter()
+                    .map(|n| format!("`{n}=<value>`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            SimulationError::UnknownCoordinate { .. } | SimulationError::Repeated { .. } => {
+                "name each coordinate (q) or velocity (q') once".into()
+            }
+            SimulationError::OffConstraint { .. } => {
+                "choose positions and velocities that satisfy every constraint".into()
+            }
+            SimulationError::Singular { .. } => {
+                "the coordinates degenerate there; choose other coordinates or start elsewhere"
+                    .into()
+            }
+            _ if self.along_the_way() => {
+                "shorten the time, or tighten the step (smaller tolerances or step)".into()
+            }
+            SimulationError::Sim(SimError::UnknownParameter { .. }) => {
+                "give values only to the system's parameters".into()
+            }
+            _ => "check the values given".into(),
+        }
+    }
+
     /// Whether the input was fine but the motion could not be followed (singular M,
     /// divergence, step underflow): a "no" rather than a usage error.
     pub fn along_the_way(&self) -> bool {
@@ -132,6 +184,9 @@ pub struct SimulationReport {
     /// Whether h is expected to be constant (no explicit t, no forces doing work).
     #[serde(skip)]
     pub h_conserved: bool,
+    /// The largest |f(q, t)| of the holonomic constraints over the grid (None without any).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub constraint_drift: Option<f64>,
     /// The end time.
     #[serde(skip)]
     pub t_end: f64,
@@ -160,6 +215,16 @@ pub fn simulation(
     let h_conserved = rhs.energy_conserved();
     let names = state_names(rhs.names());
     let y0 = initial_state(&names, &opts.init)?;
+    let mech = |e: crate::mechanics::MechError| SimulationError::Sim(e.into());
+    if let Some(off) = off_constraint(sys, &params, &y0).map_err(mech)? {
+        return Err(SimulationError::OffConstraint {
+            index: off.index,
+            text: off.text,
+            level: off.level,
+            residual: off.residual,
+        });
+    }
+    let mut watch = ConstraintWatch::new(sys, &params).map_err(mech)?;
     let traj = integrate(&mut rhs, &y0, opts).map_err(|e| match e {
         SimError::Singular { t, y } => SimulationError::Singular {
             t,
@@ -172,6 +237,11 @@ pub fn simulation(
         .into_iter()
         .map(|(t, y)| rhs.energy(t, &y).map(|h| (t, y, h)))
         .collect::<Result<Vec<_>, _>>()?;
+    let constraint_drift = watch.as_mut().map(|w| {
+        (grid.iter())
+            .map(|(t, y, _)| w.residual(*t, y))
+            .fold(0.0, f64::max)
+    });
     let h_start = rhs.energy(0.0, &traj.y0)?;
     let h_end = rhs.energy(traj.t_end, &traj.y_final)?;
     let scale = if h_start == 0.0 { 1.0 } else { h_start.abs() };
@@ -201,6 +271,7 @@ pub fn simulation(
         reports,
         final_state: state(&names, &traj.y_final),
         h_conserved,
+        constraint_drift,
         t_end: traj.t_end,
         grid,
         names,
@@ -330,6 +401,13 @@ impl SimulationReport {
                 let note =
                     "h is not expected to be constant here (explicit time or forces doing work)";
                 writeln!(o, "  {}", paint.warn(note))?;
+            }
+            if let Some(d) = self.constraint_drift {
+                writeln!(
+                    o,
+                    "{} largest residual |f(q, t)| over the run {d:.3e}",
+                    paint.heading("Constraints:")
+                )?;
             }
             for r in &self.reports {
                 writeln!(

@@ -27,14 +27,9 @@ use crate::mechanics::MechError;
 /// What can go wrong setting up or running a simulation.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SimError {
-    /// Constraints are not eliminated by the simulator yet.
-    #[error(
-        "the system has {count} constraint(s); simulation needs them eliminated (choose independent coordinates)"
-    )]
-    Constraints { count: usize },
     /// A parameter of the system has no value.
-    #[error("no value was given for the parameter `{name}`")]
-    MissingParameter { name: String },
+    #[error("no value was given for {}", list_names(names))]
+    MissingParameters { names: Vec<String> },
     /// A value was given for something that is not a parameter.
     #[error("`{name}` is not a parameter of the system (its parameters: {known})")]
     UnknownParameter { name: String, known: String },
@@ -62,6 +57,13 @@ pub enum SimError {
     /// Building the equations failed.
     #[error(transparent)]
     Mechanics(#[from] MechError),
+}
+
+/// "the parameter `g`" or "the parameters `g`, `l`".
+fn list_names(names: &[String]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    let s = if names.len() == 1 { "" } else { "s" };
+    format!("the parameter{s} {}", quoted.join(", "))
 }
 
 /// A first-order system y' = F(t, y) of fixed dimension.

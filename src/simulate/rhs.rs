@@ -1,6 +1,8 @@
 //! The right-hand side y' = F(t, y) of a system, y = (q, q'): M and f compiled once with the
 //! parameter values fixed; each call loads the state into the sample point and solves
 //! M q'' = f by Gaussian elimination with partial pivoting in reused buffers (no allocation).
+//! With constraints, the augmented equations M q'' − Aᵀλ = f, A q'' = −r are solved instead
+//! (index reduced to the acceleration level; the report watches the constraints' drift).
 
 use super::{Ode, SimError};
 use crate::expr::Program;
@@ -21,6 +23,11 @@ pub struct Rhs {
     scratch: Vec<f64>,
     m: Vec<f64>,
     f: Vec<f64>,
+    /// Constraint rows A (m × n) and r, and the augmented (n + m)² matrix and right side.
+    a: Vec<f64>,
+    r: Vec<f64>,
+    aug: Vec<f64>,
+    aug_rhs: Vec<f64>,
     energy: Program,
     energy_scratch: Vec<f64>,
     /// Whether h is conserved (no explicit t, no force doing work), from the derivation.
@@ -28,14 +35,9 @@ pub struct Rhs {
 }
 
 impl Rhs {
-    /// Derives `sys`, compiles M, f and the energy function h, with every parameter given a
-    /// value in `params` (by name). Systems with constraints are refused.
+    /// Derives `sys`, compiles M, f (and the constraint rows, if any) and the energy function
+    /// h, with every parameter given a value in `params` (by name).
     pub fn new(sys: &mut System, params: &[(&str, f64)]) -> Result<Rhs, SimError> {
-        if !sys.constraints.is_empty() {
-            return Err(SimError::Constraints {
-                count: sys.constraints.len(),
-            });
-        }
         let values = parameter_values(sys, params)?;
         let d = sys.derive()?;
         let layout = sys.state_layout();
@@ -43,7 +45,13 @@ impl Rhs {
         let fixed: Vec<(usize, f64)> = (values.iter().enumerate())
             .map(|(j, &v)| (layout.param(j), v))
             .collect();
-        let dynamics = Dynamics::new(sys, &d)?.specialize(&fixed);
+        let dynamics = if sys.constraints.is_empty() {
+            Dynamics::new(sys, &d)?
+        } else {
+            Dynamics::constrained(sys, &d)?
+        }
+        .specialize(&fixed);
+        let c = dynamics.constraints();
         let energy_analysis = sys.energy(&d);
         let energy = sys.compile(&[energy_analysis.function])?.specialize(&fixed);
         let n = sys.n();
@@ -59,6 +67,10 @@ impl Rhs {
             point,
             m: vec![0.0; n * n],
             f: vec![0.0; n],
+            a: vec![0.0; c * n],
+            r: vec![0.0; c],
+            aug: vec![0.0; (n + c) * (n + c)],
+            aug_rhs: vec![0.0; n + c],
             energy_conserved: energy_analysis.conserved,
         })
     }
@@ -102,12 +114,44 @@ impl Ode for Rhs {
         self.dynamics
             .mass_and_forcing_into(&self.point, &mut self.scratch, &mut self.m, &mut self.f)
             .map_err(|_| SimError::Diverges { t })?;
-        solve_in_place(n, &mut self.m, &mut self.f)
-            .ok_or_else(|| SimError::Singular { t, y: y.to_vec() })?;
+        if self.dynamics.constraints() > 0 {
+            self.solve_constrained(t, y)?;
+        } else {
+            solve_in_place(n, &mut self.m, &mut self.f)
+                .ok_or_else(|| SimError::Singular { t, y: y.to_vec() })?;
+        }
         for i in 0..n {
             dy[self.layout.phase_q(i)] = y[self.layout.phase_qdot(i)];
             dy[self.layout.phase_qdot(i)] = self.f[i];
         }
+        Ok(())
+    }
+}
+
+impl Rhs {
+    /// q'' into `f` from [M −Aᵀ; A 0] [q''; λ] = [f; −r] (M and f already evaluated).
+    fn solve_constrained(&mut self, t: f64, y: &[f64]) -> Result<(), SimError> {
+        let n = self.layout.coordinates();
+        let c = self.dynamics.constraints();
+        let w = n + c;
+        self.dynamics
+            .constraint_rows_from(&self.scratch, &mut self.a, &mut self.r);
+        self.aug.fill(0.0);
+        for i in 0..n {
+            self.aug[i * w..i * w + n].copy_from_slice(&self.m[i * n..i * n + n]);
+            self.aug_rhs[i] = self.f[i];
+        }
+        for k in 0..c {
+            for j in 0..n {
+                let v = self.a[k * n + j];
+                self.aug[(n + k) * w + j] = v;
+                self.aug[j * w + n + k] = -v;
+            }
+            self.aug_rhs[n + k] = -self.r[k];
+        }
+        solve_in_place(w, &mut self.aug, &mut self.aug_rhs)
+            .ok_or_else(|| SimError::Singular { t, y: y.to_vec() })?;
+        self.f.copy_from_slice(&self.aug_rhs[..n]);
         Ok(())
     }
 }
@@ -130,18 +174,21 @@ fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, Si
             known: known(),
         });
     }
-    sys.parameters
-        .iter()
+    let missing: Vec<String> = (sys.parameters.iter())
+        .filter(|p| !params.iter().any(|(name, _)| *name == p.name))
+        .map(|p| p.name.clone())
+        .collect();
+    if !missing.is_empty() {
+        return Err(SimError::MissingParameters { names: missing });
+    }
+    Ok((sys.parameters.iter())
         .map(|p| {
             params
                 .iter()
                 .find(|(name, _)| *name == p.name)
-                .map(|&(_, v)| v)
-                .ok_or_else(|| SimError::MissingParameter {
-                    name: p.name.clone(),
-                })
+                .map_or(0.0, |x| x.1)
         })
-        .collect()
+        .collect())
 }
 
 /// Solves M x = f for the row-major n × n `m` in place (x overwrites `f`) by Gaussian
@@ -219,7 +266,12 @@ mod tests {
     fn parameters_are_checked_by_name() {
         let mut sys = System::from_lagrangian("m*x'^2/2 - k*x^2/2", &["x"]).unwrap();
         let e = Rhs::new(&mut sys, &[("m", 1.0)]).unwrap_err();
-        assert_eq!(e, SimError::MissingParameter { name: "k".into() });
+        assert_eq!(
+            e,
+            SimError::MissingParameters {
+                names: vec!["k".into()]
+            }
+        );
         let e = Rhs::new(&mut sys, &[("m", 1.0), ("k", 1.0), ("c", 2.0)]).unwrap_err();
         assert!(matches!(e, SimError::UnknownParameter { .. }));
         let mut rhs = Rhs::new(&mut sys, &[("m", 2.0), ("k", 8.0)]).unwrap();
@@ -230,10 +282,20 @@ mod tests {
     }
 
     #[test]
-    fn constraints_are_refused() {
-        let mut sys = System::from_lagrangian("m*(x'^2 + y'^2)/2", &["x", "y"]).unwrap();
-        sys.add_constraint("x - y").unwrap();
-        let e = Rhs::new(&mut sys, &[("m", 1.0)]).unwrap_err();
-        assert_eq!(e, SimError::Constraints { count: 1 });
+    fn a_constrained_atwood_machine_accelerates_at_the_textbook_rate() {
+        // y1 + y2 = c (string), y measured downwards: y1'' = (m1 − m2) g / (m1 + m2).
+        let l = "(m1*y1'^2 + m2*y2'^2)/2 + m1*g*y1 + m2*g*y2";
+        let mut sys = System::from_lagrangian(l, &["y1", "y2"]).unwrap();
+        sys.add_constraint("y1 + y2 - c").unwrap();
+        let p = [("m1", 3.0), ("m2", 1.0), ("g", 9.8), ("c", 2.0)];
+        let mut rhs = Rhs::new(&mut sys, &p).unwrap();
+        let mut dy = [0.0; 4];
+        rhs.eval(0.0, &[0.5, 1.5, 0.2, -0.2], &mut dy).unwrap();
+        let want = (3.0 - 1.0) * 9.8 / 4.0;
+        assert!(
+            (dy[2] - want).abs() < 1e-12 && (dy[3] + want).abs() < 1e-12,
+            "{dy:?}"
+        );
+        assert_eq!((dy[0], dy[1]), (0.2, -0.2));
     }
 }

@@ -28,6 +28,7 @@ mod rigid13;
 mod scale;
 mod session;
 mod simulate14;
+mod simulate_bank14;
 mod simulate_cli;
 mod soundness;
 mod steady13;
