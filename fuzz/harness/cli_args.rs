@@ -1,6 +1,7 @@
 //! Target `cli-args`: the values of the command-line arguments (`read`'s input, `--coords`,
 //! `--dims`, `--diff`; `derive`'s and `modes`' `--lagrangian`, `--kinetic`/`--potential`,
-//! `--force`, `--constraint`, `--params`, `--at`, `--range`, `--symbolic`, a problem id)
+//! `--force`, `--constraint`, `--params`, `--at`, `--range`, `--symbolic`, a problem id;
+//! `simulate`'s `--init`, `--t-end`, `--method`, `--dt`, `--rtol`)
 //! through the library calls `src/cli/*.rs` makes, in process, with every report and error
 //! rendered as the CLI renders it. Oracle: no panic, no slow input, no raw control
 //! character in what is shown.
@@ -12,7 +13,10 @@ use lagrange::diagnostic::{Diagnostic, render, render_parse_error, render_plain}
 use lagrange::expr::{Dimension, Style};
 use lagrange::mechanics::{MechError, System};
 use lagrange::report::modes::assignments;
-use lagrange::report::{ModesOptions, Plain, ReadOptions, derivation, modes, reading};
+use lagrange::report::{
+    ModesOptions, Plain, ReadOptions, SimulationOptions, derivation, modes, reading, simulation,
+};
+use lagrange::simulate::Method;
 
 use super::inputs::{self, Rng, Vocab, below, chance, pick};
 use super::no_raw_controls;
@@ -40,6 +44,13 @@ pub struct Args {
     pub at: Option<String>,
     pub range: Vec<String>,
     pub symbolic: bool,
+    /// `simulate`'s initial values, end time, method (`dop853`, `rk4`, `gauss`), step and
+    /// tolerance.
+    pub init: String,
+    pub t_end: f64,
+    pub method: String,
+    pub step: Option<f64>,
+    pub rtol: f64,
 }
 
 /// Lagrangians people type, and ones that blew up before.
@@ -108,6 +119,7 @@ pub fn generate(r: &mut Rng) -> Vec<u8> {
             a.diff = chance(r, 0.4).then(|| text(r, &v));
             a.dt = chance(r, 0.5);
         }
+        17..=19 => simulation_args(r, &v, &mut a),
         k => {
             a.command = if k < 13 { "derive" } else { "modes" }.into();
             system(r, &v, &mut a);
@@ -139,6 +151,31 @@ pub fn generate(r: &mut Rng) -> Vec<u8> {
         }
     }
     serde_json::to_vec_pretty(&a).expect("arguments serialize")
+}
+
+/// `simulate`: a system, parameters, a start, an end time and a method, sensible and not.
+fn simulation_args(r: &mut Rng, v: &Vocab, a: &mut Args) {
+    a.command = "simulate".into();
+    system(r, v, a);
+    a.params = pick(r, PARAMS).to_string();
+    let q = v.coords.first().cloned().unwrap_or_default();
+    a.init = pick(
+        r,
+        &[
+            String::new(),
+            format!("{q}=1"),
+            format!("{q}=3.1, {q}'=2"),
+            format!("{q}=1e300"),
+            format!("{q}'=1e10"),
+            format!("{q}=1, {q}=2"),
+            "nope=1".to_string(),
+        ],
+    )
+    .clone();
+    a.t_end = *pick(r, &[1.0, 0.1, 5.0, 0.0, -1.0, 1e9, 1e-300]);
+    a.method = pick(r, &["dop853", "rk4", "gauss"]).to_string();
+    a.step = Some(*pick(r, &[1e-2, 1e-3, 0.0, -1.0, 1e-12, 2.0]));
+    a.rtol = *pick(r, &[1e-10, 1e-6, 0.0, 1e-20, 1.0]);
 }
 
 /// An input text: grammar, a known Lagrangian mutated, a soup or a blow-up.
@@ -216,7 +253,57 @@ pub fn execute(input: &[u8]) -> Result<(), String> {
             },
             Ok(sys) => modes_of(&a, &sys),
         },
+        "simulate" => match build(&a) {
+            Err(e) => no_raw_controls(&e, "error"),
+            Ok(mut sys) => simulate(&a, &mut sys),
+        },
         other => Err(format!("corpus: no command `{other}`")),
+    }
+}
+
+/// `lagrange simulate`, as `src/cli/simulate.rs` does it (numbers that do not parse are
+/// usage errors there, skipped here).
+fn simulate(a: &Args, sys: &mut System) -> Result<(), String> {
+    let numbers = |text: &str| -> Option<Vec<(String, f64)>> {
+        let pairs = assignments(text).ok()?;
+        pairs
+            .into_iter()
+            .map(|(n, v)| {
+                v.parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .map(|v| (n, v))
+            })
+            .collect()
+    };
+    let (Some(params), Some(init)) = (numbers(&a.params), numbers(&a.init)) else {
+        return Ok(());
+    };
+    let method = match a.method.as_str() {
+        "rk4" => Method::Rk4,
+        "gauss" => Method::Gauss,
+        _ => Method::Dop853,
+    };
+    let opts = SimulationOptions {
+        params,
+        init,
+        t_end: a.t_end,
+        method,
+        rtol: a.rtol,
+        atol: a.rtol,
+        dt: a.step,
+        report_at: vec![a.t_end / 2.0],
+        samples: 200,
+    };
+    match simulation(sys, &opts) {
+        Ok(rep) => {
+            no_raw_controls(&rep.render(&Plain), "simulation")?;
+            let _ = rep.csv();
+            serde_json::to_string(&rep)
+                .map(drop)
+                .map_err(|e| format!("json: {e}"))
+        }
+        Err(e) => no_raw_controls(&format!("{e} / {}", e.help()), "error"),
     }
 }
 

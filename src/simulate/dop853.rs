@@ -304,12 +304,10 @@ pub fn dop853(
     ode.eval(t, &y, &mut w.k[1])?;
     let mut h = initial_step(ode, (t, &y), &mut w, tol)?;
     let mut last_rejected = false;
+    let max = tol.max_steps.min(traj.step_limit());
     loop {
-        if traj.stats.accepted + traj.stats.rejected >= tol.max_steps {
-            return Err(SimError::TooManySteps {
-                max: tol.max_steps,
-                t,
-            });
+        if traj.stats.accepted + traj.stats.rejected >= max {
+            return Err(SimError::TooManySteps { max, t });
         }
         if 0.1 * h.abs() <= t.abs() * f64::EPSILON {
             return Err(SimError::StepUnderflow { t });

@@ -135,6 +135,12 @@ fn integrate(
     let h = span / steps as f64;
     let mut w = Work::new(y0.len());
     let mut traj = Trajectory::new(method, Dense::Hermite, t0, y0);
+    if steps > traj.step_limit() {
+        return Err(SimError::Invalid(format!(
+            "the step {dt} needs {steps} steps, more than the {} a run may store; take a longer step or a shorter interval",
+            traj.step_limit()
+        )));
+    }
     let mut y = y0.to_vec();
     w.evals += 1;
     ode.eval(t0, &y, &mut w.f0)?;

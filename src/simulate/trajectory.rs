@@ -71,7 +71,16 @@ pub struct Trajectory {
     coef: Vec<f64>,
 }
 
+/// The most numbers a trajectory stores (240 MB): a run that would need more steps is
+/// refused, whatever its step limit, rather than exhausting memory.
+pub const MAX_STORED: usize = 30_000_000;
+
 impl Trajectory {
+    /// The most steps this trajectory can store within [`MAX_STORED`].
+    pub(super) fn step_limit(&self) -> usize {
+        MAX_STORED / (self.dense.width() * self.dim() + 2)
+    }
+
     pub(super) fn new(method: Method, dense: Dense, t0: f64, y0: &[f64]) -> Self {
         Trajectory {
             method,

@@ -101,3 +101,22 @@ fn missing_parameters_are_named_together_and_t_end_is_asked_for() {
     assert_eq!(code, 2);
     assert!(err.contains("--t-end"), "{err}");
 }
+
+#[test]
+fn a_fixed_step_run_that_would_not_fit_in_memory_is_refused_up_front() {
+    let (code, _, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--method",
+        "rk4",
+        "--dt",
+        "1e-6",
+        "--t-end",
+        "100",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("more than the") && err.contains("a run may store"),
+        "{err}"
+    );
+}
