@@ -59,6 +59,14 @@ pub struct SimulateArgs {
     /// Draw the relative energy error over time to this SVG file.
     #[arg(long)]
     energy: Option<PathBuf>,
+    /// Draw into --phase a family of trajectories at N energies (1 to 200) instead of the one
+    /// from --init: one degree of freedom and a conserved h only (more are refused). All start
+    /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies from just
+    /// above it to 1.8 × the highest barrier, the separatrix included; the separatrix and
+    /// rotations go both ways. Each is integrated over --t-end and cut after one period.
+    /// Colour shows the energy.
+    #[arg(long, value_name = "N")]
+    portrait: Option<usize>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -78,6 +86,9 @@ pub fn run(
         let message = "--plot - and --json both write to stdout; give --plot a file".into();
         return Ok(report(&CliError::Usage(message), color));
     }
+    if let Err(e) = check_portrait(args) {
+        return Ok(report(&e, color));
+    }
     let opts = match options(args) {
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
@@ -86,10 +97,11 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
-    let report_ = match lagrange::report::simulation(&mut sys, &opts) {
+    let mut report_ = match lagrange::report::simulation(&mut sys, &opts) {
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
     };
+    report_.units = axis_units(args, problems);
     if let Some(path) = &args.out
         && let Err(e) = write_atomic(path, report_.csv().as_bytes())
     {
@@ -98,6 +110,16 @@ pub fn run(
     }
     if let Err(e) = pictures(args, &report_) {
         return Ok(report(&CliError::Usage(e), color));
+    }
+    if let (Some(count), Some(path)) = (args.portrait, &args.phase) {
+        let family = match lagrange::report::simulation::portrait_family(&mut sys, &opts, count) {
+            Ok(f) => f,
+            Err(e) => return Ok(failure(&e)),
+        };
+        if let Err(e) = crate::plot::portrait_svg(&family, &report_.units, path) {
+            let message = format!("--phase {}: cannot draw: {e}", path.display());
+            return Ok(report(&CliError::Usage(message), color));
+        }
     }
     if args.json {
         out.push_str(&serde_json::to_string_pretty(&report_)?);
@@ -116,7 +138,11 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     type Draw = fn(&SimulationReport, &Path) -> Result<(), String>;
     let asked: [(&str, Option<&PathBuf>, Draw); 3] = [
         ("--plot", args.plot.as_ref(), crate::plot::qt_svg),
-        ("--phase", args.phase.as_ref(), crate::plot::phase_svg),
+        (
+            "--phase",
+            args.phase.as_ref().filter(|_| args.portrait.is_none()),
+            crate::plot::phase_svg,
+        ),
         ("--energy", args.energy.as_ref(), crate::plot::energy_svg),
     ];
     for (flag, path, draw) in asked {
@@ -125,6 +151,35 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// `--portrait N` needs `--phase FILE` and N in 1 ..= 200.
+fn check_portrait(args: &SimulateArgs) -> Result<(), CliError> {
+    use lagrange::simulate::portrait::MAX_PORTRAIT;
+    let Some(n) = args.portrait else {
+        return Ok(());
+    };
+    if args.phase.is_none() || args.phase.as_deref() == Some(Path::new("-")) {
+        return Err(CliError::Usage(
+            "--portrait N draws into the phase picture: give --phase FILE.svg".into(),
+        ));
+    }
+    if n == 0 || n > MAX_PORTRAIT {
+        return Err(CliError::Usage(format!(
+            "--portrait {n}: give 1 to {MAX_PORTRAIT} energies"
+        )));
+    }
+    Ok(())
+}
+
+/// The axes' units: a bank problem's declared dimensions, nothing for a typed system.
+fn axis_units(args: &SimulateArgs, problems: Option<&Path>) -> lagrange::report::units::AxisUnits {
+    args.system
+        .problem
+        .as_deref()
+        .and_then(|id| super::problems::find_problem(problems, id).ok().flatten())
+        .map(|p| lagrange::report::units::AxisUnits::of(&p))
+        .unwrap_or_default()
 }
 
 /// The library's options from the flags.
