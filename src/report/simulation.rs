@@ -278,6 +278,16 @@ fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
         .collect()
 }
 
+/// The parameters of the motion of `sys` (in L or a force) that `given` has no value for.
+pub fn missing_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+    let unused = unused_parameters(sys, given);
+    sys.parameters
+        .iter()
+        .filter(|p| !unused.contains(&p.name) && !given.iter().any(|(n, _)| *n == p.name))
+        .map(|p| p.name.clone())
+        .collect()
+}
+
 /// The checks that need no system.
 fn check_options(opts: &SimulationOptions) -> Result<(), SimulationError> {
     if !(opts.t_end.is_finite() && opts.t_end > 0.0) {

@@ -223,3 +223,67 @@ fn the_readme_portrait_is_what_its_command_draws() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Runs the REPL with `input` piped in, without a progress file: (exit code, stdout).
+fn repl(input: &str) -> (i32, String) {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(["repl", "--no-save"])
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
+/// The complete elliptic integral K(k) by the arithmetic–geometric mean.
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
+    while (a - b).abs() > 1e-15 {
+        (a, b) = ((a + b) / 2.0, (a * b).sqrt());
+    }
+    PI / (2.0 * a)
+}
+
+#[test]
+fn repl_simulate_draws_the_chart_and_comes_back_after_one_period() {
+    // θ(0) = 1 at rest: the period is 4 K(sin ½) / √(g/l), after which θ is 1 again.
+    let period = 4.0 * elliptic_k(0.5f64.sin()) / 9.81f64.sqrt();
+    let input = format!(
+        ":open simple-pendulum\n:simulate --init theta=1\n\
+         :simulate --init theta=1 --t-end {period} --params m=1, l=1, g=9.81\n\
+         :help simulate\n:simulate --t-end -1\n"
+    );
+    let (code, out) = repl(&input);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("error[missing-parameters]") && out.contains("`g`, `l`, `m`"),
+        "{out}"
+    );
+    assert!(out.contains("θ(t) (θ / rad against t / s)"), "{out}");
+    assert!(
+        out.contains('⠀') || out.contains('⡀'),
+        "a braille chart: {out}"
+    );
+    let last = out
+        .lines()
+        .find_map(|l| l.strip_prefix("Final: theta = "))
+        .unwrap();
+    let theta: f64 = last.split(',').next().unwrap().trim().parse().unwrap();
+    assert!((theta - 1.0).abs() < 1e-6, "{theta}");
+    assert!(out.contains(":simulate [--init …]"), "{out}");
+    assert!(out.contains("error[bad-simulate]: --t-end"), "{out}");
+}
