@@ -234,6 +234,10 @@ fn failure(e: &SimulationError) -> ExitCode {
             "singular",
             "the coordinates degenerate there; choose other coordinates or start elsewhere".into(),
         ),
+        SimulationError::Portrait(_) if !e.along_the_way() => (
+            "usage",
+            "--portrait needs one degree of freedom, a conserved h and a potential with a lowest point inside the coordinate's range; without --portrait, --phase draws the motion from --init".into(),
+        ),
         _ if e.along_the_way() => (
             "numerics",
             "shorten --t-end, or loosen the step (--rtol, --dt)".into(),

@@ -14,8 +14,9 @@
 //! - the separatrix and the rotations are drawn both ways (q̇ > 0 and q̇ < 0), a libration once;
 //! - each curve is integrated over `t_end` and cut after one period: a libration when it
 //!   comes back through q*, a rotation when it has advanced 2π, the separatrix when it has
-//!   nearly stopped at the saddle; a curve whose period is longer than `t_end` is what
-//!   `t_end` gives.
+//!   nearly stopped at the saddle (the separatrix also backward in time, to the saddle it
+//!   came from, so each direction draws one whole branch); a curve whose period is longer
+//!   than `t_end` is what `t_end` gives.
 //!
 //! More than one degree of freedom is refused: there the energy does not select one curve in
 //! one coordinate's phase plane (the other coordinates exchange energy with it).
@@ -377,15 +378,50 @@ fn start_velocity(
     Ok(sign * 0.5 * (lo + hi))
 }
 
-/// Integrates from y0 over `t_end` and cuts the samples after one period of its kind.
+/// The curve through y0: one period of its kind forward in time; for the separatrix also its
+/// past (the branch that comes out of the other saddle), so that it joins saddle to saddle.
 fn trace(
     rhs: &mut Rhs,
     y0: [f64; 2],
     kind: CurveKind,
     spec: &FamilySpec,
 ) -> Result<Vec<(f64, f64)>, SimError> {
+    let ahead = trace_one(rhs, y0, kind, spec)?;
+    if kind != CurveKind::Separatrix {
+        return Ok(ahead);
+    }
+    let mut past = trace_one(&mut Backward(rhs), y0, kind, spec)?;
+    past.reverse();
+    past.pop();
+    past.extend(ahead);
+    Ok(past)
+}
+
+/// The motion backward in time: y'(s) = −F(y) for s = −t (the system is autonomous, as h is
+/// conserved).
+struct Backward<'a>(&'a mut Rhs);
+
+impl Ode for Backward<'_> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+
+    fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        self.0.eval(-t, y, dy)?;
+        dy.iter_mut().for_each(|v| *v = -*v);
+        Ok(())
+    }
+}
+
+/// Integrates from y0 over `t_end` and cuts the samples after one period of its kind.
+fn trace_one(
+    ode: &mut dyn Ode,
+    y0: [f64; 2],
+    kind: CurveKind,
+    spec: &FamilySpec,
+) -> Result<Vec<(f64, f64)>, SimError> {
     let tol = Tolerances::new(spec.rtol, spec.atol);
-    let traj = dop853(rhs as &mut dyn Ode, 0.0, &y0, spec.t_end, &tol)?;
+    let traj = dop853(ode, 0.0, &y0, spec.t_end, &tol)?;
     let points: Vec<(f64, f64)> = traj
         .sample_even(spec.samples.clamp(2, MAX_POINTS))
         .into_iter()

@@ -80,9 +80,15 @@ fn the_pendulum_family_has_librations_the_separatrix_and_rotations_both_ways() {
                 assert!(c.points.iter().all(|q| (q.1 > 0.0) == c.forward));
             }
             CurveKind::Separatrix => {
-                // Towards the saddle at ±π, slowing to a near stop there.
-                let reach = if c.forward { hi } else { -lo };
-                assert!(reach > PI - 0.05 && reach < PI + 1e-6, "{reach}");
+                // One branch from the saddle at −π to the one at +π, slowing to a near stop at
+                // both, with ½ m l² θ̇² = m g l (1 + cos θ) all along.
+                assert!(hi > PI - 0.05 && hi < PI + 1e-6, "{hi}");
+                assert!(lo < -PI + 0.05 && lo > -PI - 1e-6, "{lo}");
+                for &(q, v) in &c.points {
+                    let want = (2.0 * G / L * (1.0 + q.cos())).sqrt();
+                    assert!((v.abs() - want).abs() < 1e-4 * (G / L).sqrt(), "{q} {v}");
+                    assert_eq!(v > 0.0, c.forward);
+                }
             }
         }
     }
