@@ -63,8 +63,8 @@ pub struct SimulateArgs {
     /// from --init: one degree of freedom and a conserved h only (more are refused). All start
     /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies from just
     /// above it to 1.8 × the highest barrier, the separatrix included; the separatrix and
-    /// rotations go both ways. Each is integrated over --t-end and cut after one period.
-    /// Colour shows the energy.
+    /// rotations go both ways. Each is integrated over --t-end, cut after one period and drawn
+    /// with --samples points (at most 2000). Colour shows the energy.
     #[arg(long, value_name = "N")]
     portrait: Option<usize>,
 }

@@ -125,5 +125,9 @@ mod tests {
         assert_eq!(u.coordinates, vec![Some("rad".to_string())]);
         assert_eq!(u.velocities, vec![Some("rad s⁻¹".to_string())]);
         assert_eq!(u.energy.as_deref(), Some("J"));
+        let p = crate::bank::embedded::problem("spring-incline").unwrap();
+        let u = AxisUnits::of(&p);
+        assert_eq!(u.coordinates, vec![Some("m".to_string())]);
+        assert_eq!(u.velocities, vec![Some("m s⁻¹".to_string())]);
     }
 }

@@ -205,7 +205,7 @@ fn the_readme_portrait_is_what_its_command_draws() {
     let fresh = d.join("pendulum-portrait.svg");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let cmd = "--t-end 10 --samples 1000 --portrait 15 --phase docs/pendulum-portrait.svg";
+    let cmd = "--t-end 10 --samples 300 --portrait 15 --phase docs/pendulum-portrait.svg";
     assert!(readme.contains(cmd), "the README lost its command");
     let (code, _, err) = lagrange(&[
         "simulate",
@@ -215,7 +215,7 @@ fn the_readme_portrait_is_what_its_command_draws() {
         "--t-end",
         "10",
         "--samples",
-        "1000",
+        "300",
         "--portrait",
         "15",
         "--phase",

@@ -21,7 +21,10 @@
 //! More than one degree of freedom is refused: there the energy does not select one curve in
 //! one coordinate's phase plane (the other coordinates exchange energy with it).
 
+mod shape;
+
 use super::{Ode, Rhs, SimError, Tolerances, dop853};
+use shape::Shape;
 
 /// The most energies in a family.
 pub const MAX_PORTRAIT: usize = 200;
@@ -31,6 +34,8 @@ const GRID: usize = 720;
 const TOP: f64 = 1.8;
 /// The most points kept per curve.
 const MAX_POINTS: usize = 2000;
+/// Points of the scan of each integration for the end of its first period.
+const SCAN: usize = 8000;
 
 /// Why a family cannot be drawn.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -125,7 +130,7 @@ pub struct FamilySpec {
     pub t_end: f64,
     pub rtol: f64,
     pub atol: f64,
-    /// Points per curve over `t_end` (capped at 2000).
+    /// Points per curve, over its one period (capped at 2000).
     pub samples: usize,
 }
 
@@ -175,120 +180,6 @@ pub fn portrait(
             .then_some((shape.q_min - pi, shape.q_min + pi)),
         curves,
     })
-}
-
-/// What the family needs of V: its minimum, highest barrier and the values at the range's ends.
-struct Shape {
-    q_min: f64,
-    v_min: f64,
-    barrier: Option<f64>,
-    /// The lower of V at the two ends (non-periodic ranges).
-    v_ends: f64,
-}
-
-impl Shape {
-    fn of(rhs: &mut Rhs, c: &Coordinate1) -> Result<Shape, PortraitError> {
-        let (lo, hi) = if c.periodic {
-            (c.range.0, c.range.0 + std::f64::consts::TAU)
-        } else {
-            c.range
-        };
-        let step = (hi - lo) / GRID as f64;
-        let xs: Vec<f64> = (0..=GRID).map(|k| lo + step * k as f64).collect();
-        let vs = xs
-            .iter()
-            .map(|&q| potential(rhs, q))
-            .collect::<Result<Vec<_>, _>>()?;
-        let (v_lo, v_hi) = vs
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-                (a.min(v), b.max(v))
-            });
-        let spread = v_hi - v_lo;
-        if spread.is_nan() || spread <= 1e-12 * v_lo.abs().max(v_hi.abs()).max(1e-300) {
-            return Err(PortraitError::Flat {
-                name: c.name.clone(),
-                lo: c.range.0,
-                hi: c.range.1,
-            });
-        }
-        let k_min = (0..=GRID)
-            .min_by(|&a, &b| vs[a].total_cmp(&vs[b]))
-            .unwrap_or(0);
-        if !c.periodic && (k_min == 0 || k_min == GRID) {
-            return Err(PortraitError::NoMinimum {
-                name: c.name.clone(),
-                lo,
-                hi,
-            });
-        }
-        let (q_min, v_min) = refine(rhs, &xs, k_min, c.periodic, -1.0)?;
-        let mut barrier: Option<f64> = None;
-        for k in local_maxima(&vs, c.periodic) {
-            let (_, v) = refine(rhs, &xs, k, c.periodic, 1.0)?;
-            barrier = Some(barrier.map_or(v, |b| b.max(v)));
-        }
-        Ok(Shape {
-            q_min,
-            v_min,
-            barrier,
-            v_ends: vs[0].min(vs[GRID]),
-        })
-    }
-}
-
-/// V(q) = h(q, 0).
-fn potential(rhs: &mut Rhs, q: f64) -> Result<f64, SimError> {
-    rhs.energy(0.0, &[q, 0.0])
-}
-
-/// Grid indices of strict interior local maxima of V (cyclic for an angle; the last grid
-/// point of a period is the first again).
-fn local_maxima(vs: &[f64], periodic: bool) -> Vec<usize> {
-    let m = vs.len() - 1;
-    let at = |k: isize| -> f64 {
-        if periodic {
-            vs[k.rem_euclid(m as isize) as usize]
-        } else {
-            vs[k as usize]
-        }
-    };
-    let (first, last) = if periodic { (0, m) } else { (1, m - 1) };
-    (first..last)
-        .filter(|&k| {
-            let k = k as isize;
-            let v = at(k);
-            v > at(k - 1) && v >= at(k + 1)
-        })
-        .collect()
-}
-
-/// Golden-section refinement of the extremum of V near grid point `k` (`sign` −1 for a
-/// minimum, +1 for a maximum): (q, V(q)).
-fn refine(
-    rhs: &mut Rhs,
-    xs: &[f64],
-    k: usize,
-    periodic: bool,
-    sign: f64,
-) -> Result<(f64, f64), SimError> {
-    let step = xs[1] - xs[0];
-    let (mut a, mut b) = (xs[k] - step, xs[k] + step);
-    if !periodic {
-        a = a.max(xs[0]);
-        b = b.min(xs[xs.len() - 1]);
-    }
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..80 {
-        let (c, d) = (b - g * (b - a), a + g * (b - a));
-        if sign * potential(rhs, c)? > sign * potential(rhs, d)? {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    let q = 0.5 * (a + b);
-    Ok((q, potential(rhs, q)?))
 }
 
 /// The family's energies and kinds: without a barrier `count` energies up to 90 % of the way
@@ -422,13 +313,20 @@ fn trace_one(
 ) -> Result<Vec<(f64, f64)>, SimError> {
     let tol = Tolerances::new(spec.rtol, spec.atol);
     let traj = dop853(ode, 0.0, &y0, spec.t_end, &tol)?;
-    let points: Vec<(f64, f64)> = traj
-        .sample_even(spec.samples.clamp(2, MAX_POINTS))
-        .into_iter()
-        .map(|(_, y)| (y[0], y[1]))
-        .collect();
-    let end = one_period(&points, y0, kind).unwrap_or(points.len());
-    Ok(points[..end].to_vec())
+    // Find the period on a fine scan, then draw the curve with its own points over it (not
+    // over all of t_end, which may hold many periods).
+    let scan = traj.sample_even(SCAN);
+    let scan_points: Vec<(f64, f64)> = scan.iter().map(|(_, y)| (y[0], y[1])).collect();
+    let end = one_period(&scan_points, y0, kind).unwrap_or(scan.len());
+    let t_cut = scan[end.clamp(1, scan.len()) - 1].0;
+    let n = spec.samples.clamp(2, MAX_POINTS);
+    let mut y = [0.0; 2];
+    Ok((0..n)
+        .map(|k| {
+            traj.at_into(t_cut * k as f64 / (n - 1) as f64, &mut y);
+            (y[0], y[1])
+        })
+        .collect())
 }
 
 /// How many samples make one period: a libration returns through q0 the way it left, a
@@ -516,7 +414,42 @@ mod tests {
         for curve in &p.curves {
             let amp = curve.points.iter().fold(0.0f64, |a, p| a.max(p.0.abs()));
             assert!((amp - (2.0 * curve.energy).sqrt()).abs() < 0.02, "{amp}");
-            assert!(curve.points.len() < 600, "cut after one period");
+            // Cut after one period 2π < t_end: back at the start, (0, √(2E)).
+            let (x, v) = curve.points[curve.points.len() - 1];
+            assert!(x.abs() < 0.01 && (v - (2.0 * curve.energy).sqrt()).abs() < 1e-3);
+            assert!(
+                curve.points.iter().any(|q| q.0 < -0.9 * amp),
+                "a whole turn"
+            );
+        }
+    }
+
+    #[test]
+    fn a_double_well_has_its_separatrix_at_the_hump_and_curves_round_both_wells_above() {
+        // V = −x²/2 + x⁴/4: minima at ±1 (V = −¼), the hump at 0 (V = 0).
+        let mut sys = System::from_lagrangian("x'^2/2 + x^2/2 - x^4/4", &["x"]).unwrap();
+        let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+        let c = Coordinate1 {
+            name: "x".into(),
+            range: (-2.0, 2.0),
+            periodic: false,
+        };
+        let p = portrait(&mut rhs, &c, &spec(5)).unwrap();
+        assert!((p.q_min.abs() - 1.0).abs() < 1e-6 && (p.h_min + 0.25).abs() < 1e-12);
+        assert!(p.separatrix.unwrap().abs() < 1e-12);
+        assert_eq!(p.window, None);
+        for curve in &p.curves {
+            let h = |&(x, v): &(f64, f64)| v * v / 2.0 - x * x / 2.0 + x.powi(4) / 4.0;
+            assert!(
+                curve
+                    .points
+                    .iter()
+                    .all(|q| (h(q) - curve.energy).abs() < 1e-6)
+            );
+            if curve.kind != CurveKind::Separatrix {
+                let crosses = curve.points.iter().any(|q| q.0 * p.q_min < 0.0);
+                assert_eq!(crosses, curve.energy > 0.0, "{}", curve.energy);
+            }
         }
     }
 
