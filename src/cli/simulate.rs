@@ -61,10 +61,10 @@ pub struct SimulateArgs {
     energy: Option<PathBuf>,
     /// Draw into --phase a family of trajectories at N energies (1 to 200) instead of the one
     /// from --init: one degree of freedom and a conserved h only (more are refused). All start
-    /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies from just
-    /// above it to 1.8 × the highest barrier, the separatrix included; the separatrix and
-    /// rotations go both ways. Each is integrated over --t-end, cut after one period and drawn
-    /// with --samples points (at most 2000). Colour shows the energy.
+    /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies evenly below
+    /// the highest barrier, at it (the separatrix) and above it up to 1.8 × its height; the
+    /// separatrix and rotations go both ways. Each is integrated for one period (at most
+    /// --t-end) and drawn with --samples points (at most 2000). Colour shows the energy.
     #[arg(long, value_name = "N")]
     portrait: Option<usize>,
 }

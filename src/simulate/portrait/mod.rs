@@ -7,13 +7,14 @@
 //! - the start is the lowest point q* of V over the coordinate's range (one period [a, a + 2π)
 //!   for an angle), found on a grid and refined by golden-section search — not `--init`,
 //!   because from q* every energy above V(q*) is reachable;
-//! - the energies run from just above V(q*) to 1.8 × the height of the highest barrier (a local
-//!   maximum of V in the range), and include the barrier's energy (the separatrix) exactly;
+//! - the energies lie evenly above V(q*) below the highest barrier (a local maximum of V in
+//!   the range), at it (the separatrix, exactly) and above it up to 1.8 × its height;
 //!   without a barrier they run up to 90 % of the lower end of the range's V (the curves stay
 //!   inside the range); a flat V, or one without a minimum inside the range, is refused;
 //! - the separatrix and the rotations are drawn both ways (q̇ > 0 and q̇ < 0), a libration once;
-//! - each curve is integrated over `t_end` and cut after one period: a libration when it
-//!   comes back through q*, a rotation when it has advanced 2π, the separatrix when it has
+//! - each curve is integrated for one period (at most `t_end`; the span starts at the small
+//!   oscillations' period and doubles until a period is seen): a libration until it comes
+//!   back through q*, a rotation when it has advanced 2π, the separatrix when it has
 //!   nearly stopped at the saddle (the separatrix also backward in time, to the saddle it
 //!   came from, so each direction draws one whole branch); a curve whose period is longer
 //!   than `t_end` is what `t_end` gives.
@@ -154,13 +155,18 @@ pub fn portrait(
         return Err(PortraitError::NotConserved);
     }
     let shape = Shape::of(rhs, coordinate)?;
+    // The first try at one period: the small oscillations' (else a small part of t_end).
+    let first = shape
+        .small_period(rhs)?
+        .unwrap_or(spec.t_end / 4096.0)
+        .min(spec.t_end);
     let energies = energies(&shape, spec.count, coordinate)?;
     let mut curves = Vec::new();
     for (energy, kind) in energies {
         let both = kind != CurveKind::Libration;
         for forward in [true, false].into_iter().take(if both { 2 } else { 1 }) {
             let v0 = start_velocity(rhs, shape.q_min, energy, forward, coordinate)?;
-            let points = trace(rhs, [shape.q_min, v0], kind, spec)?;
+            let points = trace(rhs, [shape.q_min, v0], kind, first, spec)?;
             curves.push(PortraitCurve {
                 energy,
                 kind,
@@ -275,13 +281,14 @@ fn trace(
     rhs: &mut Rhs,
     y0: [f64; 2],
     kind: CurveKind,
+    first: f64,
     spec: &FamilySpec,
 ) -> Result<Vec<(f64, f64)>, SimError> {
-    let ahead = trace_one(rhs, y0, kind, spec)?;
+    let ahead = trace_one(rhs, y0, kind, first, spec)?;
     if kind != CurveKind::Separatrix {
         return Ok(ahead);
     }
-    let mut past = trace_one(&mut Backward(rhs), y0, kind, spec)?;
+    let mut past = trace_one(&mut Backward(rhs), y0, kind, first, spec)?;
     past.reverse();
     past.pop();
     past.extend(ahead);
@@ -304,21 +311,29 @@ impl Ode for Backward<'_> {
     }
 }
 
-/// Integrates from y0 over `t_end` and cuts the samples after one period of its kind.
+/// Integrates from y0 for one period of its kind, at most `t_end`, and samples it. The
+/// integration runs over `first`, doubled until a period is seen (so a long `t_end` costs
+/// about twice one period, not all of `t_end`).
 fn trace_one(
     ode: &mut dyn Ode,
     y0: [f64; 2],
     kind: CurveKind,
+    first: f64,
     spec: &FamilySpec,
 ) -> Result<Vec<(f64, f64)>, SimError> {
     let tol = Tolerances::new(spec.rtol, spec.atol);
-    let traj = dop853(ode, 0.0, &y0, spec.t_end, &tol)?;
-    // Find the period on a fine scan, then draw the curve with its own points over it (not
-    // over all of t_end, which may hold many periods).
-    let scan = traj.sample_even(SCAN);
-    let scan_points: Vec<(f64, f64)> = scan.iter().map(|(_, y)| (y[0], y[1])).collect();
-    let end = one_period(&scan_points, y0, kind).unwrap_or(scan.len());
-    let t_cut = scan[end.clamp(1, scan.len()) - 1].0;
+    let mut span = first;
+    let (traj, t_cut) = loop {
+        let traj = dop853(ode, 0.0, &y0, span, &tol)?;
+        // Find the period on a fine scan, then draw the curve with its own points over it.
+        let scan = traj.sample_even(SCAN);
+        let scan_points: Vec<(f64, f64)> = scan.iter().map(|(_, y)| (y[0], y[1])).collect();
+        match one_period(&scan_points, y0, kind) {
+            Some(end) => break (traj, scan[end.clamp(1, scan.len()) - 1].0),
+            None if span >= spec.t_end => break (traj, span),
+            None => span = (2.0 * span).min(spec.t_end),
+        }
+    };
     let n = spec.samples.clamp(2, MAX_POINTS);
     let mut y = [0.0; 2];
     Ok((0..n)

@@ -118,3 +118,18 @@ fn refine(
     let q = 0.5 * (a + b);
     Ok((q, potential(rhs, q)?))
 }
+
+impl Shape {
+    /// The period 2π √(a / V″) of small oscillations about q*, a = ∂²h/∂q̇² there; `None`
+    /// when V″ or a is not positive (a flat bottom).
+    pub(super) fn small_period(&self, rhs: &mut Rhs) -> Result<Option<f64>, SimError> {
+        let q = self.q_min;
+        let d = 1e-4 * q.abs().max(1.0);
+        let v2 =
+            (potential(rhs, q + d)? - 2.0 * potential(rhs, q)? + potential(rhs, q - d)?) / (d * d);
+        let h0 = rhs.energy(0.0, &[q, 0.0])?;
+        let a = rhs.energy(0.0, &[q, 1.0])? + rhs.energy(0.0, &[q, -1.0])? - 2.0 * h0;
+        let period = std::f64::consts::TAU * (a / v2).sqrt();
+        Ok((v2 > 0.0 && a > 0.0 && period.is_finite()).then_some(period))
+    }
+}
