@@ -209,6 +209,29 @@ pub struct SimulationDefaults {
     pub t_end: Option<f64>,
 }
 
+impl SimulationDefaults {
+    /// The user's numbers over these suggestions: a given parameter replaces the suggested one
+    /// by name, a given start (`Some`) replaces the suggested start whole, a given end time
+    /// the suggested one.
+    pub fn complete(
+        &self,
+        mut params: Vec<(String, f64)>,
+        init: Option<Vec<(String, f64)>>,
+        t_end: Option<f64>,
+    ) -> SimulationDefaults {
+        for (name, v) in &self.params {
+            if !params.iter().any(|(n, _)| n == name) {
+                params.push((name.clone(), *v));
+            }
+        }
+        SimulationDefaults {
+            params,
+            init: init.unwrap_or_else(|| self.init.clone()),
+            t_end: t_end.or(self.t_end),
+        }
+    }
+}
+
 impl Problem {
     /// The part with this id.
     pub fn part(&self, id: &str) -> Option<&Part> {

@@ -62,6 +62,14 @@ pub struct SimulateArgs {
     /// Draw the relative energy error over time to this SVG file.
     #[arg(long)]
     energy: Option<PathBuf>,
+    /// Draw into --phase a family of trajectories at N energies (1 to 200) instead of the one
+    /// from --init: one degree of freedom and a conserved h only (more are refused). All start
+    /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies evenly below
+    /// the highest barrier, at it (the separatrix) and above it up to 1.8 × its height; the
+    /// separatrix and rotations go both ways. Each is integrated for one period (at most
+    /// --t-end) and drawn with --samples points (at most 2000). Colour shows the energy.
+    #[arg(long, value_name = "N")]
+    portrait: Option<usize>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -81,6 +89,9 @@ pub fn run(
         let message = "--plot - and --json both write to stdout; give --plot a file".into();
         return Ok(report(&CliError::Usage(message), color));
     }
+    if let Err(e) = check_portrait(args) {
+        return Ok(report(&e, color));
+    }
     let (mut sys, defaults) = match args.system.build_with_defaults(problems) {
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
@@ -89,10 +100,11 @@ pub fn run(
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
-    let report_ = match lagrange::report::simulation(&mut sys, &opts) {
+    let mut report_ = match lagrange::report::simulation(&mut sys, &opts) {
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
     };
+    report_.units = axis_units(args, problems);
     if let Some(path) = &args.out
         && let Err(e) = write_atomic(path, report_.csv().as_bytes())
     {
@@ -101,6 +113,16 @@ pub fn run(
     }
     if let Err(e) = pictures(args, &report_) {
         return Ok(report(&CliError::Usage(e), color));
+    }
+    if let (Some(count), Some(path)) = (args.portrait, &args.phase) {
+        let family = match lagrange::report::simulation::portrait_family(&mut sys, &opts, count) {
+            Ok(f) => f,
+            Err(e) => return Ok(failure(&e)),
+        };
+        if let Err(e) = crate::plot::portrait_svg(&family, &report_.units, path) {
+            let message = format!("--phase {}: cannot draw: {e}", path.display());
+            return Ok(report(&CliError::Usage(message), color));
+        }
     }
     if args.json {
         out.push_str(&serde_json::to_string_pretty(&report_)?);
@@ -119,7 +141,11 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     type Draw = fn(&SimulationReport, &Path) -> Result<(), String>;
     let asked: [(&str, Option<&PathBuf>, Draw); 3] = [
         ("--plot", args.plot.as_ref(), crate::plot::qt_svg),
-        ("--phase", args.phase.as_ref(), crate::plot::phase_svg),
+        (
+            "--phase",
+            args.phase.as_ref().filter(|_| args.portrait.is_none()),
+            crate::plot::phase_svg,
+        ),
         ("--energy", args.energy.as_ref(), crate::plot::energy_svg),
     ];
     for (flag, path, draw) in asked {
@@ -130,24 +156,52 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     Ok(())
 }
 
+/// `--portrait N` needs `--phase FILE` and N in 1 ..= 200.
+fn check_portrait(args: &SimulateArgs) -> Result<(), CliError> {
+    use lagrange::simulate::portrait::MAX_PORTRAIT;
+    let Some(n) = args.portrait else {
+        return Ok(());
+    };
+    if args.phase.is_none() || args.phase.as_deref() == Some(Path::new("-")) {
+        return Err(CliError::Usage(
+            "--portrait N draws into the phase picture: give --phase FILE.svg".into(),
+        ));
+    }
+    if n == 0 || n > MAX_PORTRAIT {
+        return Err(CliError::Usage(format!(
+            "--portrait {n}: give 1 to {MAX_PORTRAIT} energies"
+        )));
+    }
+    Ok(())
+}
+
+/// The axes' units: a bank problem's declared dimensions, nothing for a typed system.
+fn axis_units(args: &SimulateArgs, problems: Option<&Path>) -> lagrange::report::units::AxisUnits {
+    args.system
+        .problem
+        .as_deref()
+        .and_then(|id| super::problems::find_problem(problems, id).ok().flatten())
+        .map(|p| lagrange::report::units::AxisUnits::of(&p))
+        .unwrap_or_default()
+}
+
 /// The library's options from the flags, over a bank problem's suggestions: given
 /// parameters replace suggested ones one by one, a given --init replaces the suggested start.
 fn options(
     args: &SimulateArgs,
     defaults: &SimulationDefaults,
 ) -> Result<SimulationOptions, CliError> {
-    let mut params = numbers("--params", &args.params)?;
-    for (name, v) in &defaults.params {
-        if !params.iter().any(|(n, _)| n == name) {
-            params.push((name.clone(), *v));
-        }
-    }
-    let init = if args.init.trim().is_empty() {
-        defaults.init.clone()
+    let given_init = if args.init.trim().is_empty() {
+        None
     } else {
-        numbers("--init", &args.init)?
+        Some(numbers("--init", &args.init)?)
     };
-    let t_end = args.t_end.or(defaults.t_end).ok_or_else(|| {
+    let SimulationDefaults {
+        params,
+        init,
+        t_end,
+    } = defaults.complete(numbers("--params", &args.params)?, given_init, args.t_end);
+    let t_end = t_end.ok_or_else(|| {
         CliError::usage("give the end time with --t-end (the motion starts at t = 0)")
     })?;
     Ok(SimulationOptions {
@@ -201,6 +255,7 @@ fn failure(e: &SimulationError) -> ExitCode {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
+        SimulationError::Portrait(_) if !e.along_the_way() => "--portrait needs one degree of freedom, a conserved h and a potential with a lowest point inside the coordinate's range; without --portrait, --phase draws the motion from --init".into(),
         _ => e.help(),
     };
     let code = e.code();

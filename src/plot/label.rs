@@ -1,4 +1,5 @@
-//! A coordinate's name as it is read: `theta1` → θ₁, `theta1'` → θ̇₁, `x''` → ẍ.
+//! A coordinate's name as it is read: `theta1` → θ₁, `theta1'` → θ̇₁, `x''` → ẍ; an axis
+//! label with its unit, "θ₁ / rad".
 
 /// `theta1'` → θ̇₁: the name read and printed in Unicode by the library (Greek letters,
 /// `m_1` and `m1` alike as m₁, one dot per prime); the name itself if it cannot be read.
@@ -18,9 +19,23 @@ pub fn unicode(name: &str) -> String {
     }
 }
 
+/// An axis label, "θ₁ / rad" with a unit, "θ₁" without (the quantity divided by its unit).
+pub fn axis(quantity: &str, unit: Option<&str>) -> String {
+    match unit {
+        Some(u) => format!("{quantity} / {u}"),
+        None => quantity.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::unicode;
+    use super::{axis, unicode};
+
+    #[test]
+    fn axes_carry_units_when_known() {
+        assert_eq!(axis("θ₁", Some("rad")), "θ₁ / rad");
+        assert_eq!(axis("t", None), "t");
+    }
 
     #[test]
     fn names() {

@@ -3,9 +3,11 @@
 //! the coordinates' names in Unicode (`theta1'` is drawn θ̇₁).
 
 mod label;
+mod portrait;
 mod svg;
 mod terminal;
 
+pub use portrait::portrait_svg;
 pub use svg::{energy_svg, phase_svg, qt_svg};
 pub use terminal::terminal_chart;
 
@@ -21,6 +23,11 @@ struct Curves {
     phase: Vec<Vec<(f64, f64)>>,
     /// `(t, (h − h₀)/|h₀|)`, or the absolute error when h₀ = 0.
     energy: Vec<(f64, f64)>,
+    /// The time axis' label, "t / s" when the unit is known.
+    t_label: String,
+    /// Each coordinate's and each rate's axis label, "θ₁ / rad", "θ̇₁ / rad s⁻¹".
+    q_labels: Vec<String>,
+    qdot_labels: Vec<String>,
 }
 
 impl Curves {
@@ -39,7 +46,28 @@ impl Curves {
             .iter()
             .map(|(t, _, h)| (*t, (h - h0) / scale))
             .collect();
+        let u = &r.units;
+        let unit = |units: &[Option<String>], i: usize| units.get(i).cloned().flatten();
+        let q_labels = (0..n)
+            .map(|i| {
+                label::axis(
+                    &label::unicode(&r.names[i]),
+                    unit(&u.coordinates, i).as_deref(),
+                )
+            })
+            .collect();
+        let qdot_labels = (0..n)
+            .map(|i| {
+                label::axis(
+                    &label::unicode(&r.names[n + i]),
+                    unit(&u.velocities, i).as_deref(),
+                )
+            })
+            .collect();
         Curves {
+            t_label: label::axis("t", u.time.as_deref()),
+            q_labels,
+            qdot_labels,
             names: r.names[..n].to_vec(),
             qt,
             phase,

@@ -6,7 +6,7 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{Curves, label::unicode, range};
+use super::{Curves, range};
 use lagrange::report::SimulationReport;
 
 /// One panel's axes and curve.
@@ -20,12 +20,12 @@ struct Panel<'a> {
 pub fn qt_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
     let c = Curves::of(r);
     let panels: Vec<Panel> = c
-        .names
+        .q_labels
         .iter()
         .zip(&c.qt)
-        .map(|(name, points)| Panel {
-            x_desc: "t".into(),
-            y_desc: unicode(name),
+        .map(|(label, points)| Panel {
+            x_desc: c.t_label.clone(),
+            y_desc: label.clone(),
             points,
         })
         .collect();
@@ -36,12 +36,13 @@ pub fn qt_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
 pub fn phase_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
     let c = Curves::of(r);
     let panels: Vec<Panel> = c
-        .names
+        .q_labels
         .iter()
+        .zip(&c.qdot_labels)
         .zip(&c.phase)
-        .map(|(name, points)| Panel {
-            x_desc: unicode(name),
-            y_desc: unicode(&format!("{name}'")),
+        .map(|((q, qdot), points)| Panel {
+            x_desc: q.clone(),
+            y_desc: qdot.clone(),
             points,
         })
         .collect();
@@ -52,7 +53,7 @@ pub fn phase_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
 pub fn energy_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
     let c = Curves::of(r);
     let panel = Panel {
-        x_desc: "t".into(),
+        x_desc: c.t_label.clone(),
         y_desc: "(h − h₀)/|h₀|".into(),
         points: &c.energy,
     };

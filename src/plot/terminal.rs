@@ -10,7 +10,7 @@ use lagrange::report::SimulationReport;
 pub fn terminal_chart(r: &SimulationReport) -> String {
     let curves = Curves::of(r);
     let mut out = String::new();
-    for (name, pts) in curves.names.iter().zip(&curves.qt) {
+    for ((name, pts), q_label) in curves.names.iter().zip(&curves.qt).zip(&curves.q_labels) {
         let pts: Vec<(f32, f32)> = pts.iter().map(|&(t, q)| (t as f32, q as f32)).collect();
         let (lo, hi) = range(pts.iter().map(|p| f64::from(p.1)));
         let shape = Shape::Lines(&pts);
@@ -18,7 +18,13 @@ pub fn terminal_chart(r: &SimulationReport) -> String {
         let chart = chart.lineplot(&shape);
         chart.axis();
         chart.figures();
-        out.push_str(&format!("{}(t)\n{chart}\n", unicode(name)));
+        let bare = unicode(name);
+        let units = if *q_label == bare && curves.t_label == "t" {
+            String::new()
+        } else {
+            format!(" ({q_label} against {})", curves.t_label)
+        };
+        out.push_str(&format!("{bare}(t){units}\n{chart}\n"));
     }
     out
 }

@@ -14,7 +14,9 @@
 //! - [`derivation`]: [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
 //! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
-//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`).
+//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`), and a
+//!   phase-portrait family ([`simulation::portrait_family`]);
+//! - [`units`]: the SI units of the pictures' axes, from a bank problem's dimensions.
 
 mod constraint_watch;
 pub mod derivation;
@@ -25,6 +27,7 @@ pub mod problems;
 pub mod read;
 pub mod simulation;
 pub mod steady;
+pub mod units;
 
 pub use derivation::{DerivationReport, derivation};
 pub use formula::Formula;

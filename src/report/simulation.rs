@@ -9,8 +9,10 @@ use super::constraint_watch::{ConstraintWatch, off_constraint};
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
+use super::units::AxisUnits;
 use super::{Paint, text};
 use crate::mechanics::System;
+use crate::simulate::portrait::{Coordinate1, FamilySpec, Portrait, PortraitError};
 use crate::simulate::{Method, Rhs, SimError, Tolerances, Trajectory, dop853, gauss, rk4};
 
 /// The most grid samples a run may ask for (`--samples`).
@@ -84,6 +86,9 @@ pub enum SimulationError {
     /// The library's error (setup or along the motion).
     #[error(transparent)]
     Sim(#[from] SimError),
+    /// A phase-portrait family that cannot be drawn.
+    #[error(transparent)]
+    Portrait(#[from] PortraitError),
 }
 
 impl SimulationError {
@@ -141,6 +146,12 @@ impl SimulationError {
                         | SimError::TooManySteps { .. }
                         | SimError::NoConvergence { .. }
                 )
+                | SimulationError::Portrait(PortraitError::Sim(
+                    SimError::Singular { .. }
+                        | SimError::Diverges { .. }
+                        | SimError::StepUnderflow { .. }
+                        | SimError::TooManySteps { .. }
+                ))
         )
     }
 }
@@ -196,6 +207,9 @@ pub struct SimulationReport {
     /// The names of y's entries.
     #[serde(skip)]
     pub names: Vec<String>,
+    /// The axes' units, when the face knows them (a bank problem's dimensions).
+    #[serde(skip)]
+    pub units: AxisUnits,
 }
 
 /// Simulates `sys` from rest-or-given initial values to `opts.t_end`.
@@ -275,7 +289,49 @@ pub fn simulation(
         t_end: traj.t_end,
         grid,
         names,
+        units: AxisUnits::default(),
     })
+}
+
+/// The phase-portrait family of `sys` (one degree of freedom, conserved h) at `count`
+/// energies with `opts`' parameters, tolerances, end time and samples: see
+/// [`crate::simulate::portrait`] for the choices (start at V's minimum, energies up to 1.8 ×
+/// the highest barrier with the separatrix, one period per curve).
+pub fn portrait_family(
+    sys: &mut System,
+    opts: &SimulationOptions,
+    count: usize,
+) -> Result<Portrait, SimulationError> {
+    check_options(opts)?;
+    let unused = unused_parameters(sys, &opts.params);
+    let params: Vec<(&str, f64)> = opts
+        .params
+        .iter()
+        .map(|(n, v)| (n.as_str(), *v))
+        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
+        .collect();
+    let mut rhs = Rhs::new(sys, &params)?;
+    let c = sys
+        .coordinates
+        .first()
+        .ok_or(PortraitError::Dimension { n: 0 })?;
+    let coordinate = Coordinate1 {
+        name: c.name.clone(),
+        range: c.range,
+        periodic: c.periodic,
+    };
+    let spec = FamilySpec {
+        count,
+        t_end: opts.t_end,
+        rtol: opts.rtol,
+        atol: opts.atol,
+        samples: opts.samples,
+    };
+    Ok(crate::simulate::portrait::portrait(
+        &mut rhs,
+        &coordinate,
+        &spec,
+    )?)
 }
 
 /// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
@@ -289,6 +345,16 @@ fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
         .iter()
         .filter(|p| !used.iter().any(|(s, _)| *s == p.sym))
         .filter(|p| !given.iter().any(|(n, _)| *n == p.name))
+        .map(|p| p.name.clone())
+        .collect()
+}
+
+/// The parameters of the motion of `sys` (in L or a force) that `given` has no value for.
+pub fn missing_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+    let unused = unused_parameters(sys, given);
+    sys.parameters
+        .iter()
+        .filter(|p| !unused.contains(&p.name) && !given.iter().any(|(n, _)| *n == p.name))
         .map(|p| p.name.clone())
         .collect()
 }

@@ -4,7 +4,8 @@
 //! - [`Rhs`]: M and f compiled once; each call solves M q'' = f in reused buffers;
 //! - [`dop853`]: adaptive Dormand–Prince 8(5,3) (Hairer's DOP853 error control, dense output);
 //! - [`rk4`]: the classical fixed-step Runge–Kutta method;
-//! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic).
+//! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic);
+//! - [`portrait`]: a family of trajectories at a grid of energies (one degree of freedom).
 //!
 //! Every integrator returns a [`Trajectory`]: step counts, the final state and a continuous
 //! solution that can be sampled anywhere in the interval. No printing, files or threads.
@@ -14,6 +15,7 @@
 mod dop853;
 mod dop853_tableau;
 mod fixed;
+pub mod portrait;
 mod rhs;
 mod trajectory;
 

@@ -34,6 +34,8 @@ pub enum Command {
     Derive(String),
     /// `:modes [L]` — equilibria and normal modes of the open problem, or of a typed Lagrangian.
     Modes(String),
+    /// `:simulate [--init …] [--t-end T] [--params …]` — integrate the open problem's motion.
+    Simulate(String),
     /// `:progress` — the student's progress over the bank.
     Progress,
     /// `:help [COMMAND]` — the commands, or one command's usage.
@@ -161,6 +163,12 @@ pub const COMMANDS: &[CommandInfo] = &[
         "equilibria and normal modes",
     ),
     info(
+        "simulate",
+        ":simulate [--init …] [--t-end T] [--params …]",
+        Arg::Optional,
+        "integrate the open problem's motion: a chart of q(t) and a summary",
+    ),
+    info(
         "progress",
         ":progress",
         Arg::None,
@@ -279,6 +287,7 @@ fn command(name: &str, rest: &str) -> Result<Command, CommandError> {
         "read" => Command::Read(arg),
         "derive" => Command::Derive(arg),
         "modes" => Command::Modes(arg),
+        "simulate" => Command::Simulate(arg),
         "progress" => Command::Progress,
         "help" => Command::Help((!arg.is_empty()).then_some(arg)),
         _ => Command::Quit,

@@ -223,7 +223,7 @@ pub struct HelpReply {
 /// An analysis and its report.
 #[derive(Clone, Debug, Serialize)]
 pub struct AnalysisReply {
-    /// Which: `read`, `derive` or `modes`.
+    /// Which: `read`, `derive`, `modes` or `simulate`.
     pub of: String,
     /// The report (rendered by the face with the report's own `render`).
     pub report: AnalysisReport,
@@ -242,6 +242,8 @@ pub enum AnalysisReport {
     Derive(Box<DerivationReport>),
     /// The equilibria and normal modes of the open problem (`:modes`).
     Modes(Box<ModesReport>),
+    /// An integrated motion of the open problem (`:simulate`; the face draws its chart).
+    Simulate(Box<crate::report::SimulationReport>),
 }
 
 /// Something that could not be done.

@@ -20,6 +20,7 @@ mod modes13;
 mod notation;
 mod notation_lists;
 mod plot;
+mod portrait14;
 mod props;
 mod pty;
 mod repl;

@@ -70,13 +70,18 @@ fn the_double_pendulum_draws_q_of_t_its_phase_portrait_and_its_energy_error() {
     assert!(out.contains("Final:"), "{out}");
     let q = svg(&q);
     assert!(
-        q.contains(">\nθ₁\n</text>") && q.contains(">\nθ₂\n</text>"),
+        q.contains(">\nθ₁ / rad\n</text>") && q.contains(">\nθ₂ / rad\n</text>"),
         "{q}"
     );
-    assert!(q.contains(">\nt\n</text>"));
+    assert!(q.contains(">\nt / s\n</text>"));
     assert_eq!(curves(&q), vec![300, 300]);
     let p = svg(&p);
-    for label in ["θ₁", "θ\u{307}₁", "θ₂", "θ\u{307}₂"] {
+    for label in [
+        "θ₁ / rad",
+        "θ\u{307}₁ / rad s⁻¹",
+        "θ₂ / rad",
+        "θ\u{307}₂ / rad s⁻¹",
+    ] {
         assert!(p.contains(&format!(">\n{label}\n</text>")), "{label}");
     }
     assert_eq!(curves(&p), vec![300, 300]);

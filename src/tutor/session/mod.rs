@@ -15,13 +15,14 @@
 //!
 //! The session's concepts live in files of their own: answers to parts with their hints and
 //! solutions (`answer`), the guided derivation (`guide`), `:read`/`:derive`/`:modes`
-//! (`analysis`) and the replies shared by them (`replies`, a leaf). This file holds the state,
+//! (`analysis`), `:simulate` (`simulate`) and the replies shared by them (`replies`, a leaf). This file holds the state,
 //! the command dispatch, completion and moving between problems and parts.
 
 mod analysis;
 mod answer;
 mod guide;
 mod replies;
+mod simulate;
 
 use rustc_hash::FxHashMap;
 
@@ -141,6 +142,7 @@ impl Session {
             Command::Modes(l) if l.is_empty() => vec![self.analyse(true)],
             Command::Derive(l) => vec![analyse_typed(&l, false)],
             Command::Modes(l) => vec![analyse_typed(&l, true)],
+            Command::Simulate(args) => vec![self.simulate(&args)],
         }
     }
 

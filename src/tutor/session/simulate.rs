@@ -1,0 +1,164 @@
+//! `:simulate [--init …] [--t-end T] [--params …]`: the open problem's motion integrated
+//! with DOP853 (as `lagrange simulate` does), as an analysis response whose face draws q(t)
+//! as a terminal chart under the summary. It starts from the problem's suggested numbers
+//! (parameter values, start, end time) where the user gives none; a parameter still without
+//! a value is named in the reply. The axes carry the problem's SI units.
+
+use super::Session;
+use super::replies::no_problem;
+use crate::problem::SimulationDefaults;
+use crate::report::simulation::{missing_parameters, simulation};
+use crate::report::units::AxisUnits;
+use crate::report::{SimulationOptions, modes::assignments};
+use crate::simulate::Method;
+use crate::tutor::response::{AnalysisReply, AnalysisReport, Response};
+
+/// The end time when `--t-end` is not given.
+const DEFAULT_T_END: f64 = 10.0;
+/// The longest end time `:simulate` accepts (the REPL waits for the answer).
+const MAX_T_END: f64 = 1000.0;
+/// Points of the chart.
+const SAMPLES: usize = 400;
+
+impl Session {
+    /// `:simulate` on the open problem.
+    pub(super) fn simulate(&self, args: &str) -> Response {
+        let Some(p) = self.problem() else {
+            return no_problem();
+        };
+        let opts = match options(args, &p.simulation) {
+            Ok(o) => o,
+            Err(message) => return Response::error("bad-simulate", message, None),
+        };
+        let missing = missing_parameters(&p.system, &opts.params);
+        if !missing.is_empty() {
+            let example: Vec<String> = missing.iter().map(|n| format!("{n}=…")).collect();
+            let message = format!(
+                "`{}` suggests no value for some parameters: give {} with --params \"{}\"",
+                p.id,
+                missing
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                example.join(", ")
+            );
+            return Response::error("missing-parameters", message, None);
+        }
+        let mut sys = p.system.clone();
+        match simulation(&mut sys, &opts) {
+            Ok(mut report) => {
+                report.units = AxisUnits::of(p);
+                Response::Analysis(AnalysisReply {
+                    of: "simulate".to_string(),
+                    report: AnalysisReport::Simulate(Box::new(report)),
+                    note: None,
+                })
+            }
+            Err(e) => Response::error("simulate", e.to_string(), None),
+        }
+    }
+}
+
+/// The options from `--init`, `--t-end` and `--params` (values may be quoted), over the
+/// problem's suggestions.
+fn options(args: &str, defaults: &SimulationDefaults) -> Result<SimulationOptions, String> {
+    let (mut params, mut init, mut t_end) = (Vec::new(), None, None);
+    let mut opts = SimulationOptions {
+        params: Vec::new(),
+        init: Vec::new(),
+        t_end: DEFAULT_T_END,
+        method: Method::Dop853,
+        rtol: 1e-10,
+        atol: 1e-10,
+        dt: None,
+        report_at: Vec::new(),
+        samples: SAMPLES,
+    };
+    let text = format!(" {args}");
+    let mut pieces = text.split(" --");
+    if let Some(head) = pieces.next().map(str::trim)
+        && !head.is_empty()
+    {
+        return Err(format!("`{head}` is not a flag: {USAGE}"));
+    }
+    for piece in pieces {
+        let (flag, value) = piece.split_once(char::is_whitespace).unwrap_or((piece, ""));
+        let value = value.trim().trim_matches('"').trim();
+        match flag {
+            "init" => init = Some(numbers("--init", value)?),
+            "params" => params = numbers("--params", value)?,
+            "t-end" => {
+                t_end = value
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|t| t.is_finite() && *t > 0.0 && *t <= MAX_T_END)
+                    .map(Some)
+                    .ok_or_else(|| {
+                        format!("--t-end must be a number in (0, {MAX_T_END}], not `{value}`")
+                    })?;
+            }
+            other => return Err(format!("there is no flag `--{other}` here: {USAGE}")),
+        }
+    }
+    let chosen = defaults.complete(params, init, t_end);
+    opts.params = chosen.params;
+    opts.init = chosen.init;
+    opts.t_end = chosen.t_end.unwrap_or(DEFAULT_T_END).min(MAX_T_END);
+    Ok(opts)
+}
+
+const USAGE: &str = ":simulate [--init theta=1, theta'=0] [--t-end 10] [--params m=1, g=9.81]";
+
+/// `a=1, b=2` as names and finite numbers.
+fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
+    let pairs = assignments(text).map_err(|e| format!("{flag}: {e}"))?;
+    pairs
+        .into_iter()
+        .map(|(name, value)| match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok((name, v)),
+            _ => Err(format!(
+                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
+            )),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::problem::SimulationDefaults;
+
+    fn options(args: &str) -> Result<crate::report::SimulationOptions, String> {
+        super::options(args, &SimulationDefaults::default())
+    }
+
+    #[test]
+    fn the_problem_suggests_what_is_not_given() {
+        let d = SimulationDefaults {
+            params: vec![("g".into(), 9.81), ("m".into(), 1.0)],
+            init: vec![("theta".into(), 1.0)],
+            t_end: Some(5.0),
+        };
+        let o = super::options("--params m=2", &d).unwrap();
+        assert_eq!(o.params, vec![("m".into(), 2.0), ("g".into(), 9.81)]);
+        assert_eq!(
+            (o.init.clone(), o.t_end),
+            (vec![("theta".into(), 1.0)], 5.0)
+        );
+        let o = super::options("--init theta'=1 --t-end 2", &d).unwrap();
+        assert_eq!((o.init, o.t_end), (vec![("theta'".into(), 1.0)], 2.0));
+    }
+
+    #[test]
+    fn flags_are_read_in_any_order() {
+        let o = options("--t-end 3 --init theta=1, theta'=-0.5 --params \"m=1, g=9.81\"").unwrap();
+        assert_eq!(o.t_end, 3.0);
+        assert_eq!(o.init, vec![("theta".into(), 1.0), ("theta'".into(), -0.5)]);
+        assert_eq!(o.params.len(), 2);
+        assert!(options("--t-end 0").is_err());
+        assert!(options("--t-end 1e9").is_err());
+        assert!(options("--dt 1").unwrap_err().contains("no flag `--dt`"));
+        assert!(options("theta=1").is_err());
+        assert_eq!(options("").unwrap().t_end, 10.0);
+    }
+}
