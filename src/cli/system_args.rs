@@ -240,6 +240,21 @@ fn help(e: &MechError) -> String {
     }
 }
 
+/// "a=1, b=2" as names and numbers (`--params`, `--init` of `simulate` and `chaos`).
+pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
+    let pairs = lagrange::report::modes::assignments(text)
+        .map_err(|e| CliError::Usage(format!("{flag}: {e}")))?;
+    pairs
+        .into_iter()
+        .map(|(name, value)| match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok((name, v)),
+            _ => Err(CliError::Usage(format!(
+                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
+            ))),
+        })
+        .collect()
+}
+
 /// Colour for a terminal, through `colored` (which honours `--color` and NO_COLOR).
 pub struct Terminal;
 

@@ -14,8 +14,11 @@
 //! - [`derivation`]: [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
 //! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
-//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`).
+//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`);
+//! - [`chaos`]: [`ChaosReport`](chaos::ChaosReport), Lyapunov exponent, separation and
+//!   Poincaré section (`lagrange chaos`).
 
+pub mod chaos;
 pub mod derivation;
 pub mod derivation_at;
 pub mod formula;

@@ -4,15 +4,19 @@
 //! - [`Rhs`]: M and f compiled once; each call solves M q'' = f in reused buffers;
 //! - [`dop853`]: adaptive Dormand–Prince 8(5,3) (Hairer's DOP853 error control, dense output);
 //! - [`rk4`]: the classical fixed-step Runge–Kutta method;
-//! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic).
+//! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic);
+//! - [`chaos`]: separation of nearby trajectories, the largest Lyapunov exponent (Benettin),
+//!   the Poincaré section; [`events`]: zero crossings located on dense output.
 //!
 //! Every integrator returns a [`Trajectory`]: step counts, the final state and a continuous
 //! solution that can be sampled anywhere in the interval. No printing, files or threads.
 //! The methods are written here (no ODE crate: none of them shares the project's nalgebra
 //! 0.35 without a second copy, and these need no linear algebra beyond n × n solves).
 
+pub mod chaos;
 mod dop853;
 mod dop853_tableau;
+pub mod events;
 mod fixed;
 mod rhs;
 mod trajectory;
