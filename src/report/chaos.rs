@@ -139,7 +139,9 @@ pub struct ChaosReport {
     pub running: Vec<(f64, f64)>,
     /// The separation of the two trajectories never renormalised (t, |Δy|).
     pub separation: Vec<(f64, f64)>,
+    /// Accepted steps of the pair (the estimate's segments and the separation's run).
     pub steps: usize,
+    /// Evaluations of the system's F (two per evaluation of the pair).
     pub rhs_evals: usize,
     /// The names of y's entries.
     pub names: Vec<String>,

@@ -128,6 +128,20 @@ fn bad_input_is_a_one_line_error() {
     ]);
     assert_eq!(code, 2);
     assert!(line.contains("no state on the section"), "{line}");
+    let (code, _, err) = lagrange(&[
+        "chaos",
+        "simple-pendulum",
+        "--params",
+        "m=1, l=1, g=9.81",
+        "--init",
+        "theta=1",
+        "--t-end",
+        "1",
+        "--poincare",
+        "/tmp/x.svg",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("at least two coordinates"), "{err}");
 }
 
 fn dir(name: &str) -> PathBuf {
@@ -179,4 +193,22 @@ fn the_readme_pictures_are_what_their_commands_draw() {
         );
     }
     let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn the_text_summary() {
+    let (code, out, err) = chaos(&[
+        "--init",
+        "theta1=0.2, theta2=0.2",
+        "--t-end",
+        "100",
+        "--rtol",
+        "1e-9",
+        "--atol",
+        "1e-9",
+        "--color",
+        "never",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    insta::assert_snapshot!(out);
 }
