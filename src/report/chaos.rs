@@ -65,7 +65,7 @@ pub enum ChaosError {
     #[error("--delta must be in (0, 1), not {0}")]
     Delta(f64),
     /// The end time, τ or the separation's end is not positive.
-    #[error("{what} must be a positive number, not {value}")]
+    #[error("{what} must be a finite positive number, not {value}")]
     NotPositive { what: &'static str, value: f64 },
     /// Too many points asked.
     #[error("{what} asks for {got}, over the limit of {max}")]
@@ -182,7 +182,12 @@ fn check(opts: &ChaosOptions) -> Result<(), ChaosError> {
 }
 
 fn check_section(s: &SectionSpec) -> Result<(), ChaosError> {
-    if s.orbits > MAX_ORBITS || s.orbits == 0 {
+    for (what, n) in [("--orbits", s.orbits), ("--crossings", s.crossings)] {
+        if n == 0 {
+            return Err(ChaosError::NotPositive { what, value: 0.0 });
+        }
+    }
+    if s.orbits > MAX_ORBITS {
         let (what, got, max) = ("--orbits", s.orbits, MAX_ORBITS);
         return Err(ChaosError::TooMany { what, got, max });
     }
@@ -368,4 +373,93 @@ pub enum Verdict {
     Regular,
     /// Neither yet.
     Unsettled,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn judged(f: impl Fn(f64) -> f64, t_end: f64) -> (Convergence, Verdict) {
+        let running: Vec<(f64, f64)> = (1..=t_end as usize)
+            .map(|k| (k as f64, f(k as f64)))
+            .collect();
+        let c = convergence(&running, t_end);
+        let v = verdict(running.last().unwrap().1, c.1, c.2);
+        (c, v)
+    }
+
+    /// A steady positive estimate reads as chaotic, ln(t)/t as regular, a swinging one as
+    /// neither; the checkpoints are the running estimate at t_end/10ᵏ and t_end/3.
+    #[test]
+    fn the_verdict_follows_the_shape_of_the_running_estimate() {
+        let (c, v) = judged(|t| 1.3 + 0.05 / t.sqrt(), 1000.0);
+        assert_eq!(v, Verdict::Chaotic);
+        let times: Vec<f64> = c.0.iter().map(|p| p.0).collect();
+        assert_eq!(times, [1.0, 10.0, 100.0, 334.0, 1000.0]);
+        assert!((c.2 - 1.0).abs() < 0.01);
+        assert_eq!(judged(|t| (t + 1.0).ln() / t, 1000.0).1, Verdict::Regular);
+        assert_eq!(judged(|t| -0.01 / t, 1000.0).1, Verdict::Regular);
+        assert_eq!(
+            judged(|t| 0.5 + 0.3 * (t / 50.0).sin(), 1000.0).1,
+            Verdict::Unsettled
+        );
+    }
+
+    #[test]
+    fn settings_are_checked_before_any_work() {
+        let opts = ChaosOptions {
+            params: vec![],
+            init: vec![],
+            delta: 1e-9,
+            t_end: 10.0,
+            tau: 1.0,
+            rtol: 1e-8,
+            atol: 1e-8,
+            separation_t_end: 10.0,
+            samples: 10,
+            section: Some(SectionSpec {
+                orbits: 10,
+                range: (-1.0, 1.0),
+                crossings: 10,
+                t_max: 10.0,
+            }),
+        };
+        assert_eq!(check(&opts), Ok(()));
+        let bad = |f: &dyn Fn(&mut ChaosOptions)| {
+            let mut o = opts.clone();
+            f(&mut o);
+            check(&o).unwrap_err()
+        };
+        assert_eq!(bad(&|o| o.delta = 1.0), ChaosError::Delta(1.0));
+        assert!(matches!(
+            bad(&|o| o.tau = 0.0),
+            ChaosError::NotPositive { what: "--tau", .. }
+        ));
+        assert!(matches!(
+            bad(&|o| o.t_end = 1e9),
+            ChaosError::TooMany { .. }
+        ));
+        assert!(matches!(
+            bad(&|o| o.samples = 1 << 20),
+            ChaosError::TooMany { .. }
+        ));
+        let no_width = |o: &mut ChaosOptions| {
+            if let Some(s) = &mut o.section {
+                s.range = (1.0, -1.0);
+            }
+        };
+        assert!(matches!(bad(&no_width), ChaosError::NotPositive { .. }));
+        let no_orbits = |o: &mut ChaosOptions| {
+            if let Some(s) = &mut o.section {
+                s.orbits = 0;
+            }
+        };
+        assert!(matches!(
+            bad(&no_orbits),
+            ChaosError::NotPositive {
+                what: "--orbits",
+                ..
+            }
+        ));
+    }
 }

@@ -88,8 +88,14 @@ fn bad_input_is_a_one_line_error() {
         (&["--init", "thta1=2"], "did you mean `theta1`"),
         (&["--delta", "0"], "--delta must be in (0, 1)"),
         (&["--delta", "1"], "--delta must be in (0, 1)"),
-        (&["--t-end", "0"], "--t-end must be a positive number"),
-        (&["--t-end", "-5"], "--t-end must be a positive number"),
+        (
+            &["--t-end", "0"],
+            "--t-end must be a finite positive number",
+        ),
+        (
+            &["--t-end", "-5"],
+            "--t-end must be a finite positive number",
+        ),
         (
             &[
                 "--poincare",
