@@ -2,6 +2,7 @@
 //! never sees them.
 
 mod body_args;
+mod chaos;
 mod check;
 mod derive;
 mod grade;
@@ -55,6 +56,9 @@ enum Command {
     Problems(problems::ProblemsCommand),
     /// Integrate a system's motion: a summary, states at asked times, JSON or a CSV grid.
     Simulate(simulate::SimulateArgs),
+    /// Sensitivity to initial conditions: the largest Lyapunov exponent, the separation of
+    /// nearby motions, a Poincaré section.
+    Chaos(chaos::ChaosArgs),
     /// Grade a class from a CSV file: results, a gradebook, a summary of the mistakes.
     Grade(grade::GradeArgs),
     /// Practise the problems: answers checked as you type them, hints, progress kept.
@@ -100,6 +104,7 @@ pub fn run() -> anyhow::Result<ExitCode> {
         Command::Modes(args) => modes::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Check(args) => check::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Simulate(args) => simulate::run(&args, cli.problems.as_deref(), color, &mut out),
+        Command::Chaos(args) => chaos::run(&args, cli.problems.as_deref(), color, &mut out),
         Command::Problems(cmd) => problems::run(&cmd, cli.problems.as_deref(), &mut out),
         Command::Grade(args) => return grade::run(&args, cli.problems.as_deref()),
         Command::Repl(args) => {

@@ -7,10 +7,9 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use super::system_args::{CliError, SystemArgs, Terminal, report};
+use super::system_args::{CliError, SystemArgs, Terminal, numbers, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
 use lagrange::problem::SimulationDefaults;
-use lagrange::report::modes::assignments;
 use lagrange::report::{SimulationError, SimulationOptions, SimulationReport};
 use lagrange::simulate::{Method, SimError};
 
@@ -230,22 +229,8 @@ fn options(
     })
 }
 
-/// "a=1, b=2" as names and numbers.
-fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
-    let pairs = assignments(text).map_err(|e| CliError::Usage(format!("{flag}: {e}")))?;
-    pairs
-        .into_iter()
-        .map(|(name, value)| match value.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok((name, v)),
-            _ => Err(CliError::Usage(format!(
-                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
-            ))),
-        })
-        .collect()
-}
-
 /// Prints a simulation error; exit 1 when the motion could not be followed, 2 for input.
-fn failure(e: &SimulationError) -> ExitCode {
+pub(super) fn failure(e: &SimulationError) -> ExitCode {
     let help = match e {
         SimulationError::Sim(SimError::MissingParameters { names }) => format!(
             "add {} to --params",

@@ -248,6 +248,11 @@ fn help(e: &MechError) -> String {
     }
 }
 
+/// "a=1, b=2" as names and numbers (`--params`, `--init` of `simulate` and `chaos`).
+pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
+    lagrange::report::simulation::numbers(flag, text).map_err(CliError::Usage)
+}
+
 /// Colour for a terminal, through `colored` (which honours `--color` and NO_COLOR).
 pub struct Terminal;
 

@@ -1,12 +1,15 @@
 //! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits and the relative
-//! energy error as SVG files (plotters), and q(t) as a terminal chart (textplots). Labels are
+//! energy error as SVG files (plotters), the separation, Lyapunov estimate and Poincaré
+//! section of `chaos`, and q(t) as a terminal chart (textplots). Labels are
 //! the coordinates' names in Unicode (`theta1'` is drawn θ̇₁).
 
+mod chaos;
 mod label;
 mod portrait;
 mod svg;
 mod terminal;
 
+pub use chaos::{chaos_svg, poincare_svg};
 pub use portrait::portrait_svg;
 pub use svg::{energy_svg, phase_svg, qt_svg};
 pub use terminal::terminal_chart;

@@ -16,8 +16,11 @@
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
 //! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`), and a
 //!   phase-portrait family ([`simulation::portrait_family`]);
-//! - [`units`]: the SI units of the pictures' axes, from a bank problem's dimensions.
+//! - [`units`]: the SI units of the pictures' axes, from a bank problem's dimensions;
+//! - [`chaos`]: [`ChaosReport`](chaos::ChaosReport), Lyapunov exponent, separation and
+//!   Poincaré section (`lagrange chaos`).
 
+pub mod chaos;
 mod constraint_watch;
 pub mod derivation;
 pub mod derivation_at;

@@ -212,6 +212,20 @@ pub struct SimulationReport {
     pub units: AxisUnits,
 }
 
+/// "a=1, b=2" as names and finite numbers (`--params`, `--init`); the error names `flag`.
+pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
+    let pairs = super::modes::assignments(text).map_err(|e| format!("{flag}: {e}"))?;
+    pairs
+        .into_iter()
+        .map(|(name, value)| match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok((name, v)),
+            _ => Err(format!(
+                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
+            )),
+        })
+        .collect()
+}
+
 /// Simulates `sys` from rest-or-given initial values to `opts.t_end`.
 pub fn simulation(
     sys: &mut System,
@@ -336,7 +350,7 @@ pub fn portrait_family(
 
 /// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
 /// problem declares parameters for all its parts): any value does for them.
-fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+pub(super) fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
     let mut used = sys.pool.variables(sys.lagrangian);
     for &f in &sys.forces {
         used.extend(sys.pool.variables(f));
@@ -403,18 +417,21 @@ fn integrate(rhs: &mut Rhs, y0: &[f64], opts: &SimulationOptions) -> Result<Traj
 }
 
 /// `q…` then `q'…`.
-fn state_names(coords: &[String]) -> Vec<String> {
+pub(super) fn state_names(coords: &[String]) -> Vec<String> {
     let mut names = coords.to_vec();
     names.extend(coords.iter().map(|c| format!("{c}'")));
     names
 }
 
-fn state(names: &[String], y: &[f64]) -> State {
+pub(super) fn state(names: &[String], y: &[f64]) -> State {
     State(names.iter().cloned().zip(y.iter().copied()).collect())
 }
 
 /// y0 from the given values, zero elsewhere.
-fn initial_state(names: &[String], init: &[(String, f64)]) -> Result<Vec<f64>, SimulationError> {
+pub(super) fn initial_state(
+    names: &[String],
+    init: &[(String, f64)],
+) -> Result<Vec<f64>, SimulationError> {
     let mut y0 = vec![0.0; names.len()];
     let mut seen = vec![false; names.len()];
     for (name, value) in init {
@@ -504,7 +521,7 @@ impl SimulationReport {
 }
 
 /// `theta1 = 1.0, theta1' = 0.0`.
-fn line(s: &State) -> String {
+pub(super) fn line(s: &State) -> String {
     s.0.iter()
         .map(|(n, v)| format!("{n} = {v:.10}"))
         .collect::<Vec<_>>()

@@ -6,14 +6,18 @@
 //! - [`rk4`]: the classical fixed-step Runge–Kutta method;
 //! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic);
 //! - [`portrait`]: a family of trajectories at a grid of energies (one degree of freedom).
+//! - [`chaos`]: separation of nearby trajectories, the largest Lyapunov exponent (Benettin),
+//!   the Poincaré section; [`events`]: zero crossings located on dense output.
 //!
 //! Every integrator returns a [`Trajectory`]: step counts, the final state and a continuous
 //! solution that can be sampled anywhere in the interval. No printing, files or threads.
 //! The methods are written here (no ODE crate: none of them shares the project's nalgebra
 //! 0.35 without a second copy, and these need no linear algebra beyond n × n solves).
 
+pub mod chaos;
 mod dop853;
 mod dop853_tableau;
+pub mod events;
 mod fixed;
 pub mod portrait;
 mod rhs;

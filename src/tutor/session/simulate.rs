@@ -7,9 +7,10 @@
 use super::Session;
 use super::replies::no_problem;
 use crate::problem::SimulationDefaults;
+use crate::report::SimulationOptions;
+use crate::report::simulation::numbers;
 use crate::report::simulation::{missing_parameters, simulation};
 use crate::report::units::AxisUnits;
-use crate::report::{SimulationOptions, modes::assignments};
 use crate::simulate::Method;
 use crate::tutor::response::{AnalysisReply, AnalysisReport, Response};
 
@@ -109,20 +110,6 @@ fn options(args: &str, defaults: &SimulationDefaults) -> Result<SimulationOption
 }
 
 const USAGE: &str = ":simulate [--init theta=1, theta'=0] [--t-end 10] [--params m=1, g=9.81]";
-
-/// `a=1, b=2` as names and finite numbers.
-fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
-    let pairs = assignments(text).map_err(|e| format!("{flag}: {e}"))?;
-    pairs
-        .into_iter()
-        .map(|(name, value)| match value.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok((name, v)),
-            _ => Err(format!(
-                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
-            )),
-        })
-        .collect()
-}
 
 #[cfg(test)]
 mod tests {
