@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
+use lagrange::problem::SimulationDefaults;
 
 use super::system_args::{CliError, SystemArgs, Terminal, numbers, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
@@ -73,12 +74,12 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    let opts = match options(args) {
-        Ok(o) => o,
+    let (mut sys, defaults) = match args.system.build_with_defaults(problems) {
+        Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
-    let mut sys = match args.system.build(problems) {
-        Ok(s) => s,
+    let opts = match options(args, &defaults) {
+        Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
     let r = match lagrange::report::chaos::chaos(&mut sys, &opts) {
@@ -111,8 +112,15 @@ fn pictures(args: &ChaosArgs, r: &ChaosReport) -> Result<(), String> {
     Ok(())
 }
 
-/// The library's options from the flags.
-fn options(args: &ChaosArgs) -> Result<ChaosOptions, CliError> {
+/// The library's options from the flags, over a bank problem's suggested parameter values
+/// and start (not its end time: a Lyapunov estimate needs a much longer run).
+fn options(args: &ChaosArgs, defaults: &SimulationDefaults) -> Result<ChaosOptions, CliError> {
+    let given_init = if args.init.trim().is_empty() {
+        None
+    } else {
+        Some(numbers("--init", &args.init)?)
+    };
+    let chosen = defaults.complete(numbers("--params", &args.params)?, given_init, None);
     let section = match &args.poincare {
         None => None,
         Some(_) => Some(SectionSpec {
@@ -123,8 +131,8 @@ fn options(args: &ChaosArgs) -> Result<ChaosOptions, CliError> {
         }),
     };
     Ok(ChaosOptions {
-        params: numbers("--params", &args.params)?,
-        init: numbers("--init", &args.init)?,
+        params: chosen.params,
+        init: chosen.init,
         delta: args.delta,
         t_end: args.t_end,
         tau: args.tau,
