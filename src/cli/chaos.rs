@@ -74,7 +74,7 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
-    let (mut sys, defaults) = match args.system.build_with_defaults(problems) {
+    let (mut sys, defaults, units) = match args.system.build_with_defaults(problems) {
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
@@ -82,11 +82,12 @@ pub fn run(
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
-    let r = match lagrange::report::chaos::chaos(&mut sys, &opts) {
+    let mut r = match lagrange::report::chaos::chaos(&mut sys, &opts) {
         Ok(r) => r,
         Err(ChaosError::Simulation(e)) => return Ok(super::simulate::failure(&e)),
         Err(e) => return Ok(refuse(&e)),
     };
+    r.time_unit = units.time;
     if let Err(e) = pictures(args, &r) {
         return Ok(report(&CliError::Usage(e), color));
     }

@@ -91,7 +91,7 @@ pub fn run(
     if let Err(e) = check_portrait(args) {
         return Ok(report(&e, color));
     }
-    let (mut sys, defaults) = match args.system.build_with_defaults(problems) {
+    let (mut sys, defaults, units) = match args.system.build_with_defaults(problems) {
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
@@ -103,7 +103,7 @@ pub fn run(
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
     };
-    report_.units = axis_units(args, problems);
+    report_.units = units;
     if let Some(path) = &args.out
         && let Err(e) = write_atomic(path, report_.csv().as_bytes())
     {
@@ -172,16 +172,6 @@ fn check_portrait(args: &SimulateArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
-}
-
-/// The axes' units: a bank problem's declared dimensions, nothing for a typed system.
-fn axis_units(args: &SimulateArgs, problems: Option<&Path>) -> lagrange::report::units::AxisUnits {
-    args.system
-        .problem
-        .as_deref()
-        .and_then(|id| super::problems::find_problem(problems, id).ok().flatten())
-        .map(|p| lagrange::report::units::AxisUnits::of(&p))
-        .unwrap_or_default()
 }
 
 /// The library's options from the flags, over a bank problem's suggestions: given

@@ -66,14 +66,22 @@ pub struct SystemArgs {
 impl SystemArgs {
     /// Builds the system (from the bank when a problem id is given).
     pub fn build(&self, problems: Option<&std::path::Path>) -> Result<System, CliError> {
-        self.build_with_defaults(problems).map(|(sys, _)| sys)
+        self.build_with_defaults(problems).map(|(sys, ..)| sys)
     }
 
-    /// The system and, for a bank problem, its suggested simulation numbers.
+    /// The system and, for a bank problem, its suggested simulation numbers and the units of
+    /// its axes (none for a typed system: it declares no dimensions).
     pub fn build_with_defaults(
         &self,
         problems: Option<&std::path::Path>,
-    ) -> Result<(System, lagrange::problem::SimulationDefaults), CliError> {
+    ) -> Result<
+        (
+            System,
+            lagrange::problem::SimulationDefaults,
+            lagrange::report::units::AxisUnits,
+        ),
+        CliError,
+    > {
         if let Some(id) = &self.problem {
             if self.lagrangian.is_some() || self.kinetic.is_some() {
                 return Err(CliError::usage(
@@ -85,7 +93,8 @@ impl SystemArgs {
                 .ok_or_else(|| {
                     CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
                 })?;
-            return Ok((p.system, p.simulation));
+            let units = lagrange::report::units::AxisUnits::of(&p);
+            return Ok((p.system, p.simulation, units));
         }
         let coords: Vec<&str> = self
             .coords
@@ -139,7 +148,7 @@ impl SystemArgs {
         for c in &self.constraint {
             sys.add_constraint(&expression("--constraint", c)?)?;
         }
-        Ok((sys, Default::default()))
+        Ok((sys, Default::default(), Default::default()))
     }
 }
 

@@ -128,6 +128,9 @@ pub struct ChaosReport {
     pub t_end: f64,
     pub rtol: f64,
     pub atol: f64,
+    /// The unit of t when the system declares one (a face sets it): λ is then in its inverse.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_unit: Option<String>,
     /// The running estimate at a few times (t, λ).
     pub checkpoints: Vec<(f64, f64)>,
     /// Smallest and largest running estimate over the last third of the run.
@@ -253,6 +256,7 @@ pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, Chaos
         t_end: opts.t_end,
         rtol: opts.rtol,
         atol: opts.atol,
+        time_unit: None,
         checkpoints,
         last_third,
         ratio_to_a_third,

@@ -42,6 +42,7 @@ fn two_radians_separate_exponentially_and_point_two_does_not() {
         "t_end",
         "rtol",
         "atol",
+        "time_unit",
         "checkpoints",
         "last_third",
         "ratio_to_a_third",

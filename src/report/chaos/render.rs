@@ -8,9 +8,14 @@ use crate::report::Paint;
 
 /// Writes the summary.
 pub(super) fn summary(r: &ChaosReport, paint: &dyn Paint, o: &mut String) -> std::fmt::Result {
+    let (rate, time) = match r.time_unit.as_deref() {
+        Some("s") => ("s⁻¹".to_string(), " s".to_string()),
+        Some(u) => (format!("per {u}"), format!(" {u}")),
+        None => ("per unit of t".to_string(), String::new()),
+    };
     writeln!(
         o,
-        "{} λ ≈ {:.4} per unit of t (finite-time estimate at t = {}, Benettin)",
+        "{} λ ≈ {:.4} {rate} (finite-time estimate at t = {}{time}, Benettin)",
         paint.heading("Largest Lyapunov exponent:"),
         r.exponent,
         r.t_end
