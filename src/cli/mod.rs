@@ -5,6 +5,7 @@ mod body_args;
 mod check;
 mod derive;
 mod grade;
+mod grid;
 mod modes;
 pub(crate) mod problems;
 mod read;

@@ -16,49 +16,60 @@ use lagrange::simulate::{Method, SimError};
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     #[command(flatten)]
-    system: SystemArgs,
+    pub(super) system: SystemArgs,
     /// Parameter values, e.g. "m1=1, m2=1, l1=1, l2=1, g=9.81".
     #[arg(long, default_value = "", allow_hyphen_values = true)]
-    params: String,
+    pub(super) params: String,
     /// Initial values, e.g. "theta1=2, theta2=2, theta1'=0"; velocities not given start at 0.
     #[arg(long, default_value = "", allow_hyphen_values = true)]
-    init: String,
+    pub(super) init: String,
     /// The end time (the motion starts at t = 0).
     #[arg(long, allow_hyphen_values = true)]
-    t_end: f64,
+    pub(super) t_end: f64,
     /// Relative tolerance of dop853.
     #[arg(long, default_value_t = 1e-10)]
-    rtol: f64,
+    pub(super) rtol: f64,
     /// Absolute tolerance of dop853.
     #[arg(long, default_value_t = 1e-10)]
-    atol: f64,
+    pub(super) atol: f64,
     /// The integrator.
     #[arg(long, value_enum, default_value_t = MethodArg::Dop853)]
     method: MethodArg,
     /// The fixed step of rk4 and gauss.
     #[arg(long)]
-    dt: Option<f64>,
+    pub(super) dt: Option<f64>,
     /// Times at which to print the state, e.g. "10, 20".
     #[arg(long, default_value = "")]
-    report_at: String,
+    pub(super) report_at: String,
     /// Write t, every q, every q' and h on an even grid to this CSV file.
     #[arg(long)]
-    out: Option<PathBuf>,
+    pub(super) out: Option<PathBuf>,
     /// Points of the even grid (energy drift, --out and the pictures).
     #[arg(long, default_value_t = 1000)]
-    samples: usize,
+    pub(super) samples: usize,
     /// JSON output.
     #[arg(long)]
-    json: bool,
-    /// Draw q(t) for every coordinate to this SVG file; `-` draws a terminal chart on stdout.
+    pub(super) json: bool,
+    /// Draw q(t) for every coordinate to this SVG file (PNG when it ends in .png); `-` draws a
+    /// terminal chart on stdout. With --grid: the flip-time map.
     #[arg(long)]
-    plot: Option<PathBuf>,
+    pub(super) plot: Option<PathBuf>,
     /// Draw the phase portrait (q against q') of every coordinate to this SVG file.
     #[arg(long)]
-    phase: Option<PathBuf>,
+    pub(super) phase: Option<PathBuf>,
     /// Draw the relative energy error over time to this SVG file.
     #[arg(long)]
-    energy: Option<PathBuf>,
+    pub(super) energy: Option<PathBuf>,
+    /// A grid over one or two initial values, "theta1=-3:3:200, theta2=-3:3:200"
+    /// (start:end:count, ends included; the rest from --init): one trajectory per cell, by
+    /// RK4 at --dt (default 1e-3). With --until-flip: the flip-time map (--plot FILE draws
+    /// it, --out writes a CSV, --json a summary).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(super) grid: Option<String>,
+    /// With --grid: run each trajectory until an angle goes over the top (the continuous
+    /// angle leaves (−π, π)), or to --t-end.
+    #[arg(long)]
+    pub(super) until_flip: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -86,6 +97,13 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
     };
+    if let Some(spec) = &args.grid {
+        return super::grid::run(args, spec, &mut sys, color, out);
+    }
+    if args.until_flip {
+        let message = "--until-flip goes with --grid (the flip-time map)".into();
+        return Ok(report(&CliError::Usage(message), color));
+    }
     let report_ = match lagrange::report::simulation(&mut sys, &opts) {
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
@@ -156,7 +174,7 @@ fn options(args: &SimulateArgs) -> Result<SimulationOptions, CliError> {
 }
 
 /// "a=1, b=2" as names and numbers.
-fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
+pub(super) fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
     let pairs = assignments(text).map_err(|e| CliError::Usage(format!("{flag}: {e}")))?;
     pairs
         .into_iter()
@@ -193,7 +211,7 @@ fn failure(e: &SimulationError) -> ExitCode {
 }
 
 /// Writes `bytes` to `path` through a temporary file beside it and a rename.
-fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write;
     let name = path
         .file_name()

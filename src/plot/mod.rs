@@ -1,11 +1,15 @@
-//! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits and the relative
-//! energy error as SVG files (plotters), and q(t) as a terminal chart (textplots). Labels are
+//! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits, the relative
+//! energy error and the flip-time map as SVG or PNG files (plotters), and q(t) as a terminal chart (textplots). Labels are
 //! the coordinates' names in Unicode (`theta1'` is drawn θ̇₁).
 
+mod backend;
 mod label;
+mod map;
 mod svg;
 mod terminal;
 
+pub use label::unicode;
+pub use map::{FlipMap, flip_map};
 pub use svg::{energy_svg, phase_svg, qt_svg};
 pub use terminal::terminal_chart;
 

@@ -4,6 +4,7 @@
 //! - [`Rhs`]: M and f compiled once; each call solves M q'' = f in reused buffers;
 //! - [`dop853`]: adaptive Dormand–Prince 8(5,3) (Hairer's DOP853 error control, dense output);
 //! - [`rk4`]: the classical fixed-step Runge–Kutta method;
+//! - [`flip_times`]: many trajectories in lockstep over lanes, to the time an angle flips;
 //! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic).
 //!
 //! Every integrator returns a [`Trajectory`]: step counts, the final state and a continuous
@@ -11,12 +12,14 @@
 //! The methods are written here (no ODE crate: none of them shares the project's nalgebra
 //! 0.35 without a second copy, and these need no linear algebra beyond n × n solves).
 
+mod batch;
 mod dop853;
 mod dop853_tableau;
 mod fixed;
 mod rhs;
 mod trajectory;
 
+pub use batch::{DEFAULT_FLIP_DT, FlipRun, FlipSettings, LANE_WIDTHS, Outcome, flip_times};
 pub use dop853::dop853;
 pub use fixed::{gauss, rk4};
 pub use rhs::Rhs;
