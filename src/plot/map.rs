@@ -142,6 +142,10 @@ impl FlipMap<'_> {
             [(x, y), (x + 14, y + 14)],
             NO_FLIP.filled(),
         ))?;
+        area.draw(&Rectangle::new(
+            [(x, y), (x + 14, y + 14)],
+            BLACK.stroke_width(1),
+        ))?;
         area.draw_text(
             &format!("no flip by {hi} s"),
             &style.color(&BLACK),

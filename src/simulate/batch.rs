@@ -531,8 +531,18 @@ mod tests {
         );
         assert_eq!(reference.outcomes[25], Outcome::Diverged { t: 0.0 });
         for k in [4, 8, 16, 32] {
+            // The lanes' sine and cosine are libm's to a few ulp, so times agree closely.
             let got = flip_times(&rhs, &starts, &settings(k)).unwrap();
-            assert_eq!(got, reference, "{k} lanes");
+            assert_eq!(got.steps, reference.steps, "{k} lanes");
+            for (a, b) in got.outcomes.iter().zip(&reference.outcomes) {
+                assert_eq!(
+                    std::mem::discriminant(a),
+                    std::mem::discriminant(b),
+                    "{k} lanes"
+                );
+                let (ta, tb) = (a.flip_time().unwrap_or(0.0), b.flip_time().unwrap_or(0.0));
+                assert!((ta - tb).abs() < 1e-9, "{k} lanes: {a:?} against {b:?}");
+            }
         }
     }
 

@@ -244,6 +244,11 @@ fn grid_errors_exit_2_with_a_clear_message() {
     assert!(err.contains("add --until-flip"), "{err}");
 }
 
+/// Equal to rounding: the lanes compute sin and cos in vector form, within a few ulp of libm.
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-13 * a.abs().max(b.abs()).max(1.0)
+}
+
 #[test]
 fn lanes_evaluate_every_bank_system_as_the_scalar_program_does() {
     let bank = lagrange::bank::embedded::bank();
@@ -270,16 +275,12 @@ fn lanes_evaluate_every_bank_system_as_the_scalar_program_does() {
                 Ok(()) => {
                     assert_eq!(bad >> l & 1, 0, "{}", problem.id);
                     assert!(
-                        ms.iter()
-                            .zip(&m)
-                            .all(|(a, b)| a.to_bits() == b[l].to_bits()),
+                        ms.iter().zip(&m).all(|(a, b)| close(*a, b[l])),
                         "{}",
                         problem.id
                     );
                     assert!(
-                        fs.iter()
-                            .zip(&f)
-                            .all(|(a, b)| a.to_bits() == b[l].to_bits()),
+                        fs.iter().zip(&f).all(|(a, b)| close(*a, b[l])),
                         "{}",
                         problem.id
                     );
