@@ -26,7 +26,7 @@ pub const MAX_CELLS: usize = 1_000_000;
 /// The most RK4 steps a whole map may take (cells × steps).
 pub const MAX_WORK: f64 = 2e10;
 /// Trajectories per lockstep batch (the fastest width measured by benches/flip.rs).
-const LANES: usize = 32;
+const LANES: usize = 16;
 /// Cells per parallel job (a multiple of the lanes; small enough to balance two cores).
 const CHUNK: usize = 512;
 

@@ -227,9 +227,17 @@ impl Program {
     /// The other lanes' outputs are read with [`output_lanes`](Self::output_lanes).
     pub fn run_lanes<const K: usize>(&self, inputs: &[[f64; K]], scratch: &mut [[f64; K]]) -> u64 {
         const { assert!(K >= 1 && K <= 64, "1 to 64 lanes") };
-        // v·0 is 0 for finite v and NaN for ±∞ or NaN: summing it per lane flags every
-        // non-finite intermediate without a branch per value.
+        // v·0 is 0 for finite v and NaN for ±∞ or NaN: summing it per lane flags a
+        // non-finite value without a branch per value. Only some values need it: a
+        // non-finite value stays non-finite through +, ·, √, positive powers and the other
+        // functions, so it shows at an output unless it meets an instruction that can make
+        // it finite again (1/∞ = 0, exp(−∞) = 0, …): those instructions' operands are checked.
         let mut poison = [0.0f64; K];
+        let taint = |x: &[f64; K], poison: &mut [f64; K]| {
+            for l in 0..K {
+                poison[l] += x[l] * 0.0;
+            }
+        };
         let missing = [f64::NAN; K];
         for (i, ins) in self.code.iter().enumerate() {
             let (done, rest) = scratch.split_at_mut(i);
@@ -240,6 +248,18 @@ impl Program {
                     out[l] = f(x[l]);
                 }
             };
+            match *ins {
+                Instr::Recip(a) | Instr::RecipSqrt(a) => taint(&done[a as usize], &mut poison),
+                Instr::PowI(a, k) if k <= 0 => taint(&done[a as usize], &mut poison),
+                Instr::PowF(a, b) => {
+                    taint(&done[a as usize], &mut poison);
+                    taint(&done[b as usize], &mut poison);
+                }
+                Instr::Func(Func::Exp | Func::Atan | Func::Tanh, a) => {
+                    taint(&done[a as usize], &mut poison);
+                }
+                _ => {}
+            }
             match *ins {
                 Instr::Const(c) => *out = [c; K],
                 Instr::Input(k) => *out = *inputs.get(k as usize).unwrap_or(&missing),
@@ -274,9 +294,9 @@ impl Program {
                 Instr::Func(Func::Cos, a) => sin_cos_lanes(&done[a as usize], 1, out),
                 Instr::Func(f, a) => un(a, out, func_fn(f)),
             }
-            for l in 0..K {
-                poison[l] += out[l] * 0.0;
-            }
+        }
+        for &o in &self.outputs {
+            taint(&scratch[o as usize], &mut poison);
         }
         (0..K).fold(0u64, |m, l| if poison[l].is_nan() { m | 1 << l } else { m })
     }
@@ -460,6 +480,8 @@ mod tests {
             "1/2*m*v^2 + sin(x)*exp(-x^2)",
             "log(x) + sqrt(v) + x^(1/3)",
             "1/x + v^(-1/2)",
+            "exp(-1/x) + atan(1/v) + tanh(1/(x*v)) + (x*v)^0.5 + 1/(1/x)",
+            "cos(x)^(-2) + sinh(1/x)*0 + exp(v^3)*x",
         ];
         for src in sources {
             let mut pool = Pool::new();
