@@ -139,6 +139,46 @@ fn small_angles_at_rest_never_flip_and_starts_over_the_top_are_said() {
     );
 }
 
+#[test]
+fn cells_whose_energy_cannot_reach_the_top_never_flip() {
+    // At rest, h = −g(2 cos θ₁ + cos θ₂) (m = l = 1); θ₂ = π needs h ≥ −g at the least
+    // (θ₁ = 0), θ₁ = π needs h ≥ g: so no flip ever where 2 cos θ₁ + cos θ₂ > 1.
+    let d = dir("energy");
+    let csv = d.join("map.csv");
+    let (code, _, err) = lagrange(&[
+        "simulate",
+        "double-pendulum",
+        "--params",
+        DP_PARAMS,
+        "--t-end",
+        "3",
+        "--dt",
+        "0.01",
+        "--grid",
+        "theta1=-3:3:9, theta2=-3:3:9",
+        "--until-flip",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let (mut forbidden, mut flipped) = (0, 0);
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (a, b): (f64, f64) = (f[0].parse().unwrap(), f[1].parse().unwrap());
+        if 2.0 * a.cos() + b.cos() > 1.0 {
+            forbidden += 1;
+            assert_eq!(f[3], "did_not_flip", "({a}, {b})");
+        } else if f[3] == "flipped" {
+            flipped += 1;
+        }
+    }
+    assert!(
+        forbidden >= 9 && flipped >= 9,
+        "{forbidden} forbidden, {flipped} flipped"
+    );
+}
+
 /// Width and height from a PNG's IHDR chunk, after checking the signature.
 fn png_size(path: &std::path::Path) -> (u32, u32) {
     let bytes = std::fs::read(path).unwrap();
