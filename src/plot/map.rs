@@ -90,14 +90,17 @@ impl FlipMap<'_> {
             .y_label_area_size(60)
             .build_cartesian_2d(x0..x1, y0..y1)?;
         let y_desc = self.y.as_ref().map_or("", |y| y.0.as_str());
-        chart
-            .configure_mesh()
-            .disable_mesh()
+        let mut mesh = chart.configure_mesh();
+        mesh.disable_mesh()
             .x_desc(self.x.0.as_str())
             .y_desc(y_desc)
             .axis_desc_style(("sans-serif", 22))
-            .label_style(("sans-serif", 15))
-            .draw()?;
+            .label_style(("sans-serif", 15));
+        if self.y.is_none() {
+            // One row: the vertical extent means nothing.
+            mesh.disable_y_axis();
+        }
+        mesh.draw()?;
         let ny = ys.len();
         let scale = self.scale();
         chart.draw_series(self.cells.iter().enumerate().map(|(c, o)| {
@@ -118,7 +121,10 @@ impl FlipMap<'_> {
             .margin_bottom(66)
             .margin_right(8)
             .y_label_area_size(60)
-            .build_cartesian_2d(0.0..1.0, (lo..hi).log_scale())?;
+            .build_cartesian_2d(
+                0.0..1.0,
+                (lo..hi).log_scale().with_key_points(decades(lo, hi)),
+            )?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -158,6 +164,22 @@ impl FlipMap<'_> {
     }
 }
 
+/// The powers of ten from `lo` to `hi`, with both ends: the colour bar's labels (plotters'
+/// own log axis leaves the decades below 1 unlabelled).
+fn decades(lo: f64, hi: f64) -> Vec<f64> {
+    let mut v = vec![lo];
+    let first = lo.log10().floor() as i32 + 1;
+    let last = hi.log10().ceil() as i32;
+    for e in first..last.max(first) {
+        let p = 10f64.powi(e);
+        if p > lo * (1.0 + 1e-9) && p < hi * (1.0 - 1e-9) {
+            v.push(p);
+        }
+    }
+    v.push(hi);
+    v
+}
+
 /// Half the spacing of evenly spaced values (½ for a single value) and the span they cover.
 fn half_step_and_span(v: &[f64]) -> (f64, (f64, f64)) {
     let (first, last) = (
@@ -194,5 +216,7 @@ mod tests {
         assert_eq!(colour(10.0, 1e-3, 10.0), RGBColor(68, 1, 84));
         assert_eq!(colour(0.0, 1e-3, 10.0), colour(1e-3, 1e-3, 10.0));
         assert_eq!(half_step_and_span(&[-1.0, 0.0, 1.0]), (0.5, (-1.5, 1.5)));
+        assert_eq!(decades(1e-3, 10.0).len(), 5);
+        assert_eq!(decades(0.1, 3.0).len(), 3);
     }
 }
