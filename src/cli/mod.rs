@@ -6,6 +6,7 @@ mod chaos;
 mod check;
 mod derive;
 mod grade;
+mod grid;
 mod modes;
 pub(crate) mod problems;
 mod read;

@@ -16,51 +16,52 @@ use lagrange::simulate::{Method, SimError};
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     #[command(flatten)]
-    system: SystemArgs,
+    pub(super) system: SystemArgs,
     /// Parameter values, e.g. "m1=1, m2=1, l1=1, l2=1, g=9.81" (a bank problem suggests
     /// values; these override them).
     #[arg(long, default_value = "", allow_hyphen_values = true)]
-    params: String,
+    pub(super) params: String,
     /// Initial values, e.g. "theta1=2, theta2=2, theta1'=0"; values not given start at 0
     /// (without --init, a bank problem's suggested start).
     #[arg(long, default_value = "", allow_hyphen_values = true)]
-    init: String,
+    pub(super) init: String,
     /// The end time (the motion starts at t = 0); a bank problem may suggest one.
     #[arg(long, allow_hyphen_values = true)]
-    t_end: Option<f64>,
+    pub(super) t_end: Option<f64>,
     /// Relative tolerance of dop853.
     #[arg(long, default_value_t = 1e-10)]
-    rtol: f64,
+    pub(super) rtol: f64,
     /// Absolute tolerance of dop853.
     #[arg(long, default_value_t = 1e-10)]
-    atol: f64,
+    pub(super) atol: f64,
     /// The integrator.
     #[arg(long, value_enum, default_value_t = MethodArg::Dop853)]
     method: MethodArg,
     /// The fixed step of rk4 and gauss.
     #[arg(long)]
-    dt: Option<f64>,
+    pub(super) dt: Option<f64>,
     /// Times at which to print the state, e.g. "10, 20".
     #[arg(long, default_value = "")]
-    report_at: String,
+    pub(super) report_at: String,
     /// Write t, every q, every q' and h on an even grid to this CSV file.
     #[arg(long)]
-    out: Option<PathBuf>,
+    pub(super) out: Option<PathBuf>,
     /// Points of the even grid (energy drift, --out and the pictures).
     #[arg(long, default_value_t = 1000)]
-    samples: usize,
+    pub(super) samples: usize,
     /// JSON output.
     #[arg(long)]
-    json: bool,
-    /// Draw q(t) for every coordinate to this SVG file; `-` draws a terminal chart on stdout.
+    pub(super) json: bool,
+    /// Draw q(t) for every coordinate to this SVG file (PNG when it ends in .png); `-` draws a
+    /// terminal chart on stdout. With --grid: the flip-time map.
     #[arg(long)]
-    plot: Option<PathBuf>,
+    pub(super) plot: Option<PathBuf>,
     /// Draw the phase portrait (q against q') of every coordinate to this SVG file.
     #[arg(long)]
-    phase: Option<PathBuf>,
+    pub(super) phase: Option<PathBuf>,
     /// Draw the relative energy error over time to this SVG file.
     #[arg(long)]
-    energy: Option<PathBuf>,
+    pub(super) energy: Option<PathBuf>,
     /// Draw into --phase a family of trajectories at N energies (1 to 200) instead of the one
     /// from --init: one degree of freedom and a conserved h only (more are refused). All start
     /// at the minimum of V(q) = h(q, 0) on the coordinate's range, with energies evenly below
@@ -68,7 +69,17 @@ pub struct SimulateArgs {
     /// separatrix and rotations go both ways. Each is integrated for one period (at most
     /// --t-end) and drawn with --samples points (at most 2000). Colour shows the energy.
     #[arg(long, value_name = "N")]
-    portrait: Option<usize>,
+    pub(super) portrait: Option<usize>,
+    /// A grid over one or two initial values, "theta1=-3:3:200, theta2=-3:3:200"
+    /// (start:end:count, ends included; the rest from --init): one trajectory per cell, by
+    /// RK4 at --dt (default 1e-3). With --until-flip: the flip-time map (--plot FILE draws
+    /// it, --out writes a CSV, --json a summary).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(super) grid: Option<String>,
+    /// With --grid: run each trajectory until an angle goes over the top (the continuous
+    /// angle leaves (−π, π)), or to --t-end.
+    #[arg(long)]
+    pub(super) until_flip: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -99,6 +110,13 @@ pub fn run(
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
+    if let Some(spec) = &args.grid {
+        return super::grid::run(args, &opts, spec, &mut sys, color, out);
+    }
+    if args.until_flip {
+        let message = "--until-flip goes with --grid (the flip-time map)".into();
+        return Ok(report(&CliError::Usage(message), color));
+    }
     let mut report_ = match lagrange::report::simulation(&mut sys, &opts) {
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
@@ -242,7 +260,7 @@ pub(super) fn failure(e: &SimulationError) -> ExitCode {
 }
 
 /// Writes `bytes` to `path` through a temporary file beside it and a rename.
-fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write;
     let name = path
         .file_name()

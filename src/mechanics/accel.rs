@@ -123,6 +123,32 @@ impl Dynamics {
         Ok(())
     }
 
+    /// M (row-major, n·n slots) and f (n slots) at `K` sample points at once (lanes, see
+    /// [`Program::run_lanes`]) into the caller's buffers; no allocation. Returns the mask of
+    /// the lanes where the program is undefined (their M and f are meaningless).
+    pub fn mass_and_forcing_lanes<const K: usize>(
+        &self,
+        points: &[[f64; K]],
+        scratch: &mut [[f64; K]],
+        m: &mut [[f64; K]],
+        f: &mut [[f64; K]],
+    ) -> u64 {
+        let n = self.n;
+        let bad = self.program.run_lanes(points, scratch);
+        for (k, v) in m.iter_mut().enumerate().take(n * n) {
+            *v = self.program.output_lanes(k, scratch);
+        }
+        for (r, v) in f.iter_mut().enumerate().take(n) {
+            *v = self.program.output_lanes(n * n + r, scratch);
+        }
+        bad
+    }
+
+    /// A lane scratch buffer for [`mass_and_forcing_lanes`](Self::mass_and_forcing_lanes).
+    pub fn scratch_lanes<const K: usize>(&self) -> Vec<[f64; K]> {
+        self.program.scratch_lanes()
+    }
+
     /// A scratch buffer for [`accelerations`](Self::accelerations).
     pub fn scratch(&self) -> Vec<f64> {
         self.program.scratch()

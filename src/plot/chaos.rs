@@ -6,6 +6,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::backend::draw_on;
+
 use super::{label::unicode, range};
 use lagrange::report::chaos::ChaosReport;
 
@@ -15,46 +17,47 @@ pub fn chaos_svg(r: &ChaosReport, path: &Path) -> Result<(), String> {
 }
 
 fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::new(path, (800, 720)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let (top, bottom) = root.split_vertically(360);
-    let positive: Vec<(f64, f64)> = r
-        .separation
-        .iter()
-        .copied()
-        .filter(|p| p.1 > 0.0 && p.1.is_finite())
-        .collect();
-    let (x0, x1) = range(positive.iter().map(|p| p.0));
-    let (lo, hi) = range(positive.iter().map(|p| p.1.log10()));
-    let mut chart = ChartBuilder::on(&top)
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, (10f64.powf(lo)..10f64.powf(hi)).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("t")
-        .y_desc("|Δy| (log scale)")
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .axis_desc_style(("sans-serif", 18))
-        .draw()?;
-    chart.draw_series(LineSeries::new(positive.iter().copied(), &BLUE))?;
-    let (x0, x1) = range(r.running.iter().map(|p| p.0));
-    let (y0, y1) = range(r.running.iter().map(|p| p.1).chain([0.0]));
-    let mut chart = ChartBuilder::on(&bottom)
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart
-        .configure_mesh()
-        .x_desc("t")
-        .y_desc("running λ estimate")
-        .axis_desc_style(("sans-serif", 18))
-        .draw()?;
-    chart.draw_series(LineSeries::new(r.running.iter().copied(), &BLUE))?;
-    root.present()?;
-    Ok(())
+    draw_on!(path, (800, 720), |root| {
+        root.fill(&WHITE)?;
+        let (top, bottom) = root.split_vertically(360);
+        let positive: Vec<(f64, f64)> = r
+            .separation
+            .iter()
+            .copied()
+            .filter(|p| p.1 > 0.0 && p.1.is_finite())
+            .collect();
+        let (x0, x1) = range(positive.iter().map(|p| p.0));
+        let (lo, hi) = range(positive.iter().map(|p| p.1.log10()));
+        let mut chart = ChartBuilder::on(&top)
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, (10f64.powf(lo)..10f64.powf(hi)).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("t")
+            .y_desc("|Δy| (log scale)")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()?;
+        chart.draw_series(LineSeries::new(positive.iter().copied(), &BLUE))?;
+        let (x0, x1) = range(r.running.iter().map(|p| p.0));
+        let (y0, y1) = range(r.running.iter().map(|p| p.1).chain([0.0]));
+        let mut chart = ChartBuilder::on(&bottom)
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_desc("t")
+            .y_desc("running λ estimate")
+            .axis_desc_style(("sans-serif", 18))
+            .draw()?;
+        chart.draw_series(LineSeries::new(r.running.iter().copied(), &BLUE))?;
+        root.present()?;
+        Ok(())
+    })
 }
 
 /// The Poincaré section's points (q₂, q̇₂); an error when no section was computed.
@@ -67,35 +70,36 @@ fn draw_poincare(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error:
     let all = || s.orbits.iter().flat_map(|o| o.points.iter().copied());
     let (x0, x1) = range(all().map(|p| p.0));
     let (y0, y1) = range(all().map(|p| p.1));
-    let root = SVGBackend::new(path, (800, 720)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let caption = format!(
-        "Poincaré section {} = 0, {} > 0, h = {:.4}",
-        unicode(&s.q1),
-        unicode(&format!("{}'", s.q1)),
-        s.energy
-    );
-    let mut chart = ChartBuilder::on(&root)
-        .margin(12)
-        .caption(caption, ("sans-serif", 20))
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart
-        .configure_mesh()
-        .x_desc(unicode(&s.q2))
-        .y_desc(unicode(&format!("{}'", s.q2)))
-        .axis_desc_style(("sans-serif", 18))
-        .draw()?;
-    for (k, orbit) in s.orbits.iter().enumerate() {
-        let colour = Palette99::pick(k).filled();
-        chart.draw_series(
-            orbit
-                .points
-                .iter()
-                .map(|&(x, y)| Circle::new((x, y), 1, colour)),
-        )?;
-    }
-    root.present()?;
-    Ok(())
+    draw_on!(path, (800, 720), |root| {
+        root.fill(&WHITE)?;
+        let caption = format!(
+            "Poincaré section {} = 0, {} > 0, h = {:.4}",
+            unicode(&s.q1),
+            unicode(&format!("{}'", s.q1)),
+            s.energy
+        );
+        let mut chart = ChartBuilder::on(&root)
+            .margin(12)
+            .caption(caption, ("sans-serif", 20))
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_desc(unicode(&s.q2))
+            .y_desc(unicode(&format!("{}'", s.q2)))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()?;
+        for (k, orbit) in s.orbits.iter().enumerate() {
+            let colour = Palette99::pick(k).filled();
+            chart.draw_series(
+                orbit
+                    .points
+                    .iter()
+                    .map(|&(x, y)| Circle::new((x, y), 1, colour)),
+            )?;
+        }
+        root.present()?;
+        Ok(())
+    })
 }

@@ -1,15 +1,20 @@
-//! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits and the relative
-//! energy error as SVG files (plotters), the separation, Lyapunov estimate and Poincaré
-//! section of `chaos`, and q(t) as a terminal chart (textplots). Labels are
-//! the coordinates' names in Unicode (`theta1'` is drawn θ̇₁).
+//! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits and their
+//! energy families, the relative energy error, the flip-time map, and `chaos`'s separation,
+//! Lyapunov estimate and Poincaré section, as SVG or PNG files (plotters, chosen by the file's
+//! extension), and q(t) as a terminal chart (textplots). Labels are the coordinates' names in
+//! Unicode (`theta1'` is drawn θ̇₁).
 
+mod backend;
 mod chaos;
 mod label;
+mod map;
 mod portrait;
 mod svg;
 mod terminal;
 
 pub use chaos::{chaos_svg, poincare_svg};
+pub use label::unicode;
+pub use map::{FlipMap, flip_map};
 pub use portrait::portrait_svg;
 pub use svg::{energy_svg, phase_svg, qt_svg};
 pub use terminal::terminal_chart;

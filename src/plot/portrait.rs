@@ -8,6 +8,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::backend::draw_on;
+
 use super::label::{axis, unicode};
 use super::range;
 use lagrange::report::units::AxisUnits;
@@ -45,36 +47,37 @@ pub fn portrait_svg(p: &Portrait, units: &AxisUnits, path: &Path) -> Result<(), 
             .flat_map(|c| c.2.iter().flatten().map(|q| q.1)),
     );
     let caption = caption(p, units.energy.as_deref());
-    let root = SVGBackend::new(path, (900, 640)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 16))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .axis_desc_style(("sans-serif", 18))
-        .draw()
-        .map_err(|e| e.to_string())?;
-    let (e_lo, e_hi) = energy_range(p);
-    for (energy, separatrix, segs) in &curves {
-        let style = if *separatrix {
-            BLACK.stroke_width(2)
-        } else {
-            colour(*energy, e_lo, e_hi).stroke_width(1)
-        };
-        for seg in segs {
-            chart
-                .draw_series(LineSeries::new(seg.iter().copied(), style))
-                .map_err(|e| e.to_string())?;
+    draw_on!(path, (900, 640), |root| {
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(caption, ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        let (e_lo, e_hi) = energy_range(p);
+        for (energy, separatrix, segs) in &curves {
+            let style = if *separatrix {
+                BLACK.stroke_width(2)
+            } else {
+                colour(*energy, e_lo, e_hi).stroke_width(1)
+            };
+            for seg in segs {
+                chart
+                    .draw_series(LineSeries::new(seg.iter().copied(), style))
+                    .map_err(|e| e.to_string())?;
+            }
         }
-    }
-    root.present().map_err(|e| e.to_string())
+        root.present().map_err(|e| e.to_string())
+    })
 }
 
 /// The lowest and highest energy of the family.

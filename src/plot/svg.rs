@@ -1,11 +1,12 @@
-//! SVG pictures with plotters (its SVG backend writes text as `<text>`, so no font library is
-//! needed): q(t) and the phase portrait, one panel per coordinate, and the energy error.
+//! Charts of a simulation, drawn once for every backend (see [`backend`](super::backend)):
+//! q(t) and the phase portrait, one panel per coordinate, and the energy error.
 
 use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::backend::{DrawResult, Picture, write};
 use super::{Curves, range};
 use lagrange::report::SimulationReport;
 
@@ -16,7 +17,10 @@ struct Panel<'a> {
     points: &'a [(f64, f64)],
 }
 
-/// q(t) for every coordinate, one panel each, to `path`.
+/// Panels one under another.
+struct Panels<'a>(Vec<Panel<'a>>);
+
+/// q(t) for every coordinate, one panel each, to `path` (PNG or SVG by its name).
 pub fn qt_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
     let c = Curves::of(r);
     let panels: Vec<Panel> = c
@@ -29,7 +33,7 @@ pub fn qt_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
             points,
         })
         .collect();
-    draw(path, &panels)
+    write(path, &Panels(panels))
 }
 
 /// The phase portrait q vs q̇ for every coordinate, one panel each, to `path`.
@@ -46,7 +50,7 @@ pub fn phase_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
             points,
         })
         .collect();
-    draw(path, &panels)
+    write(path, &Panels(panels))
 }
 
 /// The relative energy error (h − h₀)/|h₀| over time, to `path`.
@@ -57,26 +61,25 @@ pub fn energy_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
         y_desc: "(h − h₀)/|h₀|".into(),
         points: &c.energy,
     };
-    draw(path, &[panel])
+    write(path, &Panels(vec![panel]))
 }
 
-/// Draws the panels one under another and writes the file.
-fn draw(path: &Path, panels: &[Panel]) -> Result<(), String> {
-    let height = 360 * u32::try_from(panels.len().max(1)).unwrap_or(1);
-    let root = SVGBackend::new(path, (800, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let areas = root.split_evenly((panels.len().max(1), 1));
-    for (area, panel) in areas.iter().zip(panels) {
-        draw_panel(area, panel).map_err(|e| e.to_string())?;
+impl Picture for Panels<'_> {
+    fn size(&self) -> (u32, u32) {
+        (800, 360 * u32::try_from(self.0.len().max(1)).unwrap_or(1))
     }
-    root.present().map_err(|e| e.to_string())
-}
 
-type DrawResult<'a> =
-    Result<(), DrawingAreaErrorKind<<SVGBackend<'a> as DrawingBackend>::ErrorType>>;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        let areas = root.split_evenly((self.0.len().max(1), 1));
+        for (area, panel) in areas.iter().zip(&self.0) {
+            draw_panel(area, panel)?;
+        }
+        Ok(())
+    }
+}
 
 /// One panel: the mesh with its axis labels, and the curve as one polyline.
-fn draw_panel<'a>(area: &DrawingArea<SVGBackend<'a>, Shift>, panel: &Panel) -> DrawResult<'a> {
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> DrawResult<DB> {
     let (x0, x1) = range(panel.points.iter().map(|p| p.0));
     let (y0, y1) = range(panel.points.iter().map(|p| p.1));
     let mut chart = ChartBuilder::on(area)

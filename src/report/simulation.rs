@@ -350,7 +350,7 @@ pub fn portrait_family(
 
 /// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
 /// problem declares parameters for all its parts): any value does for them.
-pub(super) fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+pub fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
     let mut used = sys.pool.variables(sys.lagrangian);
     for &f in &sys.forces {
         used.extend(sys.pool.variables(f));

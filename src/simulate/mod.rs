@@ -4,8 +4,9 @@
 //! - [`Rhs`]: M and f compiled once; each call solves M q'' = f in reused buffers;
 //! - [`dop853`]: adaptive Dormand–Prince 8(5,3) (Hairer's DOP853 error control, dense output);
 //! - [`rk4`]: the classical fixed-step Runge–Kutta method;
+//! - [`flip_times`]: many trajectories in lockstep over lanes, to the time an angle flips;
 //! - [`gauss`]: the 2-stage Gauss–Legendre method (order 4, implicit, symplectic);
-//! - [`portrait`]: a family of trajectories at a grid of energies (one degree of freedom).
+//! - [`portrait`]: a family of trajectories at a grid of energies (one degree of freedom);
 //! - [`chaos`]: separation of nearby trajectories, the largest Lyapunov exponent (Benettin),
 //!   the Poincaré section; [`events`]: zero crossings located on dense output.
 //!
@@ -14,6 +15,7 @@
 //! The methods are written here (no ODE crate: none of them shares the project's nalgebra
 //! 0.35 without a second copy, and these need no linear algebra beyond n × n solves).
 
+mod batch;
 pub mod chaos;
 mod dop853;
 mod dop853_tableau;
@@ -23,6 +25,7 @@ pub mod portrait;
 mod rhs;
 mod trajectory;
 
+pub use batch::{DEFAULT_FLIP_DT, FlipRun, FlipSettings, LANE_WIDTHS, Outcome, flip_times};
 pub use dop853::dop853;
 pub use fixed::{gauss, rk4};
 pub use rhs::Rhs;

@@ -10,7 +10,7 @@ use crate::mechanics::accel::Dynamics;
 use crate::mechanics::{Layout, System};
 
 /// A pivot below this fraction of the largest entry of M makes M singular.
-const SINGULAR: f64 = 1e-13;
+pub(super) const SINGULAR: f64 = 1e-13;
 
 /// The compiled equations of motion of one system at fixed parameter values.
 #[derive(Clone, Debug)]
@@ -88,6 +88,16 @@ impl Rhs {
     /// Where q and q' sit in y.
     pub fn layout(&self) -> Layout {
         self.layout
+    }
+
+    /// The compiled M and f (for evaluators over many states, e.g. [`flip_times`](super::flip_times)).
+    pub fn dynamics(&self) -> &Dynamics {
+        &self.dynamics
+    }
+
+    /// The sample point with the parameters loaded (t, q, q', q'' as last evaluated).
+    pub fn sample_point(&self) -> &[f64] {
+        &self.point
     }
 
     /// The energy function h = Σ qᵢ' ∂L/∂qᵢ' − L at (t, y).
@@ -193,7 +203,7 @@ fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, Si
 
 /// Solves M x = f for the row-major n × n `m` in place (x overwrites `f`) by Gaussian
 /// elimination with partial pivoting; `None` when M is singular relative to its largest entry.
-fn solve_in_place(n: usize, m: &mut [f64], f: &mut [f64]) -> Option<()> {
+pub(super) fn solve_in_place(n: usize, m: &mut [f64], f: &mut [f64]) -> Option<()> {
     let scale = m.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     if !(scale > 0.0 && scale.is_finite()) {
         return None;

@@ -12,6 +12,7 @@ mod equilibria13;
 mod follow;
 mod fuzz_replay;
 mod grade;
+mod grid14;
 mod helpers;
 mod hostile;
 mod ladder;
