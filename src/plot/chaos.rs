@@ -26,21 +26,33 @@ fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Er
             .copied()
             .filter(|p| p.1 > 0.0 && p.1.is_finite())
             .collect();
-        let (x0, x1) = range(positive.iter().map(|p| p.0));
-        let (lo, hi) = range(positive.iter().map(|p| p.1.log10()));
+        // log₁₀ on a linear axis: plotters' log axis crowds its labels within a decade.
+        let logs: Vec<(f64, f64)> = positive.iter().map(|p| (p.0, p.1.log10())).collect();
+        let (x0, x1) = range(logs.iter().map(|p| p.0));
+        let (lo, hi) = range(logs.iter().map(|p| p.1));
+        let t_desc = match r.time_unit.as_deref() {
+            Some(u) => format!("t / {u}"),
+            None => "t".to_string(),
+        };
         let mut chart = ChartBuilder::on(&top)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1, (10f64.powf(lo)..10f64.powf(hi)).log_scale())?;
+            .build_cartesian_2d(x0..x1, lo..hi)?;
         chart
             .configure_mesh()
-            .x_desc("t")
+            .x_desc(t_desc.as_str())
             .y_desc("|Δy| (log scale)")
-            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| {
+                if (v - v.round()).abs() < 1e-9 {
+                    format!("1e{}", v.round())
+                } else {
+                    format!("{:.1e}", 10f64.powf(*v))
+                }
+            })
             .axis_desc_style(("sans-serif", 18))
             .draw()?;
-        chart.draw_series(LineSeries::new(positive.iter().copied(), &BLUE))?;
+        chart.draw_series(LineSeries::new(logs.iter().copied(), &BLUE))?;
         let (x0, x1) = range(r.running.iter().map(|p| p.0));
         let (y0, y1) = range(r.running.iter().map(|p| p.1).chain([0.0]));
         let mut chart = ChartBuilder::on(&bottom)
@@ -48,10 +60,14 @@ fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Er
             .x_label_area_size(40)
             .y_label_area_size(70)
             .build_cartesian_2d(x0..x1, y0..y1)?;
+        let lambda_desc = match r.time_unit.as_deref() {
+            Some(u) => format!("running λ estimate / {u}⁻¹"),
+            None => "running λ estimate".to_string(),
+        };
         chart
             .configure_mesh()
-            .x_desc("t")
-            .y_desc("running λ estimate")
+            .x_desc(t_desc.as_str())
+            .y_desc(lambda_desc.as_str())
             .axis_desc_style(("sans-serif", 18))
             .draw()?;
         chart.draw_series(LineSeries::new(r.running.iter().copied(), &BLUE))?;
