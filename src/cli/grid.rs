@@ -18,6 +18,7 @@ use super::system_args::{CliError, report};
 use lagrange::diagnostic::did_you_mean;
 use lagrange::mechanics::System;
 use lagrange::report::SimulationOptions;
+use lagrange::report::units::AxisUnits;
 use lagrange::simulate::{
     DEFAULT_FLIP_DT, FlipRun, FlipSettings, Outcome, Rhs, SimError, flip_times,
 };
@@ -139,6 +140,7 @@ struct Summary {
 pub fn run(
     args: &SimulateArgs,
     opts: &SimulationOptions,
+    units: &AxisUnits,
     spec: &str,
     sys: &mut System,
     color: bool,
@@ -152,7 +154,7 @@ pub fn run(
     let run = integrate(&plan);
     let wall = clock.elapsed().as_secs_f64();
     let summary = summarize(&plan, &run);
-    if let Err(e) = write_files(args, &plan, &run) {
+    if let Err(e) = write_files(args, &plan, &run, units) {
         return Ok(report(&CliError::Usage(e), color));
     }
     if args.json {
@@ -457,19 +459,39 @@ fn render(s: &Summary) -> String {
 }
 
 /// The CSV and the picture, if asked.
-fn write_files(args: &SimulateArgs, plan: &Plan, run: &FlipRun) -> Result<(), String> {
+fn write_files(
+    args: &SimulateArgs,
+    plan: &Plan,
+    run: &FlipRun,
+    units: &AxisUnits,
+) -> Result<(), String> {
     if let Some(path) = &args.out {
         write_atomic(path, csv(plan, run).as_bytes())
             .map_err(|e| format!("--out {}: cannot write the file: {e}", path.display()))?;
     }
     if let Some(path) = &args.plot {
-        let label = |k: usize| crate::plot::unicode(&plan.axes[k].name);
+        // An axis is a coordinate or a velocity: y = (q, q').
+        let n = plan.names.len() / 2;
+        let label = |k: usize| {
+            let i = plan.index[k];
+            let unit = if i < n {
+                units.coordinates.get(i)
+            } else {
+                units.velocities.get(i - n)
+            };
+            let name = crate::plot::unicode(&plan.axes[k].name);
+            match unit.cloned().flatten() {
+                Some(u) => format!("{name} / {u}"),
+                None => name,
+            }
+        };
         let map = crate::plot::FlipMap {
             x: (label(0), &plan.values[0]),
             y: plan.values.get(1).map(|v| (label(1), v.as_slice())),
             cells: &run.outcomes,
             t_end: plan.settings.t_end,
             dt: plan.settings.dt,
+            time_unit: units.time.clone(),
         };
         crate::plot::flip_map(&map, path)
             .map_err(|e| format!("--plot {}: cannot draw: {e}", path.display()))?;

@@ -111,7 +111,7 @@ pub fn run(
         Err(e) => return Ok(report(&e, color)),
     };
     if let Some(spec) = &args.grid {
-        return super::grid::run(args, &opts, spec, &mut sys, color, out);
+        return super::grid::run(args, &opts, &units, spec, &mut sys, color, out);
     }
     if args.until_flip {
         let message = "--until-flip goes with --grid (the flip-time map)".into();

@@ -22,6 +22,8 @@ pub struct FlipMap<'a> {
     /// The end time (the top of the scale) and the step (its bottom).
     pub t_end: f64,
     pub dt: f64,
+    /// The unit of t when the system declares one.
+    pub time_unit: Option<String>,
 }
 
 const NO_FLIP: RGBColor = RGBColor(255, 255, 255);
@@ -129,7 +131,10 @@ impl FlipMap<'_> {
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc("time to flip (s)")
+            .y_desc(match self.time_unit.as_deref() {
+                Some(u) => format!("time to flip / {u}"),
+                None => "time to flip".to_string(),
+            })
             .axis_desc_style(("sans-serif", 18))
             .label_style(("sans-serif", 14))
             .draw()?;
@@ -153,7 +158,10 @@ impl FlipMap<'_> {
             BLACK.stroke_width(1),
         ))?;
         area.draw_text(
-            &format!("no flip by {hi} s"),
+            &format!(
+                "no flip by t = {hi}{}",
+                self.time_unit.as_deref().map_or(String::new(), |u| format!(" {u}"))
+            ),
             &style.color(&BLACK),
             (x + 20, y),
         )?;
