@@ -297,12 +297,7 @@ fn check_flags(args: &SimulateArgs) -> Result<(), CliError> {
 fn equations(params: &[(String, f64)], sys: &mut System) -> Result<Rhs, CliError> {
     // A bank problem declares parameters for all its parts; those the motion does not use
     // take any value, as in a single run.
-    let unused = lagrange::report::simulation::unused_parameters(sys, params);
-    let params: Vec<(&str, f64)> = params
-        .iter()
-        .map(|(n, v)| (n.as_str(), *v))
-        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
-        .collect();
+    let params = lagrange::report::simulation::motion_parameters(sys, params);
     Rhs::new(sys, &params).map_err(|e| match e {
         SimError::MissingParameters { names } => CliError::Usage(format!(
             "no value was given for {}: add them to --params",

@@ -160,7 +160,9 @@ impl FlipMap<'_> {
         area.draw_text(
             &format!(
                 "no flip by t = {hi}{}",
-                self.time_unit.as_deref().map_or(String::new(), |u| format!(" {u}"))
+                self.time_unit
+                    .as_deref()
+                    .map_or(String::new(), |u| format!(" {u}"))
             ),
             &style.color(&BLACK),
             (x + 20, y),

@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::simulation::{initial_state, state_names, unused_parameters};
+use super::simulation::{initial_state, motion_parameters, state_names};
 use super::{Paint, SimulationError, text};
 use crate::mechanics::System;
 use crate::simulate::chaos::{LyapunovOptions, SectionOptions, energy_state, lyapunov, section};
@@ -222,13 +222,7 @@ fn check_section(s: &SectionSpec) -> Result<(), ChaosError> {
 /// The exponent, its convergence, the separation and the asked section of `sys`.
 pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, ChaosError> {
     check(opts)?;
-    let unused = unused_parameters(sys, &opts.params);
-    let params: Vec<(&str, f64)> = opts
-        .params
-        .iter()
-        .map(|(n, v)| (n.as_str(), *v))
-        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
-        .collect();
+    let params = motion_parameters(sys, &opts.params);
     let mut rhs = Rhs::new(sys, &params).map_err(SimulationError::Sim)?;
     let names = state_names(rhs.names());
     let y0 = initial_state(&names, &opts.init)?;

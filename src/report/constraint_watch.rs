@@ -34,28 +34,16 @@ fn point(layout: Layout, values: &[f64], t: f64, y: &[f64]) -> Vec<f64> {
     x
 }
 
-/// The system's parameter values in its own order (every one is in `params`).
-fn values(sys: &System, params: &[(&str, f64)]) -> Vec<f64> {
-    (sys.parameters.iter())
-        .map(|p| {
-            params
-                .iter()
-                .find(|(n, _)| *n == p.name)
-                .map_or(0.0, |x| x.1)
-        })
-        .collect()
-}
-
 /// The constraint an initial state is off (positions first, then velocities), if any.
 pub(super) fn off_constraint(
     sys: &mut System,
-    params: &[(&str, f64)],
+    values: &[f64],
     y0: &[f64],
 ) -> Result<Option<Off>, MechError> {
     if sys.constraints.is_empty() {
         return Ok(None);
     }
-    let x = point(sys.state_layout(), &values(sys, params), 0.0, y0);
+    let x = point(sys.state_layout(), values, 0.0, y0);
     Ok(sys.constraint_violation(&x)?.map(|v| Off {
         index: v.index + 1,
         text: sys.pool.plain(sys.constraints[v.index].expr),
@@ -69,10 +57,7 @@ pub(super) fn off_constraint(
 
 impl ConstraintWatch {
     /// `None` when the system has no holonomic constraint to watch.
-    pub(super) fn new(
-        sys: &System,
-        params: &[(&str, f64)],
-    ) -> Result<Option<ConstraintWatch>, MechError> {
+    pub(super) fn new(sys: &System, values: &[f64]) -> Result<Option<ConstraintWatch>, MechError> {
         let roots: Vec<_> = (sys.constraints.iter())
             .filter(|c| c.kind == ConstraintKind::Holonomic)
             .map(|c| c.expr)
@@ -82,7 +67,7 @@ impl ConstraintWatch {
         }
         let program = sys.compile(&roots)?;
         let layout = sys.state_layout();
-        let point = point(layout, &values(sys, params), 0.0, &vec![0.0; 2 * sys.n()]);
+        let point = point(layout, values, 0.0, &vec![0.0; 2 * sys.n()]);
         Ok(Some(ConstraintWatch {
             scratch: program.scratch(),
             program,

@@ -232,19 +232,14 @@ pub fn simulation(
     opts: &SimulationOptions,
 ) -> Result<SimulationReport, SimulationError> {
     check_options(opts)?;
-    let unused = unused_parameters(sys, &opts.params);
-    let params: Vec<(&str, f64)> = opts
-        .params
-        .iter()
-        .map(|(n, v)| (n.as_str(), *v))
-        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
-        .collect();
+    let params = motion_parameters(sys, &opts.params);
     let mut rhs = Rhs::new(sys, &params)?;
     let h_conserved = rhs.energy_conserved();
     let names = state_names(rhs.names());
     let y0 = initial_state(&names, &opts.init)?;
     let mech = |e: crate::mechanics::MechError| SimulationError::Sim(e.into());
-    if let Some(off) = off_constraint(sys, &params, &y0).map_err(mech)? {
+    let values = crate::simulate::parameter_values(sys, &params)?;
+    if let Some(off) = off_constraint(sys, &values, &y0).map_err(mech)? {
         return Err(SimulationError::OffConstraint {
             index: off.index,
             text: off.text,
@@ -252,7 +247,7 @@ pub fn simulation(
             residual: off.residual,
         });
     }
-    let mut watch = ConstraintWatch::new(sys, &params).map_err(mech)?;
+    let mut watch = ConstraintWatch::new(sys, &values).map_err(mech)?;
     let traj = integrate(&mut rhs, &y0, opts).map_err(|e| match e {
         SimError::Singular { t, y } => SimulationError::Singular {
             t,
@@ -317,13 +312,7 @@ pub fn portrait_family(
     count: usize,
 ) -> Result<Portrait, SimulationError> {
     check_options(opts)?;
-    let unused = unused_parameters(sys, &opts.params);
-    let params: Vec<(&str, f64)> = opts
-        .params
-        .iter()
-        .map(|(n, v)| (n.as_str(), *v))
-        .chain(unused.iter().map(|n| (n.as_str(), 1.0)))
-        .collect();
+    let params = motion_parameters(sys, &opts.params);
     let mut rhs = Rhs::new(sys, &params)?;
     let c = sys
         .coordinates
@@ -350,7 +339,7 @@ pub fn portrait_family(
 
 /// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
 /// problem declares parameters for all its parts): any value does for them.
-pub fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
+fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
     let mut used = sys.pool.variables(sys.lagrangian);
     for &f in &sys.forces {
         used.extend(sys.pool.variables(f));
@@ -360,6 +349,15 @@ pub fn unused_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> {
         .filter(|p| !used.iter().any(|(s, _)| *s == p.sym))
         .filter(|p| !given.iter().any(|(n, _)| *n == p.name))
         .map(|p| p.name.clone())
+        .collect()
+}
+
+/// `given` and any value (1) for the parameters of `sys` that its motion does not involve (a
+/// bank problem declares parameters for all its parts): what [`Rhs::new`] needs.
+pub fn motion_parameters(sys: &System, given: &[(String, f64)]) -> Vec<(String, f64)> {
+    let unused = unused_parameters(sys, given);
+    (given.iter().cloned())
+        .chain(unused.into_iter().map(|n| (n, 1.0)))
         .collect()
 }
 

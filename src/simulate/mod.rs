@@ -28,7 +28,7 @@ mod trajectory;
 pub use batch::{DEFAULT_FLIP_DT, FlipRun, FlipSettings, LANE_WIDTHS, Outcome, flip_times};
 pub use dop853::dop853;
 pub use fixed::{gauss, rk4};
-pub use rhs::Rhs;
+pub use rhs::{Rhs, parameter_values};
 pub use trajectory::{Method, Stats, Trajectory};
 
 use crate::mechanics::MechError;

@@ -37,7 +37,7 @@ pub struct Rhs {
 impl Rhs {
     /// Derives `sys`, compiles M, f (and the constraint rows, if any) and the energy function
     /// h, with every parameter given a value in `params` (by name).
-    pub fn new(sys: &mut System, params: &[(&str, f64)]) -> Result<Rhs, SimError> {
+    pub fn new<S: AsRef<str>>(sys: &mut System, params: &[(S, f64)]) -> Result<Rhs, SimError> {
         let values = parameter_values(sys, params)?;
         let d = sys.derive()?;
         let layout = sys.state_layout();
@@ -166,8 +166,11 @@ impl Rhs {
     }
 }
 
-/// The parameter values in the system's order, every one given exactly once.
-fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, SimError> {
+/// The parameter values in the system's order, every one given exactly once (by name).
+pub fn parameter_values<S: AsRef<str>>(
+    sys: &System,
+    params: &[(S, f64)],
+) -> Result<Vec<f64>, SimError> {
     let known = || {
         sys.parameters
             .iter()
@@ -177,15 +180,15 @@ fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, Si
     };
     if let Some((name, _)) = params
         .iter()
-        .find(|(name, _)| !sys.parameters.iter().any(|p| p.name == *name))
+        .find(|(name, _)| !sys.parameters.iter().any(|p| p.name == name.as_ref()))
     {
         return Err(SimError::UnknownParameter {
-            name: (*name).to_string(),
+            name: name.as_ref().to_string(),
             known: known(),
         });
     }
     let missing: Vec<String> = (sys.parameters.iter())
-        .filter(|p| !params.iter().any(|(name, _)| *name == p.name))
+        .filter(|p| !params.iter().any(|(name, _)| name.as_ref() == p.name))
         .map(|p| p.name.clone())
         .collect();
     if !missing.is_empty() {
@@ -195,7 +198,7 @@ fn parameter_values(sys: &System, params: &[(&str, f64)]) -> Result<Vec<f64>, Si
         .map(|p| {
             params
                 .iter()
-                .find(|(name, _)| *name == p.name)
+                .find(|(name, _)| name.as_ref() == p.name)
                 .map_or(0.0, |x| x.1)
         })
         .collect())

@@ -304,7 +304,7 @@ fn a_mass_matrix_that_becomes_singular_is_reported_with_its_time() {
     // M = (t − 1)² vanishes at t = 1; at rest the motion stays put until then, and RK4's
     // grid of quarter steps evaluates F exactly there.
     let mut sys = System::from_lagrangian("(t - 1)^2*x'^2/2", &["x"]).unwrap();
-    let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+    let mut rhs = Rhs::new::<&str>(&mut sys, &[]).unwrap();
     let e = rk4(&mut rhs, 0.0, &[1.0, 0.0], 2.0, 0.25).unwrap_err();
     assert!(
         matches!(e, SimError::Singular { t, .. } if (t - 1.0).abs() < 1e-9),

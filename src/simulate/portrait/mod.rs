@@ -416,7 +416,7 @@ mod tests {
     #[test]
     fn the_harmonic_oscillator_has_no_barrier_and_closed_curves() {
         let mut sys = System::from_lagrangian("x'^2/2 - x^2/2", &["x"]).unwrap();
-        let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+        let mut rhs = Rhs::new::<&str>(&mut sys, &[]).unwrap();
         let c = Coordinate1 {
             name: "x".into(),
             range: (-2.0, 2.0),
@@ -443,7 +443,7 @@ mod tests {
     fn a_double_well_has_its_separatrix_at_the_hump_and_curves_round_both_wells_above() {
         // V = −x²/2 + x⁴/4: minima at ±1 (V = −¼), the hump at 0 (V = 0).
         let mut sys = System::from_lagrangian("x'^2/2 + x^2/2 - x^4/4", &["x"]).unwrap();
-        let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+        let mut rhs = Rhs::new::<&str>(&mut sys, &[]).unwrap();
         let c = Coordinate1 {
             name: "x".into(),
             range: (-2.0, 2.0),
@@ -473,7 +473,7 @@ mod tests {
         let e = portrait(&mut pendulum(), &angle(), &spec(0)).unwrap_err();
         assert!(matches!(e, PortraitError::Count { got: 0, .. }));
         let mut sys = System::from_lagrangian("x'^2/2 - x", &["x"]).unwrap();
-        let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+        let mut rhs = Rhs::new::<&str>(&mut sys, &[]).unwrap();
         let c = Coordinate1 {
             name: "x".into(),
             range: (-2.0, 2.0),
@@ -482,7 +482,7 @@ mod tests {
         let e = portrait(&mut rhs, &c, &spec(3)).unwrap_err();
         assert!(matches!(e, PortraitError::NoMinimum { .. }), "{e}");
         let mut sys = System::from_lagrangian("x'^2/2 + y'^2/2 - x^2 - y^2", &["x", "y"]).unwrap();
-        let mut rhs = Rhs::new(&mut sys, &[]).unwrap();
+        let mut rhs = Rhs::new::<&str>(&mut sys, &[]).unwrap();
         let e = portrait(&mut rhs, &c, &spec(3)).unwrap_err();
         assert_eq!(e, PortraitError::Dimension { n: 2 });
     }
