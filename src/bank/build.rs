@@ -81,8 +81,9 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
     reader.point_forces(&pf, &mut system)?;
     let parts = b.parts(&pf, &mut system)?;
-    let simulation = b.simulation(&pf, &system)?;
     Ok(Problem {
+        // First: it reads `pf` and `system`, which the fields below move.
+        simulation: b.simulation(&pf, &system)?,
         file: file.to_string(),
         id: b.id,
         title: pf.title,
@@ -94,7 +95,6 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         parts,
         stated_lagrangian: stated,
         lagrangian_line,
-        simulation,
     })
 }
 
