@@ -159,7 +159,10 @@ fn refuse(e: &ChaosError) -> ExitCode {
     let help = match e {
         ChaosError::NoSectionState { .. } => "choose another --section-range or --init",
         ChaosError::SectionDimension(_) => "drop --poincare",
-        _ => "check the input",
+        ChaosError::Constraints(_) => {
+            "eliminate the constraints by choosing coordinates that satisfy them"
+        }
+        _ => "check the values given",
     };
     eprint!(
         "{}",

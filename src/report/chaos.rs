@@ -74,6 +74,12 @@ pub enum ChaosError {
         got: usize,
         max: usize,
     },
+    /// Constraints: the perturbation along (1, …, 1) and the section's starting velocities
+    /// would leave them.
+    #[error(
+        "the system has {0} constraint(s): the perturbed motion and the section's starts would leave them; describe it by independent coordinates"
+    )]
+    Constraints(usize),
     /// A section needs two coordinates.
     #[error("a Poincaré section needs at least two coordinates (the system has {0})")]
     SectionDimension(usize),
@@ -222,6 +228,9 @@ fn check_section(s: &SectionSpec) -> Result<(), ChaosError> {
 /// The exponent, its convergence, the separation and the asked section of `sys`.
 pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, ChaosError> {
     check(opts)?;
+    if !sys.constraints.is_empty() {
+        return Err(ChaosError::Constraints(sys.constraints.len()));
+    }
     let params = motion_parameters(sys, &opts.params);
     let mut rhs = Rhs::new(sys, &params).map_err(SimulationError::Sim)?;
     let names = state_names(rhs.names());

@@ -107,7 +107,14 @@ pub fn flip_times(rhs: &Rhs, starts: &[f64], settings: &FlipSettings) -> Result<
         h,
         watch: &settings.watch,
     };
-    Ok(match settings.lanes {
+    // The lanes evaluate M and f only; constraints need the augmented solve of the scalar
+    // right-hand side, so a constrained system takes the scalar path.
+    let lanes = if rhs.dynamics().constraints() > 0 {
+        1
+    } else {
+        settings.lanes
+    };
+    Ok(match lanes {
         1 => scalar(rhs, &job),
         4 => Lanes::<4>::new(rhs, &job).run(),
         8 => Lanes::<8>::new(rhs, &job).run(),
@@ -486,11 +493,39 @@ impl<'a, const K: usize> Lanes<'a, K> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mechanics::System;
     use crate::mechanics::fixtures::n_link_pendulum;
 
     fn double_pendulum() -> Rhs {
         let mut sys = n_link_pendulum(2);
         Rhs::new(&mut sys, &[("m", 1.0), ("l", 1.0), ("g", 9.81)]).unwrap()
+    }
+
+    #[test]
+    fn a_constrained_system_flips_as_its_scalar_right_hand_side_says() {
+        // θ tied to x = θ: the effective inertia is m l² + m, not m l² (the lanes alone
+        // would ignore the constraint and flip sooner).
+        let l = "m*l^2*theta'^2/2 + m*x'^2/2 + m*g*l*cos(theta)";
+        let mut sys = System::from_lagrangian(l, &["theta", "x"]).unwrap();
+        sys.coordinates[0].periodic = true;
+        sys.add_constraint("x - theta").unwrap();
+        let rhs = Rhs::new(&mut sys, &[("m", 1.0), ("l", 1.0), ("g", 9.81)]).unwrap();
+        let starts = [0.0, 0.0, 7.0, 7.0, 0.0, 0.0, 8.0, 8.0];
+        let mut s = FlipSettings {
+            t_end: 3.0,
+            dt: 1e-3,
+            watch: vec![0],
+            lanes: 1,
+        };
+        let scalar = flip_times(&rhs, &starts, &s).unwrap();
+        s.lanes = 16;
+        assert_eq!(flip_times(&rhs, &starts, &s).unwrap(), scalar);
+        // Energy: (m l² + m) θ'²/2 = 2 m g l at the top needs θ'(0)² ≥ 4 g l/(l² + 1) = 19.6:
+        // 7 and 8 rad/s both flip; without the constraint's mass the time would be shorter.
+        assert!(
+            scalar.outcomes.iter().all(|o| o.flip_time().is_some()),
+            "{scalar:?}"
+        );
     }
 
     fn settings(lanes: usize) -> FlipSettings {

@@ -120,3 +120,13 @@ fn a_fixed_step_run_that_would_not_fit_in_memory_is_refused_up_front() {
         "{err}"
     );
 }
+
+#[test]
+fn chaos_refuses_a_constrained_system_with_the_reason() {
+    let (code, _, err) = lagrange(&["chaos", "atwood-tension", "--t-end", "10"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("1 constraint(s)") && err.contains("independent coordinates"),
+        "{err}"
+    );
+}
