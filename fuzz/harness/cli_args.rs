@@ -65,6 +65,23 @@ const LAGRANGIANS: &[&str] = &[
     "1/2 m x'^2 - exp(1000) x^2",
 ];
 
+/// Systems with matching coordinates and parameter values.
+const COHERENT: &[(&str, &str, &str)] = &[
+    (
+        "1/2 m l^2 theta'^2 + m g l cos(theta)",
+        "theta",
+        "m=1, l=1, g=9.81",
+    ),
+    (
+        "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 + m2*l1*l2*theta1'*theta2'*cos(theta1-theta2) + (m1+m2)*g*l1*cos(theta1) + m2*g*l2*cos(theta2)",
+        "theta1,theta2",
+        "m1=1, m2=1, l1=1, l2=1, g=9.81",
+    ),
+    ("1/2 m x'^2 - 1/2 k x^2", "x", "k=1, m=1"),
+    ("1/2 m (r'^2 + r^2 theta'^2) + k/r", "r,theta", "k=1, m=1"),
+    ("1/2 m x'^2 - exp(x)", "x", "m=1"),
+];
+
 /// Coordinate lists, sensible and not.
 const COORDS: &[&str] = &[
     "theta",
@@ -158,6 +175,14 @@ fn simulation_args(r: &mut Rng, v: &Vocab, a: &mut Args) {
     a.command = "simulate".into();
     system(r, v, a);
     a.params = pick(r, PARAMS).to_string();
+    if chance(r, 0.5) {
+        // A coherent system, so that the integration itself runs.
+        let (l, q, p) = *pick(r, COHERENT);
+        (a.problem, a.kinetic, a.potential) = (None, None, None);
+        a.lagrangian = Some(l.to_string());
+        a.coords = q.to_string();
+        a.params = p.to_string();
+    }
     let q = v.coords.first().cloned().unwrap_or_default();
     a.init = pick(
         r,

@@ -135,7 +135,7 @@ impl Tolerances {
             rtol,
             atol,
             max_step: f64::INFINITY,
-            max_steps: 1_000_000,
+            max_steps: 500_000,
             dense: true,
         }
     }
