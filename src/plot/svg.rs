@@ -87,12 +87,51 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)?;
+    let (x_fmt, y_fmt) = (tick_format(x0, x1), tick_format(y0, y1));
     chart
         .configure_mesh()
         .x_desc(panel.x_desc.as_str())
         .y_desc(panel.y_desc.as_str())
+        .x_label_formatter(&|v| x_fmt(*v))
+        .y_label_formatter(&|v| y_fmt(*v))
         .axis_desc_style(("sans-serif", 18))
         .draw()?;
     chart.draw_series(LineSeries::new(panel.points.iter().copied(), &BLUE))?;
     Ok(())
+}
+
+/// How to print the ticks of an axis over [lo, hi]: enough decimals to tell neighbouring
+/// ticks apart, or scientific notation for a tiny span (an energy error of 1e-9) or huge
+/// values — plotters' default prints every tick of a 1e-9 span as "0.0".
+pub(super) fn tick_format(lo: f64, hi: f64) -> impl Fn(f64) -> String {
+    let span = (hi - lo).abs();
+    let big = lo.abs().max(hi.abs());
+    let scientific = span > 0.0 && (span < 1e-3 || big >= 1e5);
+    // Ticks are about span/10 apart: the decimals that spacing needs.
+    let decimals = if span > 0.0 {
+        (-(span / 10.0).log10().floor()).clamp(0.0, 6.0) as usize
+    } else {
+        1
+    };
+    move |v: f64| {
+        if scientific {
+            format!("{v:.2e}")
+        } else {
+            format!("{v:.decimals$}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick_format;
+
+    #[test]
+    fn ticks_of_a_tiny_span_are_scientific_and_others_have_the_decimals_they_need() {
+        assert_eq!(tick_format(-3e-9, 1e-9)(-2e-9), "-2.00e-9");
+        assert_eq!(tick_format(0.0, 20.0)(12.0), "12");
+        assert_eq!(tick_format(0.0, 5.0)(2.5), "2.5");
+        assert_eq!(tick_format(-0.02, 0.03)(0.015), "0.015");
+        assert_eq!(tick_format(0.0, 1e6)(5e5), "5.00e5");
+    }
 }

@@ -192,8 +192,9 @@ pub struct SimulationReport {
     pub reports: Vec<TimedState>,
     #[serde(rename = "final")]
     pub final_state: State,
-    /// Whether h is expected to be constant (no explicit t, no forces doing work).
-    #[serde(skip)]
+    /// Whether h is expected to be constant (no explicit t, no forces doing work): a JSON
+    /// reader judges `max_rel_energy_error` by it.
+    #[serde(rename = "h_expected_constant")]
     pub h_conserved: bool,
     /// The largest |f(q, t)| of the holonomic constraints over the grid (None without any).
     #[serde(skip_serializing_if = "Option::is_none")]

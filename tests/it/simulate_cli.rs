@@ -53,6 +53,7 @@ fn the_oscillator_at_a_quarter_period_is_cos_and_sin() {
         "h_start",
         "h_end",
         "max_rel_energy_error",
+        "h_expected_constant",
         "reports",
         "final",
     ];
