@@ -33,10 +33,10 @@ pub struct ChaosArgs {
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     tau: f64,
     /// Relative tolerance of dop853.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     rtol: f64,
     /// Absolute tolerance of dop853.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     atol: f64,
     /// The separation (never renormalised) is followed until this time (or --t-end).
     #[arg(long, default_value_t = 40.0, allow_hyphen_values = true)]
@@ -74,6 +74,14 @@ pub fn run(
     color: bool,
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
+    for (flag, path) in [("--plot", &args.plot), ("--poincare", &args.poincare)] {
+        if let Some(e) = path
+            .as_deref()
+            .and_then(|p| crate::plot::check_picture_path(flag, p, false).err())
+        {
+            return Ok(report(&CliError::Usage(e), color));
+        }
+    }
     let (mut sys, defaults, units) = match args.system.build_with_defaults(problems) {
         Ok(s) => s,
         Err(e) => return Ok(report(&e, color)),
@@ -159,6 +167,7 @@ fn refuse(e: &ChaosError) -> ExitCode {
     let help = match e {
         ChaosError::NoSectionState { .. } => "choose another --section-range or --init",
         ChaosError::SectionDimension(_) => "drop --poincare",
+        ChaosError::Invalid(_) => "shorten --tau or lengthen --t-end",
         ChaosError::Constraints(_) => {
             "eliminate the constraints by choosing coordinates that satisfy them"
         }

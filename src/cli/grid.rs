@@ -5,7 +5,6 @@
 //! every core (rayon); a progress bar shows on a terminal.
 
 use std::io::IsTerminal;
-use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -287,8 +286,14 @@ fn check_flags(args: &SimulateArgs) -> Result<(), CliError> {
             ));
         }
     }
-    if args.plot.as_deref() == Some(Path::new("-")) {
-        return usage("--grid draws the map to a file: give --plot a .png or .svg name".into());
+    if let Some(m) = args
+        .method
+        .filter(|m| *m != super::simulate::MethodArg::Rk4)
+    {
+        return usage(format!(
+            "--grid integrates every cell with rk4 at --dt; --method {m:?} is not available there"
+        )
+        .to_lowercase());
     }
     Ok(())
 }

@@ -29,19 +29,19 @@ pub struct SimulateArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub(super) t_end: Option<f64>,
     /// Relative tolerance of dop853.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub(super) rtol: f64,
     /// Absolute tolerance of dop853.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub(super) atol: f64,
-    /// The integrator.
-    #[arg(long, value_enum, default_value_t = MethodArg::Dop853)]
-    method: MethodArg,
+    /// The integrator: dop853 (adaptive, the default), rk4 or gauss (fixed step --dt).
+    #[arg(long, value_enum)]
+    pub(super) method: Option<MethodArg>,
     /// The fixed step of rk4 and gauss.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(super) dt: Option<f64>,
     /// Times at which to print the state, e.g. "10, 20".
-    #[arg(long, default_value = "")]
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
     pub(super) report_at: String,
     /// Write t, every q, every q' and h on an even grid to this CSV file.
     #[arg(long)]
@@ -82,8 +82,8 @@ pub struct SimulateArgs {
     pub(super) until_flip: bool,
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum MethodArg {
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum MethodArg {
     Dop853,
     Rk4,
     Gauss,
@@ -99,7 +99,7 @@ pub fn run(
         let message = "--plot - and --json both write to stdout; give --plot a file".into();
         return Ok(report(&CliError::Usage(message), color));
     }
-    if let Err(e) = check_portrait(args) {
+    if let Err(e) = check_portrait(args).and_then(|()| check_pictures(args)) {
         return Ok(report(&e, color));
     }
     let (mut sys, defaults, units) = match args.system.build_with_defaults(problems) {
@@ -173,6 +173,21 @@ fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     Ok(())
 }
 
+/// The picture paths, checked before any work.
+fn check_pictures(args: &SimulateArgs) -> Result<(), CliError> {
+    let asked = [
+        ("--plot", args.plot.as_ref(), args.grid.is_none()),
+        ("--phase", args.phase.as_ref(), false),
+        ("--energy", args.energy.as_ref(), false),
+    ];
+    for (flag, path, terminal) in asked {
+        if let Some(path) = path {
+            crate::plot::check_picture_path(flag, path, terminal).map_err(CliError::Usage)?;
+        }
+    }
+    Ok(())
+}
+
 /// `--portrait N` needs `--phase FILE` and N in 1 ..= 200.
 fn check_portrait(args: &SimulateArgs) -> Result<(), CliError> {
     use lagrange::simulate::portrait::MAX_PORTRAIT;
@@ -215,7 +230,7 @@ fn options(
         params,
         init,
         t_end,
-        method: match args.method {
+        method: match args.method.unwrap_or(MethodArg::Dop853) {
             MethodArg::Dop853 => Method::Dop853,
             MethodArg::Rk4 => Method::Rk4,
             MethodArg::Gauss => Method::Gauss,

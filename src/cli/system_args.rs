@@ -91,7 +91,15 @@ impl SystemArgs {
             let p = super::problems::find_problem(problems, id)
                 .map_err(CliError::Usage)?
                 .ok_or_else(|| {
-                    CliError::Usage(format!("no problem `{id}` (see `lagrange problems list`)"))
+                    let ids = lagrange::bank::embedded::FILES
+                        .iter()
+                        .map(|(f, _)| f.trim_end_matches(".toml"));
+                    let hint = lagrange::diagnostic::did_you_mean(id, ids)
+                        .filter(|_| problems.is_none())
+                        .map_or(String::new(), |s| format!("; did you mean `{s}`?"));
+                    CliError::Usage(format!(
+                        "no problem `{id}` (see `lagrange problems list`){hint}"
+                    ))
                 })?;
             let units = lagrange::report::units::AxisUnits::of(&p);
             return Ok((p.system, p.simulation, units));
@@ -102,6 +110,16 @@ impl SystemArgs {
             .map(str::trim)
             .filter(|c| !c.is_empty())
             .collect();
+        let no_system = self.lagrangian.is_none()
+            && self.kinetic.is_none()
+            && self.potential.is_none()
+            && self.point.is_empty()
+            && self.rigid.is_empty();
+        if no_system && coords.is_empty() {
+            return Err(CliError::usage(
+                "give a problem id (see `lagrange problems list`) or a system: --lagrangian L --coords q1,q2",
+            ));
+        }
         if coords.is_empty() {
             return Err(CliError::usage("--coords names no coordinate"));
         }
@@ -222,7 +240,7 @@ pub fn report(e: &CliError, color: bool) -> ExitCode {
         CliError::Usage(message) => render_plain(&Diagnostic::new(
             "usage",
             message.as_str(),
-            "check the input",
+            "the message names what to change; `--help` after the command lists its flags",
         )),
         CliError::Mech(
             m @ MechError::Parse {

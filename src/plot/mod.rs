@@ -101,3 +101,40 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
         (lo - pad, hi + pad)
     }
 }
+
+/// Refuses a picture path that cannot work, before any work is done: `-` where the picture
+/// has no terminal form, a name that is neither `.svg` nor `.png` (a `.jpg` would silently
+/// hold SVG), a folder that does not exist.
+pub fn check_picture_path(
+    flag: &str,
+    path: &std::path::Path,
+    terminal: bool,
+) -> Result<(), String> {
+    if path == std::path::Path::new("-") {
+        return if terminal {
+            Ok(())
+        } else {
+            Err(format!(
+                "{flag} draws to a file, not to the terminal: give it a .svg or .png name"
+            ))
+        };
+    }
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if !matches!(ext.as_deref(), Some("svg" | "png")) {
+        return Err(format!(
+            "{flag} {}: the picture's name must end in .svg or .png",
+            path.display()
+        ));
+    }
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+    if let Some(dir) = dir.filter(|d| !d.is_dir()) {
+        return Err(format!(
+            "{flag} {}: there is no folder {}",
+            path.display(),
+            dir.display()
+        ));
+    }
+    Ok(())
+}

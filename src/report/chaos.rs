@@ -80,6 +80,9 @@ pub enum ChaosError {
         "the system has {0} constraint(s): the perturbed motion and the section's starts would leave them; describe it by independent coordinates"
     )]
     Constraints(usize),
+    /// A setting that cannot give a meaningful estimate.
+    #[error("{0}")]
+    Invalid(String),
     /// A section needs two coordinates.
     #[error("a Poincaré section needs at least two coordinates (the system has {0})")]
     SectionDimension(usize),
@@ -172,6 +175,12 @@ fn check(opts: &ChaosOptions) -> Result<(), ChaosError> {
         if !(value.is_finite() && value > 0.0) {
             return Err(ChaosError::NotPositive { what, value });
         }
+    }
+    if opts.tau * 10.0 > opts.t_end {
+        return Err(ChaosError::Invalid(format!(
+            "--tau {} is more than a tenth of --t-end {}: the estimate averages over renormalisations, and fewer than ten say nothing",
+            opts.tau, opts.t_end
+        )));
     }
     let segments = (opts.t_end / opts.tau).ceil();
     let max = crate::simulate::chaos::MAX_SEGMENTS;

@@ -20,6 +20,10 @@ pub const MAX_SAMPLES: usize = 1_000_000;
 /// The most report times a run may ask for (`--report-at`).
 pub const MAX_REPORTS: usize = 10_000;
 
+/// A drift of a conserved h above this makes the summary warn that the run is not to be
+/// trusted (a step far too long, a tolerance far too loose).
+pub const UNTRUSTED_DRIFT: f64 = 1e-3;
+
 /// What to simulate and how.
 #[derive(Clone, Debug)]
 pub struct SimulationOptions {
@@ -80,6 +84,9 @@ pub enum SimulationError {
         level: &'static str,
         residual: f64,
     },
+    /// A setting that cannot give a meaningful run.
+    #[error("{0}")]
+    Invalid(String),
     /// M became singular along the motion.
     #[error("the mass matrix became singular at t = {t}, where {state}")]
     Singular { t: f64, state: String },
@@ -123,12 +130,22 @@ impl SimulationError {
                 "the coordinates degenerate there; choose other coordinates or start elsewhere"
                     .into()
             }
+            SimulationError::Sim(SimError::StepUnderflow { .. }) => {
+                "if the motion really blows up there, end the run before that time".into()
+            }
             _ if self.along_the_way() => {
                 "shorten the time, or tighten the step (smaller tolerances or step)".into()
             }
             SimulationError::Sim(SimError::UnknownParameter { .. }) => {
                 "give values only to the system's parameters".into()
             }
+            SimulationError::TEnd(_) => "give a positive end time".into(),
+            SimulationError::MissingDt(_) => "give the step, or use the adaptive dop853".into(),
+            SimulationError::TooMany { .. } => "ask for fewer points".into(),
+            SimulationError::ReportTime { .. } => {
+                "report times lie between 0 and the end time".into()
+            }
+            SimulationError::Invalid(_) => "change the setting named above".into(),
             _ => "check the values given".into(),
         }
     }
@@ -180,6 +197,10 @@ pub struct TimedState {
 /// Everything `simulate` shows.
 #[derive(Clone, Debug, Serialize)]
 pub struct SimulationReport {
+    /// The initial state (given values, zeros elsewhere).
+    pub start: State,
+    /// The parameter values the motion used (those of its equations, in the system's order).
+    pub params: State,
     pub method: Method,
     /// Accepted steps.
     pub steps: usize,
@@ -216,15 +237,21 @@ pub struct SimulationReport {
 /// "a=1, b=2" as names and finite numbers (`--params`, `--init`); the error names `flag`.
 pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
     let pairs = super::modes::assignments(text).map_err(|e| format!("{flag}: {e}"))?;
-    pairs
-        .into_iter()
-        .map(|(name, value)| match value.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok((name, v)),
-            _ => Err(format!(
-                "{flag}: the value of `{name}` must be a finite number, not `{value}`"
-            )),
-        })
-        .collect()
+    let mut out: Vec<(String, f64)> = Vec::with_capacity(pairs.len());
+    for (name, value) in pairs {
+        if out.iter().any(|(n, _)| *n == name) {
+            return Err(format!("{flag}: `{name}` is given twice"));
+        }
+        match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => out.push((name, v)),
+            _ => {
+                return Err(format!(
+                    "{flag}: the value of `{name}` must be a finite number, not `{value}`"
+                ));
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Simulates `sys` from rest-or-given initial values to `opts.t_end`.
@@ -273,8 +300,11 @@ pub fn simulation(
         .iter()
         .map(|(_, _, h)| (h - h_start).abs() / scale)
         .fold(0.0, f64::max);
-    let reports = opts
-        .report_at
+    // In time order, each time once.
+    let mut times = opts.report_at.clone();
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    let reports = times
         .iter()
         .map(|&t| {
             let y = traj.at(t)?;
@@ -284,7 +314,12 @@ pub fn simulation(
             })
         })
         .collect::<Result<Vec<_>, SimError>>()?;
+    let given: Vec<(String, f64)> = (sys.parameters.iter())
+        .filter_map(|p| opts.params.iter().find(|(n, _)| *n == p.name).cloned())
+        .collect();
     Ok(SimulationReport {
+        start: state(&names, &traj.y0),
+        params: State(given),
         method: traj.method,
         steps: traj.stats.accepted,
         rejected: traj.stats.rejected,
@@ -395,9 +430,26 @@ fn check_options(opts: &SimulationOptions) -> Result<(), SimulationError> {
             t_end: opts.t_end,
         });
     }
+    if opts.samples < 2 {
+        return Err(SimulationError::Invalid(format!(
+            "--samples {} is too few: the grid needs its two ends at least",
+            opts.samples
+        )));
+    }
     match (opts.method, opts.dt) {
         (Method::Rk4, None) => Err(SimulationError::MissingDt("rk4")),
         (Method::Gauss, None) => Err(SimulationError::MissingDt("gauss")),
+        (Method::Dop853, Some(_)) => Err(SimulationError::Invalid(
+            "--dt is the step of rk4 and gauss; dop853 chooses its own steps from --rtol and --atol"
+                .into(),
+        )),
+        (_, Some(dt)) if !(dt > 0.0 && dt.is_finite()) => Err(SimulationError::Invalid(format!(
+            "--dt must be a positive number, not {dt}"
+        ))),
+        (_, Some(dt)) if dt > opts.t_end => Err(SimulationError::Invalid(format!(
+            "--dt {dt} is longer than the run (t = 0 … {}): a single step says nothing",
+            opts.t_end
+        ))),
         _ => Ok(()),
     }
 }
@@ -463,6 +515,11 @@ impl SimulationReport {
                 paint.heading("Method:"),
                 self.t_end
             )?;
+            writeln!(o, "{} {}", paint.heading("Start:"), given_line(&self.start))?;
+            if !self.params.0.is_empty() {
+                let params = given_line(&self.params);
+                writeln!(o, "{} {params}", paint.heading("Parameters:"))?;
+            }
             writeln!(
                 o,
                 "{} {} accepted, {} rejected, {} right-hand-side evaluations",
@@ -471,9 +528,14 @@ impl SimulationReport {
                 self.rejected,
                 self.rhs_evals
             )?;
+            let drift = if self.h_start == 0.0 {
+                "largest drift |h − h(0)| (absolute: h(0) = 0)"
+            } else {
+                "largest relative drift"
+            };
             writeln!(
                 o,
-                "{} h(0) = {:.12e}, h(end) = {:.12e}, largest relative drift {:.3e}",
+                "{} h(0) = {:.12e}, h(end) = {:.12e}, {drift} {:.3e}",
                 paint.heading("Energy:"),
                 self.h_start,
                 self.h_end,
@@ -482,6 +544,9 @@ impl SimulationReport {
             if !self.h_conserved {
                 let note =
                     "h is not expected to be constant here (explicit time or forces doing work)";
+                writeln!(o, "  {}", paint.warn(note))?;
+            } else if self.max_rel_energy_error > UNTRUSTED_DRIFT {
+                let note = "h should be constant but drifts this much: the numbers below are not to be trusted; take a smaller step or tighter tolerances";
                 writeln!(o, "  {}", paint.warn(note))?;
             }
             if let Some(d) = self.constraint_drift {
@@ -523,6 +588,14 @@ impl SimulationReport {
 pub(super) fn line(s: &State) -> String {
     s.0.iter()
         .map(|(n, v)| format!("{n} = {v:.10}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// "a = 1, b = 9.81": numbers as given (shortest form), for inputs rather than results.
+fn given_line(s: &State) -> String {
+    s.0.iter()
+        .map(|(n, v)| format!("{n} = {v}"))
         .collect::<Vec<_>>()
         .join(", ")
 }

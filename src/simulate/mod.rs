@@ -55,7 +55,9 @@ pub enum SimError {
     #[error("the solution diverges near t = {t}")]
     Diverges { t: f64 },
     /// The adaptive step fell below rounding of t.
-    #[error("the step size underflowed at t = {t} (the problem is too stiff or singular there)")]
+    #[error(
+        "the step size underflowed at t = {t}: the solution may blow up there (reach infinity in finite time), or the equations are too stiff or singular"
+    )]
     StepUnderflow { t: f64 },
     /// More steps than allowed.
     #[error("more than {max} steps were needed before t = {t}")]

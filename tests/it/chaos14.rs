@@ -127,7 +127,7 @@ fn bad_input_is_a_one_line_error() {
         "--init",
         "theta1=0.2, theta2=0.2",
         "--t-end",
-        "1",
+        "10",
         "--poincare",
         "/tmp/x.svg",
         "--section-range",
@@ -143,12 +143,15 @@ fn bad_input_is_a_one_line_error() {
         "--init",
         "theta=1",
         "--t-end",
-        "1",
+        "10",
         "--poincare",
         "/tmp/x.svg",
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("at least two coordinates"), "{err}");
+    let (code, line) = error(&["--tau", "1000", "--t-end", "10"]);
+    assert_eq!(code, 2);
+    assert!(line.contains("more than a tenth of --t-end"), "{line}");
 }
 
 fn dir(name: &str) -> PathBuf {

@@ -130,3 +130,102 @@ fn chaos_refuses_a_constrained_system_with_the_reason() {
         "{err}"
     );
 }
+
+/// Found by trying the commands as a new user: settings that used to be ignored or to give
+/// nonsense with exit 0 are refused up front (exit 2) with what to change.
+#[test]
+fn settings_that_cannot_give_a_meaningful_run_are_refused() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["simulate"], "give a problem id"),
+        (
+            &["simulate", "simple-pendlum"],
+            "did you mean `simple-pendulum`",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--dt", "0.01"],
+            "dop853 chooses its own steps",
+        ),
+        (
+            &[
+                "simulate",
+                "simple-pendulum",
+                "--method",
+                "rk4",
+                "--dt",
+                "-0.1",
+            ],
+            "positive",
+        ),
+        (
+            &[
+                "simulate",
+                "simple-pendulum",
+                "--method",
+                "rk4",
+                "--dt",
+                "20",
+            ],
+            "longer than the run",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--plot", "x.jpg"],
+            ".svg or .png",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--phase", "-"],
+            "not to the terminal",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--plot", "no-such-dir/x.png"],
+            "no folder",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--params", "g=9.81, g=10"],
+            "given twice",
+        ),
+        (
+            &["simulate", "simple-pendulum", "--samples", "1"],
+            "too few",
+        ),
+        (
+            &[
+                "simulate",
+                "double-pendulum",
+                "--grid",
+                "theta1=-1:1:3",
+                "--until-flip",
+                "--method",
+                "gauss",
+            ],
+            "not available there",
+        ),
+        (
+            &["chaos", "double-pendulum", "--plot", "-"],
+            "not to the terminal",
+        ),
+    ];
+    for (args, want) in cases {
+        let (code, out, err) = lagrange(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?}: {out}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn a_conserved_h_that_drifts_far_is_flagged_as_untrustworthy() {
+    let (code, out, err) = lagrange(&[
+        "simulate",
+        "simple-pendulum",
+        "--method",
+        "rk4",
+        "--dt",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("not to be trusted"), "{out}");
+    let (_, out, _) = lagrange(&["simulate", "simple-pendulum"]);
+    assert!(!out.contains("not to be trusted"), "{out}");
+    assert!(out.contains("Start: theta = 1, theta' = 0"), "{out}");
+    assert!(out.contains("Parameters: g = 9.81, l = 1, m = 1"), "{out}");
+}

@@ -46,6 +46,8 @@ fn the_oscillator_at_a_quarter_period_is_cos_and_sin() {
     ]);
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     let mut want = [
+        "start",
+        "params",
         "method",
         "steps",
         "rejected",
