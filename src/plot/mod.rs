@@ -138,3 +138,63 @@ pub fn check_picture_path(
     }
     Ok(())
 }
+
+/// A curve cut where its x turns back, each piece drawn left to right: plotters' bitmap
+/// backend draws a line whose x decreases as a thin dotted trail (seen on the lower half of
+/// every phase portrait), so runs going left are reversed — the same points, the same picture.
+pub(crate) fn rightward_pieces(points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut run: Vec<(f64, f64)> = Vec::new();
+    let mut leftward = false;
+    for &p in points {
+        if let Some(&last) = run.last() {
+            let left = p.0 < last.0;
+            if run.len() >= 2 && left != leftward {
+                // The turning point ends this run and starts the next.
+                let mut done = std::mem::replace(&mut run, vec![last]);
+                if leftward {
+                    done.reverse();
+                }
+                pieces.push(done);
+            }
+            leftward = left;
+        }
+        run.push(p);
+    }
+    if leftward {
+        run.reverse();
+    }
+    if !run.is_empty() {
+        pieces.push(run);
+    }
+    pieces
+}
+
+#[cfg(test)]
+mod pieces_tests {
+    use super::rightward_pieces;
+
+    #[test]
+    fn a_loop_is_cut_at_its_turning_points_and_every_piece_runs_rightward() {
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 1.0),
+            (2.0, 0.0),
+            (1.0, -1.0),
+            (0.0, 0.0),
+            (1.0, 1.0),
+        ];
+        let pieces = rightward_pieces(&pts);
+        assert_eq!(
+            pieces,
+            vec![
+                vec![(0.0, 0.0), (1.0, 1.0), (2.0, 0.0)],
+                vec![(0.0, 0.0), (1.0, -1.0), (2.0, 0.0)],
+                vec![(0.0, 0.0), (1.0, 1.0)],
+            ]
+        );
+        for p in &pieces {
+            assert!(p.windows(2).all(|w| w[0].0 <= w[1].0));
+        }
+    }
+}

@@ -72,7 +72,11 @@ pub fn portrait_svg(p: &Portrait, units: &AxisUnits, path: &Path) -> Result<(), 
             };
             for seg in segs {
                 chart
-                    .draw_series(LineSeries::new(seg.iter().copied(), style))
+                    .draw_series(
+                        super::rightward_pieces(seg)
+                            .into_iter()
+                            .map(|piece| PathElement::new(piece, style)),
+                    )
                     .map_err(|e| e.to_string())?;
             }
         }

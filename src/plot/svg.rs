@@ -58,7 +58,12 @@ pub fn energy_svg(r: &SimulationReport, path: &Path) -> Result<(), String> {
     let c = Curves::of(r);
     let panel = Panel {
         x_desc: c.t_label.clone(),
-        y_desc: "(h − h₀)/|h₀|".into(),
+        // With h₀ = 0 the error is absolute (the report's drift is too).
+        y_desc: if r.h_start == 0.0 {
+            "h − h₀ (h₀ = 0)".into()
+        } else {
+            "(h − h₀)/|h₀|".into()
+        },
         points: &c.energy,
     };
     write(path, &Panels(vec![panel]))
@@ -96,7 +101,9 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         .y_label_formatter(&|v| y_fmt(*v))
         .axis_desc_style(("sans-serif", 18))
         .draw()?;
-    chart.draw_series(LineSeries::new(panel.points.iter().copied(), &BLUE))?;
+    for piece in super::rightward_pieces(panel.points) {
+        chart.draw_series(LineSeries::new(piece, &BLUE))?;
+    }
     Ok(())
 }
 

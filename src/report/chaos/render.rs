@@ -23,7 +23,8 @@ pub(super) fn summary(r: &ChaosReport, paint: &dyn Paint, o: &mut String) -> std
     let points: Vec<String> = r
         .checkpoints
         .iter()
-        .map(|(t, l)| format!("t = {t}: {l:.4}"))
+        // Checkpoints are multiples of τ: rounding noise (3.5999999999999996) is not shown.
+        .map(|(t, l)| format!("t = {}: {l:.4}", (t * 1e9).round() / 1e9))
         .collect();
     writeln!(
         o,
