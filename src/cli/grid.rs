@@ -122,6 +122,8 @@ fn parse_axis(item: &str, at: usize) -> Result<Axis, String> {
 #[derive(Debug, Serialize)]
 struct Summary {
     axes: Vec<Axis>,
+    /// The values every cell shares (the coordinates and velocities not on an axis).
+    others: Vec<(String, f64)>,
     cells: usize,
     t_end: f64,
     dt: f64,
@@ -397,6 +399,10 @@ fn summarize(plan: &Plan, run: &FlipRun) -> Summary {
     let flipped = count(|o| o.flip_time().is_some());
     Summary {
         axes: plan.axes.clone(),
+        others: (plan.names.iter().zip(&plan.base).enumerate())
+            .filter(|(i, _)| !plan.index.contains(i))
+            .map(|(_, (n, v))| (n.clone(), *v))
+            .collect(),
         cells: plan.cells,
         t_end: plan.settings.t_end,
         dt: plan.settings.dt,
@@ -429,6 +435,10 @@ fn render(s: &Summary) -> String {
         s.dt,
         s.t_end
     );
+    let others: Vec<String> = (s.others.iter())
+        .map(|(n, v)| format!("{n} = {v}"))
+        .collect();
+    o += &format!("Every cell starts with: {}\n", others.join(", "));
     o += &format!(
         "Watched angles: {} (a flip: the continuous angle leaves (−π, π))\n",
         s.watched.join(", ")

@@ -139,6 +139,7 @@ impl SimulationError {
             SimulationError::Sim(SimError::UnknownParameter { .. }) => {
                 "give values only to the system's parameters".into()
             }
+            SimulationError::Sim(SimError::Mechanics(m)) => m.help(),
             SimulationError::TEnd(_) => "give a positive end time".into(),
             SimulationError::MissingDt(_) => "give the step, or use the adaptive dop853".into(),
             SimulationError::TooMany { .. } => "ask for fewer points".into(),

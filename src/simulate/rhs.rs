@@ -38,8 +38,10 @@ impl Rhs {
     /// Derives `sys`, compiles M, f (and the constraint rows, if any) and the energy function
     /// h, with every parameter given a value in `params` (by name).
     pub fn new<S: AsRef<str>>(sys: &mut System, params: &[(S, f64)]) -> Result<Rhs, SimError> {
-        let values = parameter_values(sys, params)?;
+        // Derived first: a coordinate missing from L (a typo in --coords) is the error to
+        // report, not the "parameter" the misspelt coordinate became.
         let d = sys.derive()?;
+        let values = parameter_values(sys, params)?;
         let layout = sys.state_layout();
         // The parameters never change along a motion: fold them in once.
         let fixed: Vec<(usize, f64)> = (values.iter().enumerate())
