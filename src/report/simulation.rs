@@ -315,7 +315,10 @@ pub fn simulation(
             })
         })
         .collect::<Result<Vec<_>, SimError>>()?;
+    // Those of the motion only: a bank problem's other parts may have more.
+    let idle = unused_parameters(sys, &[]);
     let given: Vec<(String, f64)> = (sys.parameters.iter())
+        .filter(|p| !idle.contains(&p.name))
         .filter_map(|p| opts.params.iter().find(|(n, _)| *n == p.name).cloned())
         .collect();
     Ok(SimulationReport {
