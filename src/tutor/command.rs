@@ -166,7 +166,7 @@ pub const COMMANDS: &[CommandInfo] = &[
         "simulate",
         ":simulate [--init …] [--t-end T] [--params …]",
         Arg::Optional,
-        "integrate the open problem's motion: a chart of q(t) and a summary",
+        "integrate the open problem's motion from its suggested start (or --init, --params; --t-end up to 1000): a chart of q(t) and a summary",
     ),
     info(
         "progress",

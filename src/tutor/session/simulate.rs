@@ -29,7 +29,7 @@ impl Session {
         };
         let opts = match options(args, &p.simulation) {
             Ok(o) => o,
-            Err(message) => return Response::error("bad-simulate", message, None),
+            Err(message) => return Response::error("bad-simulate", message, Some(USAGE.into())),
         };
         let missing = missing_parameters(&p.system, &opts.params);
         if !missing.is_empty() {
@@ -56,7 +56,7 @@ impl Session {
                     note: None,
                 })
             }
-            Err(e) => Response::error("simulate", e.to_string(), None),
+            Err(e) => Response::error(e.code(), e.to_string(), Some(e.help())),
         }
     }
 }
