@@ -5,24 +5,14 @@
 //! of each; and Gauss and RK4 at dt = 1e-3 over the same 20 s.
 
 use divan::{Bencher, black_box};
-use lagrange::mechanics::System;
+use lagrange::mechanics::fixtures;
 use lagrange::simulate::{FnOde, Ode, Rhs, Tolerances, dop853, gauss, rk4};
 
-const DOUBLE_PENDULUM: &str = "(m1 + m2)/2*l1^2*theta1'^2 + m2/2*l2^2*theta2'^2 \
-    + m2*l1*l2*theta1'*theta2'*cos(theta1 - theta2) + (m1 + m2)*g*l1*cos(theta1) \
-    + m2*g*l2*cos(theta2)";
 const Y0: [f64; 4] = [2.0, 2.0, 0.0, 0.0];
 
 fn compiled() -> Rhs {
-    let mut sys = System::from_lagrangian(DOUBLE_PENDULUM, &["theta1", "theta2"]).expect("L");
-    let p = [
-        ("m1", 1.0),
-        ("m2", 1.0),
-        ("l1", 1.0),
-        ("l2", 1.0),
-        ("g", 9.81),
-    ];
-    Rhs::new(&mut sys, &p).expect("rhs")
+    let mut sys = fixtures::double_pendulum();
+    Rhs::new(&mut sys, &fixtures::DOUBLE_PENDULUM_ANCHOR).expect("rhs")
 }
 
 /// The anchor's right-hand side, by hand (Cramer's rule on the 2 × 2 mass matrix).

@@ -11,9 +11,7 @@ use lagrange::mechanics::accel::Dynamics;
 use lagrange::simulate::{Rhs, Tolerances, dop853};
 
 const DP_PARAMS: &str = "m1=1, m2=1, l1=1, l2=1, g=9.81";
-const DP: &str = "(m1 + m2)/2*l1^2*theta1'^2 + m2/2*l2^2*theta2'^2 \
-    + m2*l1*l2*theta1'*theta2'*cos(theta1 - theta2) + (m1 + m2)*g*l1*cos(theta1) \
-    + m2*g*l2*cos(theta2)";
+use lagrange::mechanics::fixtures::{DOUBLE_PENDULUM as DP, DOUBLE_PENDULUM_ANCHOR};
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("lagrange-grid-{}-{name}", std::process::id()));
@@ -26,14 +24,7 @@ fn dir(name: &str) -> PathBuf {
 /// dense output scanned every 1e-3 s, then the crossing bisected.
 fn reference_flip(theta1: f64, theta2: f64, t_end: f64) -> Option<f64> {
     let mut sys = System::from_lagrangian(DP, &["theta1", "theta2"]).unwrap();
-    let p = [
-        ("m1", 1.0),
-        ("m2", 1.0),
-        ("l1", 1.0),
-        ("l2", 1.0),
-        ("g", 9.81),
-    ];
-    let mut rhs = Rhs::new(&mut sys, &p).unwrap();
+    let mut rhs = Rhs::new(&mut sys, &DOUBLE_PENDULUM_ANCHOR).unwrap();
     let traj = dop853(
         &mut rhs,
         0.0,

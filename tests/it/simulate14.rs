@@ -4,22 +4,12 @@
 //! Gauss method's bounded energy error against RK4's drift.
 
 use lagrange::System;
+use lagrange::mechanics::fixtures;
 use lagrange::simulate::{FnOde, Ode, Rhs, SimError, Tolerances, Trajectory, dop853, gauss, rk4};
 
-const DOUBLE_PENDULUM: &str = "(m1 + m2)/2*l1^2*theta1'^2 + m2/2*l2^2*theta2'^2 \
-    + m2*l1*l2*theta1'*theta2'*cos(theta1 - theta2) + (m1 + m2)*g*l1*cos(theta1) \
-    + m2*g*l2*cos(theta2)";
-
 fn double_pendulum() -> Rhs {
-    let mut sys = System::from_lagrangian(DOUBLE_PENDULUM, &["theta1", "theta2"]).unwrap();
-    let p = [
-        ("m1", 1.0),
-        ("m2", 1.0),
-        ("l1", 1.0),
-        ("l2", 1.0),
-        ("g", 9.81),
-    ];
-    Rhs::new(&mut sys, &p).unwrap()
+    let mut sys = fixtures::double_pendulum();
+    Rhs::new(&mut sys, &fixtures::DOUBLE_PENDULUM_ANCHOR).unwrap()
 }
 
 fn oscillator() -> Rhs {

@@ -2,23 +2,12 @@
 //! 0.2 rad, and the cost of restarting DOP853 per segment.
 
 use super::*;
-use crate::mechanics::System;
+use crate::mechanics::fixtures;
 use crate::simulate::Rhs;
 
-const DP: &str = "(m1 + m2)/2*l1^2*theta1'^2 + m2/2*l2^2*theta2'^2 \
-    + m2*l1*l2*theta1'*theta2'*cos(theta1 - theta2) + (m1 + m2)*g*l1*cos(theta1) \
-    + m2*g*l2*cos(theta2)";
-
 pub(super) fn double_pendulum() -> Rhs {
-    let mut sys = System::from_lagrangian(DP, &["theta1", "theta2"]).unwrap();
-    let p = [
-        ("m1", 1.0),
-        ("m2", 1.0),
-        ("l1", 1.0),
-        ("l2", 1.0),
-        ("g", 9.81),
-    ];
-    Rhs::new(&mut sys, &p).unwrap()
+    let mut sys = fixtures::double_pendulum();
+    Rhs::new(&mut sys, &fixtures::DOUBLE_PENDULUM_ANCHOR).unwrap()
 }
 
 fn estimate(angle: f64, delta: f64, tol: f64, t_end: f64, tau: f64) -> Lyapunov {
