@@ -95,8 +95,8 @@ pub fn run(
         Err(ChaosError::Simulation(e)) => return Ok(super::simulate::failure(&e)),
         Err(e) => return Ok(refuse(&e)),
     };
-    r.time_unit = units.time;
-    if let Err(e) = pictures(args, &r) {
+    r.time_unit = units.time.clone();
+    if let Err(e) = pictures(args, &r, &units) {
         return Ok(report(&CliError::Usage(e), color));
     }
     if args.json {
@@ -109,13 +109,17 @@ pub fn run(
 }
 
 /// Writes the asked pictures; the error names the flag and the file.
-fn pictures(args: &ChaosArgs, r: &ChaosReport) -> Result<(), String> {
+fn pictures(
+    args: &ChaosArgs,
+    r: &ChaosReport,
+    units: &lagrange::report::units::AxisUnits,
+) -> Result<(), String> {
     if let Some(path) = &args.plot {
         crate::plot::chaos_svg(r, path)
             .map_err(|e| format!("--plot {}: cannot draw: {e}", path.display()))?;
     }
     if let Some(path) = &args.poincare {
-        crate::plot::poincare_svg(r, path)
+        crate::plot::poincare_svg(r, units, path)
             .map_err(|e| format!("--poincare {}: cannot draw: {e}", path.display()))?;
     }
     Ok(())

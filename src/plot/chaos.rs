@@ -8,8 +8,10 @@ use plotters::prelude::*;
 
 use super::backend::draw_on;
 
-use super::{label::unicode, range};
+use super::label::{axis, unicode};
+use super::range;
 use lagrange::report::chaos::ChaosReport;
+use lagrange::report::units::AxisUnits;
 
 /// The separation |Δy|(t) (log scale) and the running estimate λ(t), one panel each.
 pub fn chaos_svg(r: &ChaosReport, path: &Path) -> Result<(), String> {
@@ -77,19 +79,35 @@ fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Er
 }
 
 /// The Poincaré section's points (q₂, q̇₂); an error when no section was computed.
-pub fn poincare_svg(r: &ChaosReport, path: &Path) -> Result<(), String> {
-    draw_poincare(r, path).map_err(|e| e.to_string())
+/// Axes in the problem's units when `units` knows them.
+pub fn poincare_svg(r: &ChaosReport, units: &AxisUnits, path: &Path) -> Result<(), String> {
+    draw_poincare(r, units, path).map_err(|e| e.to_string())
 }
 
-fn draw_poincare(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Error>> {
+fn draw_poincare(
+    r: &ChaosReport,
+    units: &AxisUnits,
+    path: &Path,
+) -> Result<(), Box<dyn std::error::Error>> {
     let s = r.section.as_ref().ok_or("no section was computed")?;
+    // The section's plane is the second coordinate's.
+    let unit = |v: &[Option<String>]| v.get(1).cloned().flatten();
+    let x_desc = axis(&unicode(&s.q2), unit(&units.coordinates).as_deref());
+    let y_desc = axis(
+        &unicode(&format!("{}'", s.q2)),
+        unit(&units.velocities).as_deref(),
+    );
+    let energy_unit = units
+        .energy
+        .as_deref()
+        .map_or(String::new(), |u| format!(" {u}"));
     let all = || s.orbits.iter().flat_map(|o| o.points.iter().copied());
     let (x0, x1) = range(all().map(|p| p.0));
     let (y0, y1) = range(all().map(|p| p.1));
     draw_on!(path, (800, 720), |root| {
         root.fill(&WHITE)?;
         let caption = format!(
-            "Poincaré section {} = 0, {} > 0, h = {:.4}",
+            "Poincaré section {} = 0, {} > 0, h = {:.4}{energy_unit}",
             unicode(&s.q1),
             unicode(&format!("{}'", s.q1)),
             s.energy
@@ -102,8 +120,8 @@ fn draw_poincare(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error:
             .build_cartesian_2d(x0..x1, y0..y1)?;
         chart
             .configure_mesh()
-            .x_desc(unicode(&s.q2))
-            .y_desc(unicode(&format!("{}'", s.q2)))
+            .x_desc(x_desc.as_str())
+            .y_desc(y_desc.as_str())
             .axis_desc_style(("sans-serif", 18))
             .draw()?;
         for (k, orbit) in s.orbits.iter().enumerate() {
