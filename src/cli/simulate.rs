@@ -132,7 +132,7 @@ pub fn run(
         return Ok(report(&CliError::Usage(e), color));
     }
     if let (Some(count), Some(path)) = (args.portrait, &args.phase) {
-        let family = match lagrange::report::simulation::portrait_family(&mut sys, &opts, count) {
+        let family = match lagrange::report::portrait::portrait_family(&mut sys, &opts, count) {
             Ok(f) => f,
             Err(e) => return Ok(failure(&e)),
         };

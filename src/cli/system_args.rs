@@ -74,36 +74,43 @@ impl SystemArgs {
     pub fn build_with_defaults(
         &self,
         problems: Option<&std::path::Path>,
-    ) -> Result<
-        (
-            System,
-            lagrange::problem::SimulationDefaults,
-            lagrange::report::units::AxisUnits,
-        ),
-        CliError,
-    > {
-        if let Some(id) = &self.problem {
-            if self.lagrangian.is_some() || self.kinetic.is_some() {
-                return Err(CliError::usage(
-                    "give a problem id or --lagrangian, not both",
-                ));
-            }
-            let p = super::problems::find_problem(problems, id)
-                .map_err(CliError::Usage)?
-                .ok_or_else(|| {
-                    let ids = lagrange::bank::embedded::FILES
-                        .iter()
-                        .map(|(f, _)| f.trim_end_matches(".toml"));
-                    let hint = lagrange::diagnostic::did_you_mean(id, ids)
-                        .filter(|_| problems.is_none())
-                        .map_or(String::new(), |s| format!("; did you mean `{s}`?"));
-                    CliError::Usage(format!(
-                        "no problem `{id}` (see `lagrange problems list`){hint}"
-                    ))
-                })?;
-            let units = lagrange::report::units::AxisUnits::of(&p);
-            return Ok((p.system, p.simulation, units));
+    ) -> Result<Built, CliError> {
+        match &self.problem {
+            Some(id) => self.build_problem(id, problems),
+            None => Ok((self.build_typed()?, Default::default(), Default::default())),
         }
+    }
+
+    /// A bank problem's system, suggestions and units.
+    fn build_problem(
+        &self,
+        id: &str,
+        problems: Option<&std::path::Path>,
+    ) -> Result<Built, CliError> {
+        if self.lagrangian.is_some() || self.kinetic.is_some() {
+            return Err(CliError::usage(
+                "give a problem id or --lagrangian, not both",
+            ));
+        }
+        let p = super::problems::find_problem(problems, id)
+            .map_err(CliError::Usage)?
+            .ok_or_else(|| {
+                let ids = lagrange::bank::embedded::FILES
+                    .iter()
+                    .map(|(f, _)| f.trim_end_matches(".toml"));
+                let hint = lagrange::diagnostic::did_you_mean(id, ids)
+                    .filter(|_| problems.is_none())
+                    .map_or(String::new(), |s| format!("; did you mean `{s}`?"));
+                CliError::Usage(format!(
+                    "no problem `{id}` (see `lagrange problems list`){hint}"
+                ))
+            })?;
+        let units = lagrange::report::units::AxisUnits::of(&p);
+        Ok((p.system, p.simulation, units))
+    }
+
+    /// The system typed with flags: a Lagrangian, T and V, or bodies; forces; constraints.
+    fn build_typed(&self) -> Result<System, CliError> {
         let coords: Vec<&str> = self
             .coords
             .split(',')
@@ -166,9 +173,16 @@ impl SystemArgs {
         for c in &self.constraint {
             sys.add_constraint(&expression("--constraint", c)?)?;
         }
-        Ok((sys, Default::default(), Default::default()))
+        Ok(sys)
     }
 }
+
+/// A system with, for a bank problem, its suggested simulation numbers and its axes' units.
+pub type Built = (
+    System,
+    lagrange::problem::SimulationDefaults,
+    lagrange::report::units::AxisUnits,
+);
 
 /// The largest file an expression flag reads with `@FILE` (a derivation's input may be
 /// large, a bicycle's T is 24 kB, but stays bounded).

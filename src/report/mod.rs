@@ -15,7 +15,7 @@
 //! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
 //! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
 //! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`), and a
-//!   phase-portrait family ([`simulation::portrait_family`]);
+//!   phase-portrait family ([`portrait::portrait_family`]);
 //! - [`units`]: the SI units of the pictures' axes, from a bank problem's dimensions;
 //! - [`chaos`]: [`ChaosReport`](chaos::ChaosReport), Lyapunov exponent, separation and
 //!   Poincaré section (`lagrange chaos`).
@@ -26,6 +26,7 @@ pub mod derivation;
 pub mod derivation_at;
 pub mod formula;
 pub mod modes;
+pub mod portrait;
 pub mod problems;
 pub mod read;
 pub mod simulation;

@@ -12,7 +12,7 @@ use serde::ser::SerializeMap;
 use super::units::AxisUnits;
 use super::{Paint, text};
 use crate::mechanics::System;
-use crate::simulate::portrait::{Coordinate1, FamilySpec, Portrait, PortraitError};
+use crate::simulate::portrait::PortraitError;
 use crate::simulate::{Method, Rhs, SimError, Tolerances, Trajectory, dop853, gauss, rk4};
 
 /// The most grid samples a run may ask for (`--samples`).
@@ -296,25 +296,8 @@ pub fn simulation(
     });
     let h_start = rhs.energy(0.0, &traj.y0)?;
     let h_end = rhs.energy(traj.t_end, &traj.y_final)?;
-    let scale = if h_start == 0.0 { 1.0 } else { h_start.abs() };
-    let max_rel_energy_error = grid
-        .iter()
-        .map(|(_, _, h)| (h - h_start).abs() / scale)
-        .fold(0.0, f64::max);
-    // In time order, each time once.
-    let mut times = opts.report_at.clone();
-    times.sort_by(f64::total_cmp);
-    times.dedup();
-    let reports = times
-        .iter()
-        .map(|&t| {
-            let y = traj.at(t)?;
-            Ok(TimedState {
-                t,
-                state: state(&names, &y),
-            })
-        })
-        .collect::<Result<Vec<_>, SimError>>()?;
+    let max_rel_energy_error = largest_drift(&grid, h_start);
+    let reports = reports_at(&traj, &names, &opts.report_at)?;
     // Those of the motion only: a bank problem's other parts may have more.
     let idle = unused_parameters(sys, &[]);
     let given: Vec<(String, f64)> = (sys.parameters.iter())
@@ -342,39 +325,32 @@ pub fn simulation(
     })
 }
 
-/// The phase-portrait family of `sys` (one degree of freedom, conserved h) at `count`
-/// energies with `opts`' parameters, tolerances, end time and samples: see
-/// [`crate::simulate::portrait`] for the choices (start at V's minimum, energies up to 1.8 ×
-/// the highest barrier with the separatrix, one period per curve).
-pub fn portrait_family(
-    sys: &mut System,
-    opts: &SimulationOptions,
-    count: usize,
-) -> Result<Portrait, SimulationError> {
-    check_options(opts)?;
-    let params = motion_parameters(sys, &opts.params);
-    let mut rhs = Rhs::new(sys, &params)?;
-    let c = sys
-        .coordinates
-        .first()
-        .ok_or(PortraitError::Dimension { n: 0 })?;
-    let coordinate = Coordinate1 {
-        name: c.name.clone(),
-        range: c.range,
-        periodic: c.periodic,
-    };
-    let spec = FamilySpec {
-        count,
-        t_end: opts.t_end,
-        rtol: opts.rtol,
-        atol: opts.atol,
-        samples: opts.samples,
-    };
-    Ok(crate::simulate::portrait::portrait(
-        &mut rhs,
-        &coordinate,
-        &spec,
-    )?)
+/// max |h − h(0)| / |h(0)| over the grid (absolute when h(0) = 0).
+fn largest_drift(grid: &[(f64, Vec<f64>, f64)], h_start: f64) -> f64 {
+    let scale = if h_start == 0.0 { 1.0 } else { h_start.abs() };
+    grid.iter()
+        .map(|(_, _, h)| (h - h_start).abs() / scale)
+        .fold(0.0, f64::max)
+}
+
+/// The states at the asked times, in time order, each time once (from dense output).
+fn reports_at(
+    traj: &Trajectory,
+    names: &[String],
+    asked: &[f64],
+) -> Result<Vec<TimedState>, SimError> {
+    let mut times = asked.to_vec();
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    times
+        .iter()
+        .map(|&t| {
+            Ok(TimedState {
+                t,
+                state: state(names, &traj.at(t)?),
+            })
+        })
+        .collect()
 }
 
 /// The parameters of `sys` that occur neither in L nor in a force and have no value (a bank
@@ -412,7 +388,7 @@ pub fn missing_parameters(sys: &System, given: &[(String, f64)]) -> Vec<String> 
 }
 
 /// The checks that need no system.
-fn check_options(opts: &SimulationOptions) -> Result<(), SimulationError> {
+pub(super) fn check_options(opts: &SimulationOptions) -> Result<(), SimulationError> {
     if !(opts.t_end.is_finite() && opts.t_end > 0.0) {
         return Err(SimulationError::TEnd(opts.t_end));
     }

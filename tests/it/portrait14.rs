@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use crate::helpers::lagrange;
 use lagrange::report::SimulationOptions;
-use lagrange::report::simulation::portrait_family;
+use lagrange::report::portrait::portrait_family;
 use lagrange::simulate::Method;
 use lagrange::simulate::portrait::CurveKind;
 
