@@ -137,6 +137,22 @@ fn powi_lanes<const K: usize>(x: &[f64; K], k: i32, out: &mut [f64; K]) {
     *out = r;
 }
 
+/// sin x for one value, as the lanes compute it.
+#[inline]
+pub(super) fn sin(x: f64) -> f64 {
+    let mut o = [0.0];
+    sin_cos_lanes(&[x], 0, &mut o);
+    o[0]
+}
+
+/// cos x for one value, as the lanes compute it.
+#[inline]
+pub(super) fn cos(x: f64) -> f64 {
+    let mut o = [0.0];
+    sin_cos_lanes(&[x], 1, &mut o);
+    o[0]
+}
+
 /// Lanes beyond this size go through libm: the reduction below is exact only while
 /// y·DP1 is (y < 2²⁹), and this keeps a wide margin.
 const TRIG_REDUCED: f64 = 1e6;
