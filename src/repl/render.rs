@@ -251,7 +251,8 @@ fn analysis(o: &mut String, a: &AnalysisReply, paint: &dyn Paint) -> std::fmt::R
         AnalysisReport::Read(r) => r.render(paint, GIVE_DIMENSIONS),
         AnalysisReport::Derive(r) => r.render(Style::Unicode, paint),
         AnalysisReport::Modes(r) => r.render(Style::Unicode, paint),
-        AnalysisReport::Simulate(r) => crate::plot::terminal_chart(r) + &r.render(paint),
+        // The summary first, then the chart, as `lagrange simulate --plot -` prints them.
+        AnalysisReport::Simulate(r) => r.render(paint) + &crate::plot::terminal_chart(r),
     };
     o.push_str(&text);
     if !text.ends_with('\n') {
