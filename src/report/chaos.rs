@@ -260,7 +260,21 @@ pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, Chaos
         None => None,
     };
     let (checkpoints, last_third, ratio_to_a_third) = convergence(&l.running, opts.t_end);
-    let verdict = verdict(l.exponent, last_third, ratio_to_a_third);
+    let verdict = match verdict(l.exponent, last_third, ratio_to_a_third) {
+        Verdict::Regular => Verdict::Regular,
+        // A positive exponent is chaos only where chaos can be: not in one autonomous degree of
+        // freedom, not at rest on an unstable equilibrium, not in a motion running away.
+        positive => {
+            let spread = separation.iter().map(|p| p.1).fold(0.0, f64::max);
+            not_chaos(
+                rhs.names().len(),
+                rhs.energy_conserved(),
+                &l.reference,
+                spread,
+            )
+            .unwrap_or(positive)
+        }
+    };
     Ok(ChaosReport {
         exponent: l.exponent,
         delta: opts.delta,
@@ -379,6 +393,41 @@ fn verdict(exponent: f64, (lo, hi): (f64, f64), ratio: f64) -> Verdict {
     }
 }
 
+/// Why a positive exponent is not chaos, when it is not: one degree of freedom with a
+/// conserved h (its phase plane has no room for chaos), a reference motion that never moves
+/// (λ is then the equilibrium's instability rate), or one whose size keeps growing tenfold
+/// and more between the first and the last third of the run (separation of a runaway), or
+/// neighbours whose never-renormalised separation grows a hundredfold beyond the motion's own
+/// size (an unstable orbit they leave for good; chaos keeps them within the motion's range).
+fn not_chaos(
+    coordinates: usize,
+    autonomous: bool,
+    reference: &[(f64, f64, f64)],
+    spread: f64,
+) -> Option<Verdict> {
+    if coordinates == 1 && autonomous {
+        return Some(Verdict::OneDegree);
+    }
+    let size = reference.iter().map(|r| r.1).fold(0.0, f64::max);
+    let speed = reference.iter().map(|r| r.2).fold(0.0, f64::max);
+    if speed <= 1e-9 * size.max(1.0) {
+        return Some(Verdict::AtEquilibrium);
+    }
+    let t_end = reference.last().map_or(0.0, |r| r.0);
+    let largest = |keep: &dyn Fn(f64) -> bool| {
+        (reference.iter())
+            .filter(|r| keep(r.0))
+            .map(|r| r.1)
+            .fold(0.0, f64::max)
+    };
+    let first = largest(&|t| t <= t_end / 3.0);
+    let last = largest(&|t| t >= 2.0 * t_end / 3.0);
+    if last > 10.0 * first.max(1e-300) {
+        return Some(Verdict::Runaway);
+    }
+    (spread > 100.0 * size.max(1e-300)).then_some(Verdict::Unstable)
+}
+
 /// What a finite-time estimate suggests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -389,6 +438,15 @@ pub enum Verdict {
     Regular,
     /// Neither yet.
     Unsettled,
+    /// Positive, but one autonomous degree of freedom cannot be chaotic: an unstable
+    /// equilibrium or a separatrix.
+    OneDegree,
+    /// Positive, but the motion stays at rest: the instability rate of its equilibrium.
+    AtEquilibrium,
+    /// Positive, but the motion keeps growing: the separation of a runaway, not chaos.
+    Runaway,
+    /// Positive, but neighbours leave for good: an unstable orbit, not chaos.
+    Unstable,
 }
 
 #[cfg(test)]

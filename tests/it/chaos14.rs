@@ -222,3 +222,42 @@ fn the_text_summary() {
     assert_eq!(code, 0, "{err}");
     insta::assert_snapshot!(out);
 }
+
+/// Hostile inputs: a positive exponent that is not chaos is named for what it is — one
+/// autonomous degree of freedom, a motion at rest on an unstable equilibrium, a runaway, an
+/// unstable orbit its neighbours leave — never "as in chaotic motion".
+#[test]
+fn positive_exponents_that_are_not_chaos_are_named() {
+    let cases: [(&str, &str, &str, &str); 4] = [
+        ("x'^2/2 + x^2/2", "x", "x=0", "cannot be chaotic"),
+        (
+            "x'^2/2 + y'^2/2 + x^2/2 + y^2/2",
+            "x,y",
+            "x=0, y=0",
+            "stays at rest on an unstable equilibrium",
+        ),
+        (
+            "x'^2/2 + y'^2/2 + x^2/2 + y^2/2",
+            "x,y",
+            "x=0.001",
+            "runs away",
+        ),
+        (
+            "x'^2/2 + y'^2/2 + x^2/2 - y^2/2",
+            "x,y",
+            "x=0, y=1",
+            "leave this one for good",
+        ),
+    ];
+    for (l, q, init, want) in cases {
+        let (code, out, err) =
+            lagrange(&["chaos", "-L", l, "-q", q, "--init", init, "--t-end", "60"]);
+        assert_eq!(code, 0, "{l}: {err}");
+        let meaning = out
+            .lines()
+            .find(|s| s.starts_with("Meaning:"))
+            .unwrap_or_default();
+        assert!(meaning.contains(want), "{l} from {init}: {meaning}");
+        assert!(!meaning.contains("as in chaotic motion"), "{l}: {meaning}");
+    }
+}

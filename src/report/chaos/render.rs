@@ -99,5 +99,17 @@ fn meaning(r: &ChaosReport, paint: &dyn Paint) -> String {
         Verdict::Unsettled => paint.warn(
             "not settled: the estimate neither holds steady nor falls like ln(t)/t over this run; lengthen --t-end before reading anything into it",
         ),
+        Verdict::OneDegree => paint.warn(
+            "nearby motions separate exponentially, but a system of one degree of freedom with a conserved h cannot be chaotic: the motion is at or near an unstable equilibrium or a separatrix, and λ is its instability rate",
+        ),
+        Verdict::AtEquilibrium => paint.warn(
+            "the motion stays at rest on an unstable equilibrium: λ is that equilibrium's instability rate, not a sign of chaos",
+        ),
+        Verdict::Unstable => paint.warn(
+            "nearby motions leave this one for good (their separation grows far beyond the motion's own size): it is an unstable motion, and λ its instability rate; chaos would keep them within the motion's range",
+        ),
+        Verdict::Runaway => paint.warn(
+            "the motion keeps growing (it runs away): exponential separation of an unbounded motion is not chaos",
+        ),
     }
 }

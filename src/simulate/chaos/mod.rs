@@ -80,6 +80,10 @@ pub struct Lyapunov {
     pub running: Vec<(f64, f64)>,
     /// The work of all segments together (of the pair: two evaluations of F per evaluation).
     pub stats: Stats,
+    /// The reference motion at every renormalisation: (t, |y|, |q'|), so that a reader can
+    /// tell a positive exponent of chaos from one of a motion at rest on an unstable
+    /// equilibrium or running away.
+    pub reference: Vec<(f64, f64, f64)>,
 }
 
 /// u = (1, …, 1)/√m: the documented direction of the initial perturbation.
@@ -144,6 +148,8 @@ pub fn lyapunov(
     };
     let (mut sum, mut stats) = (0.0, Stats::default());
     let mut running = Vec::with_capacity(segments);
+    let mut reference = Vec::with_capacity(segments);
+    let half = n / 2;
     for k in 0..segments {
         let t_a = k as f64 * opts.tau;
         let t_b = if k + 1 == segments {
@@ -159,9 +165,15 @@ pub fn lyapunov(
         let d = norm((0..n).map(|i| y[n + i] - y[i]));
         if !(d > 0.0 && d.is_finite()) {
             return Err(SimError::Invalid(format!(
-                "the two trajectories became indistinguishable at t = {t_b} (delta too small for the tolerances)"
+                "the two trajectories became indistinguishable at t = {t_b}: delta is below the tolerances there (|y| = {:.3e}; a motion running away to large values does this)",
+                norm(y[..n].iter().copied())
             )));
         }
+        reference.push((
+            t_b,
+            norm(y[..n].iter().copied()),
+            norm(y[half..n].iter().copied()),
+        ));
         sum += (d / opts.delta).ln();
         let scale = opts.delta / d;
         for i in 0..n {
@@ -173,6 +185,7 @@ pub fn lyapunov(
         exponent: running.last().map_or(0.0, |r| r.1),
         running,
         stats,
+        reference,
     })
 }
 

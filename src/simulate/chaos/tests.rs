@@ -21,36 +21,6 @@ fn estimate(angle: f64, delta: f64, tol: f64, t_end: f64, tau: f64) -> Lyapunov 
     lyapunov(&mut rhs, &[angle, angle, 0.0, 0.0], &opts).unwrap()
 }
 
-/// Prints the estimates over delta × tolerance × t_end (a measurement, run by hand:
-/// `cargo test --release measure_lyapunov -- --ignored --nocapture`).
-#[test]
-#[ignore]
-fn measure_lyapunov() {
-    let t_ends: Vec<f64> = std::env::var("LYAP_T").map_or(vec![30.0, 100.0, 200.0, 400.0], |v| {
-        v.split(',').map(|x| x.parse().unwrap()).collect()
-    });
-    for &t_end in &t_ends {
-        for tau in [1.0] {
-            for delta in [1e-8, 1e-9, 1e-10] {
-                for tol in [1e-9, 1e-10, 1e-11] {
-                    let started = std::time::Instant::now();
-                    let l = estimate(2.0, delta, tol, t_end, tau);
-                    eprintln!(
-                        "T {t_end} tau {tau} delta {delta:e} tol {tol:e}: {:.4} ({} evals, {:?})",
-                        l.exponent,
-                        l.stats.rhs_evals,
-                        started.elapsed()
-                    );
-                }
-            }
-        }
-    }
-    for t_end in [10.0, 30.0, 100.0, 300.0, 1000.0] {
-        let l = estimate(0.2, 1e-9, 1e-10, t_end, 1.0);
-        eprintln!("0.2 rad T {t_end}: {:.5}", l.exponent);
-    }
-}
-
 /// At θ₁ = θ₂ = 2 rad at rest the estimate at t = 4000 agrees to ±0.025 across delta
 /// 1e-8…1e-10 and tolerance 1e-9…1e-11 (measured 1.334…1.363; an independent estimate in the
 /// literature gives about 1.3 s⁻¹). Slow (about 10 s per run in debug, run side by side):
