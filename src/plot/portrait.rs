@@ -106,9 +106,15 @@ fn colour(energy: f64, lo: f64, hi: f64) -> HSLColor {
 /// "Colour: h from −29.4 J (blue) to 76.5 J (red); black: the separatrix, h = 29.4 J".
 fn caption(p: &Portrait, unit: Option<&str>) -> String {
     let (lo, hi) = energy_range(p);
-    let e = |v: f64| match unit {
-        Some(u) => format!("{} {u}", number(v)),
-        None => number(v),
+    // An energy at rounding distance from 0 on the family's scale is 0 (a separatrix at
+    // h = −7.6e-42 reads as noise).
+    let scale = lo.abs().max(hi.abs());
+    let e = |v: f64| {
+        let v = if v.abs() <= 1e-12 * scale { 0.0 } else { v };
+        match unit {
+            Some(u) => format!("{} {u}", number(v)),
+            None => number(v),
+        }
     };
     let mut s = format!(
         "{} curves; colour: h from {} (blue) to {} (red)",
