@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::Args;
 use lagrange::problem::SimulationDefaults;
 
-use super::system_args::{CliError, SystemArgs, Terminal, numbers, report};
+use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
 use lagrange::report::chaos::{ChaosError, ChaosOptions, ChaosReport, DEFAULT_T_END, SectionSpec};
 
@@ -128,12 +128,7 @@ fn pictures(
 /// The library's options from the flags, over a bank problem's suggested parameter values
 /// and start (not its end time: a Lyapunov estimate needs a much longer run).
 fn options(args: &ChaosArgs, defaults: &SimulationDefaults) -> Result<ChaosOptions, CliError> {
-    let given_init = if args.init.trim().is_empty() {
-        None
-    } else {
-        Some(numbers("--init", &args.init)?)
-    };
-    let chosen = defaults.complete(numbers("--params", &args.params)?, given_init, None);
+    let chosen = super::system_args::chosen(defaults, &args.params, &args.init, None)?;
     let section = match &args.poincare {
         None => None,
         Some(_) => Some(SectionSpec {

@@ -17,6 +17,7 @@ use super::system_args::{CliError, report};
 use lagrange::diagnostic::did_you_mean;
 use lagrange::mechanics::System;
 use lagrange::report::SimulationOptions;
+use lagrange::report::simulation::{initial_state, state_names};
 use lagrange::report::units::AxisUnits;
 use lagrange::simulate::{
     DEFAULT_FLIP_DT, FlipRun, FlipSettings, Outcome, Rhs, SimError, flip_times,
@@ -215,8 +216,8 @@ fn plan(
         .collect();
     let rhs = equations(&opts.params, sys)?;
     let coords = rhs.names().to_vec();
-    let mut names = coords.clone();
-    names.extend(coords.iter().map(|c| format!("{c}'")));
+    let names = state_names(&coords);
+    let base = initial_state(&names, &init).map_err(|e| usage(e.to_string()))?;
     let find = |name: &str, flag: &str| {
         names.iter().position(|n| n == name).ok_or_else(|| {
             let hint = did_you_mean(name, names.iter().map(String::as_str))
@@ -226,10 +227,6 @@ fn plan(
             ))
         })
     };
-    let mut base = vec![0.0; names.len()];
-    for (name, v) in &init {
-        base[find(name, "--init")?] = *v;
-    }
     let index = axes
         .iter()
         .map(|a| find(&a.name, "--grid"))
@@ -306,14 +303,7 @@ fn equations(params: &[(String, f64)], sys: &mut System) -> Result<Rhs, CliError
     // take any value, as in a single run.
     let params = lagrange::report::simulation::motion_parameters(sys, params);
     Rhs::new(sys, &params).map_err(|e| match e {
-        SimError::MissingParameters { names } => CliError::Usage(format!(
-            "no value was given for {}: add them to --params",
-            names
-                .iter()
-                .map(|n| format!("`{n}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )),
+        SimError::MissingParameters { .. } => CliError::Usage(format!("{e}: add them to --params")),
         e => CliError::Usage(e.to_string()),
     })
 }
@@ -490,10 +480,7 @@ fn write_files(
                 units.velocities.get(i - n)
             };
             let name = crate::plot::unicode(&plan.axes[k].name);
-            match unit.cloned().flatten() {
-                Some(u) => format!("{name} / {u}"),
-                None => name,
-            }
+            crate::plot::axis(&name, unit.cloned().flatten().as_deref())
         };
         let map = crate::plot::FlipMap {
             x: (label(0), &plan.values[0]),

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use super::system_args::{CliError, SystemArgs, Terminal, numbers, report};
+use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
 use lagrange::problem::SimulationDefaults;
 use lagrange::report::{SimulationError, SimulationOptions, SimulationReport};
@@ -213,16 +213,11 @@ fn options(
     args: &SimulateArgs,
     defaults: &SimulationDefaults,
 ) -> Result<SimulationOptions, CliError> {
-    let given_init = if args.init.trim().is_empty() {
-        None
-    } else {
-        Some(numbers("--init", &args.init)?)
-    };
     let SimulationDefaults {
         params,
         init,
         t_end,
-    } = defaults.complete(numbers("--params", &args.params)?, given_init, args.t_end);
+    } = super::system_args::chosen(defaults, &args.params, &args.init, args.t_end)?;
     let t_end = t_end.ok_or_else(|| {
         CliError::usage("give the end time with --t-end (the motion starts at t = 0)")
     })?;

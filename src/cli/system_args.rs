@@ -289,6 +289,22 @@ fn help(e: &MechError) -> String {
     }
 }
 
+/// `--params`, `--init` and an end time over a bank problem's suggestions: a given parameter
+/// replaces the suggested one by name, a non-empty `--init` replaces the suggested start.
+pub fn chosen(
+    defaults: &lagrange::problem::SimulationDefaults,
+    params: &str,
+    init: &str,
+    t_end: Option<f64>,
+) -> Result<lagrange::problem::SimulationDefaults, CliError> {
+    let given_init = if init.trim().is_empty() {
+        None
+    } else {
+        Some(numbers("--init", init)?)
+    };
+    Ok(defaults.complete(numbers("--params", params)?, given_init, t_end))
+}
+
 /// "a=1, b=2" as names and numbers (`--params`, `--init` of `simulate` and `chaos`).
 pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
     lagrange::report::simulation::numbers(flag, text).map_err(CliError::Usage)

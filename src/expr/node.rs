@@ -93,19 +93,24 @@ impl Func {
 
     /// Numeric value in f64.
     pub(crate) fn apply(self, x: f64) -> f64 {
+        self.as_fn()(x)
+    }
+
+    /// The function on f64 as a plain function pointer (chosen once for a loop over lanes).
+    pub(crate) fn as_fn(self) -> fn(f64) -> f64 {
         match self {
-            Func::Sin => x.sin(),
-            Func::Cos => x.cos(),
-            Func::Tan => x.tan(),
-            Func::Asin => x.asin(),
-            Func::Acos => x.acos(),
-            Func::Atan => x.atan(),
-            Func::Sinh => x.sinh(),
-            Func::Cosh => x.cosh(),
-            Func::Tanh => x.tanh(),
-            Func::Exp => x.exp(),
-            Func::Log => x.ln(),
-            Func::Abs => x.abs(),
+            Func::Sin => f64::sin,
+            Func::Cos => f64::cos,
+            Func::Tan => f64::tan,
+            Func::Asin => f64::asin,
+            Func::Acos => f64::acos,
+            Func::Atan => f64::atan,
+            Func::Sinh => f64::sinh,
+            Func::Cosh => f64::cosh,
+            Func::Tanh => f64::tanh,
+            Func::Exp => f64::exp,
+            Func::Log => f64::ln,
+            Func::Abs => f64::abs,
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::constraints::ConstraintRows;
 use super::derive::Derivation;
 use super::error::MechError;
 use super::system::System;
@@ -25,20 +26,22 @@ pub struct Dynamics {
 impl Dynamics {
     /// Compiles M and f of `d` over the system's standard layout.
     pub fn new(sys: &System, d: &Derivation) -> Result<Dynamics, MechError> {
-        let mut roots: Vec<_> = d.mass.iter().flatten().copied().collect();
-        roots.extend(d.forcing.iter().copied());
-        Ok(Dynamics {
-            program: sys.compile(&roots)?,
-            n: sys.n(),
-            constraints: 0,
-            names: sys.coordinates.iter().map(|c| c.name.clone()).collect(),
-        })
+        Dynamics::compiled(sys, d, &ConstraintRows::default())
     }
 
     /// Compiles M and f of `d` and the constraint rows (A, r) of the system's constraints:
     /// the augmented equations M q'' − Aᵀλ = f, A q'' = −r.
     pub fn constrained(sys: &mut System, d: &Derivation) -> Result<Dynamics, MechError> {
         let rows = sys.constraint_rows();
+        Dynamics::compiled(sys, d, &rows)
+    }
+
+    /// M, f, then A and r (none for empty rows) in one program.
+    fn compiled(
+        sys: &System,
+        d: &Derivation,
+        rows: &ConstraintRows,
+    ) -> Result<Dynamics, MechError> {
         let mut roots: Vec<_> = d.mass.iter().flatten().copied().collect();
         roots.extend(d.forcing.iter().copied());
         roots.extend(rows.a.iter().flatten().copied());

@@ -14,7 +14,7 @@ use super::system::{ConstraintKind, System};
 use crate::expr::{Factored, Id};
 
 /// The constraint rows: A (m×n) and r (m).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ConstraintRows {
     pub a: Vec<Vec<Id>>,
     pub r: Vec<Id>,

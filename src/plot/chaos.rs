@@ -32,10 +32,7 @@ fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Er
         let logs: Vec<(f64, f64)> = positive.iter().map(|p| (p.0, p.1.log10())).collect();
         let (x0, x1) = range(logs.iter().map(|p| p.0));
         let (lo, hi) = range(logs.iter().map(|p| p.1));
-        let t_desc = match r.time_unit.as_deref() {
-            Some(u) => format!("t / {u}"),
-            None => "t".to_string(),
-        };
+        let t_desc = axis("t", r.time_unit.as_deref());
         let mut chart = ChartBuilder::on(&top)
             .margin(12)
             .x_label_area_size(40)
@@ -62,10 +59,8 @@ fn draw_chaos(r: &ChaosReport, path: &Path) -> Result<(), Box<dyn std::error::Er
             .x_label_area_size(40)
             .y_label_area_size(70)
             .build_cartesian_2d(x0..x1, y0..y1)?;
-        let lambda_desc = match r.time_unit.as_deref() {
-            Some(u) => format!("running λ estimate / {u}⁻¹"),
-            None => "running λ estimate".to_string(),
-        };
+        let rate = r.time_unit.as_deref().map(|u| format!("{u}⁻¹"));
+        let lambda_desc = axis("running λ estimate", rate.as_deref());
         chart
             .configure_mesh()
             .x_desc(t_desc.as_str())

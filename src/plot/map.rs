@@ -131,10 +131,10 @@ impl FlipMap<'_> {
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc(match self.time_unit.as_deref() {
-                Some(u) => format!("time to flip / {u}"),
-                None => "time to flip".to_string(),
-            })
+            .y_desc(super::label::axis(
+                "time to flip",
+                self.time_unit.as_deref(),
+            ))
             .axis_desc_style(("sans-serif", 18))
             .label_style(("sans-serif", 14))
             .draw()?;

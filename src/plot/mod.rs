@@ -13,7 +13,7 @@ mod svg;
 mod terminal;
 
 pub use chaos::{chaos_svg, poincare_svg};
-pub use label::unicode;
+pub use label::{axis, unicode};
 pub use map::{FlipMap, flip_map};
 pub use portrait::portrait_svg;
 pub use svg::{energy_svg, phase_svg, qt_svg};

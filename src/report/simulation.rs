@@ -448,7 +448,7 @@ fn integrate(rhs: &mut Rhs, y0: &[f64], opts: &SimulationOptions) -> Result<Traj
 }
 
 /// `q…` then `q'…`.
-pub(super) fn state_names(coords: &[String]) -> Vec<String> {
+pub fn state_names(coords: &[String]) -> Vec<String> {
     let mut names = coords.to_vec();
     names.extend(coords.iter().map(|c| format!("{c}'")));
     names
@@ -459,7 +459,7 @@ pub(super) fn state(names: &[String], y: &[f64]) -> State {
 }
 
 /// y0 from the given values, zero elsewhere.
-pub(super) fn initial_state(
+pub fn initial_state(
     names: &[String],
     init: &[(String, f64)],
 ) -> Result<Vec<f64>, SimulationError> {

@@ -47,12 +47,8 @@ impl Rhs {
         let fixed: Vec<(usize, f64)> = (values.iter().enumerate())
             .map(|(j, &v)| (layout.param(j), v))
             .collect();
-        let dynamics = if sys.constraints.is_empty() {
-            Dynamics::new(sys, &d)?
-        } else {
-            Dynamics::constrained(sys, &d)?
-        }
-        .specialize(&fixed);
+        // Without constraints the rows are empty: M q'' = f alone.
+        let dynamics = Dynamics::constrained(sys, &d)?.specialize(&fixed);
         let c = dynamics.constraints();
         let energy_analysis = sys.energy(&d);
         let energy = sys.compile(&[energy_analysis.function])?.specialize(&fixed);

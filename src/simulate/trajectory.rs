@@ -29,6 +29,15 @@ pub struct Stats {
     pub rhs_evals: usize,
 }
 
+impl std::ops::AddAssign for Stats {
+    /// The work of two runs together.
+    fn add_assign(&mut self, other: Stats) {
+        self.accepted += other.accepted;
+        self.rejected += other.rejected;
+        self.rhs_evals += other.rhs_evals;
+    }
+}
+
 /// How each step's interpolant is stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Dense {

@@ -94,7 +94,7 @@ impl Program {
                 Instr::Cos(a) | Instr::Func(Func::Cos, a) => {
                     sin_cos_lanes(&done[a as usize], 1, out)
                 }
-                Instr::Func(f, a) => un(a, out, func_fn(f)),
+                Instr::Func(f, a) => un(a, out, f.as_fn()),
             }
         }
         for &o in &self.outputs {
@@ -210,24 +210,5 @@ pub(super) fn sin_cos_lanes<const K: usize>(x: &[f64; K], shift: u64, out: &mut 
                 out[l] = if shift == 0 { x[l].sin() } else { x[l].cos() };
             }
         }
-    }
-}
-
-/// The function on f64 as a plain function pointer, chosen once per lane loop (the same
-/// functions as `Func::apply`).
-fn func_fn(f: Func) -> fn(f64) -> f64 {
-    match f {
-        Func::Sin => f64::sin,
-        Func::Cos => f64::cos,
-        Func::Tan => f64::tan,
-        Func::Asin => f64::asin,
-        Func::Acos => f64::acos,
-        Func::Atan => f64::atan,
-        Func::Sinh => f64::sinh,
-        Func::Cosh => f64::cosh,
-        Func::Tanh => f64::tanh,
-        Func::Exp => f64::exp,
-        Func::Log => f64::ln,
-        Func::Abs => f64::abs,
     }
 }

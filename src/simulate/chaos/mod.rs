@@ -158,9 +158,7 @@ pub fn lyapunov(
             (k + 1) as f64 * opts.tau
         };
         let traj = dop853(&mut pair, t_a, &y, t_b, &tol)?;
-        stats.accepted += traj.stats.accepted;
-        stats.rejected += traj.stats.rejected;
-        stats.rhs_evals += traj.stats.rhs_evals;
+        stats += traj.stats;
         y.copy_from_slice(&traj.y_final);
         let d = norm((0..n).map(|i| y[n + i] - y[i]));
         if !(d > 0.0 && d.is_finite()) {

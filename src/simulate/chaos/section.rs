@@ -103,9 +103,7 @@ pub fn section(rhs: &mut Rhs, y0: &[f64], opts: &SectionOptions) -> Result<Secti
         let want = opts.crossings - orbit.points.len();
         let found = crossings(&traj, &g, Direction::Rising, want);
         orbit.points.extend(found.into_iter().map(|c| c.y));
-        orbit.stats.accepted += traj.stats.accepted;
-        orbit.stats.rejected += traj.stats.rejected;
-        orbit.stats.rhs_evals += traj.stats.rhs_evals;
+        orbit.stats += traj.stats;
         y.copy_from_slice(&traj.y_final);
         orbit.t = t_b;
     }
