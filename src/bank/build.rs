@@ -40,8 +40,9 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     }
     let mut pool = Pool::new();
     let mut dims = Dimensions::new();
-    let coordinates = b.coordinates(&pf, &mut pool, &mut dims)?;
-    let parameters = b.parameters(&pf, &mut pool, &mut dims)?;
+    let mut coordinates = b.coordinates(&pf, &mut pool, &mut dims)?;
+    let mut parameters = b.parameters(&pf, &mut pool, &mut dims)?;
+    super::build_domain::domains(&b, &pf, &mut pool, &mut coordinates, &mut parameters)?;
     let reader = Reader {
         b: &b,
         ctx: system_context(&coordinates, &parameters),
@@ -164,6 +165,7 @@ impl Builder<'_> {
                 name,
                 periodic: c.periodic,
                 range,
+                domain: crate::mechanics::system::Domain::ANY,
             });
         }
         Ok(coordinates)
@@ -223,6 +225,7 @@ impl Builder<'_> {
                 name,
                 dimension: Some(d),
                 range: (lo, hi),
+                domain: crate::mechanics::system::Domain::ANY,
             });
         }
         Ok(parameters)

@@ -67,6 +67,25 @@ pub struct CoordinateSpec {
     /// Dimension, e.g. "L" (default: dimensionless if periodic, L otherwise).
     pub dimension: Option<String>,
     pub description: Option<String>,
+    /// Where the coordinate can physically be (default: anywhere).
+    pub domain: Option<DomainSpec>,
+}
+
+/// A declared domain: `"positive"`, `"negative"`, `"any"`, or an open interval `[low, high]`
+/// whose ends are numbers or expressions of the parameters.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum DomainSpec {
+    Word(String),
+    Interval(Vec<BoundSpec>),
+}
+
+/// One end of a declared interval.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum BoundSpec {
+    Number(f64),
+    Text(String),
 }
 
 /// A parameter.
@@ -79,6 +98,8 @@ pub struct ParameterSpec {
     pub description: Option<String>,
     /// A typical value, used when the problem is simulated.
     pub value: Option<f64>,
+    /// Where the parameter can physically be (default: positive with a physical dimension).
+    pub domain: Option<DomainSpec>,
 }
 
 /// A body: `kind = "point"` (mass, position), `kind = "rotor"` (inertia, angle) or

@@ -136,6 +136,10 @@ pub(crate) struct Filter {
     assumptions: Vec<bool>,
     assumed: Option<Program>,
     must: Option<Program>,
+    /// The domain's ends: the slot of the value, whether the end is a lower one, and the
+    /// ends' values (computed by `ends`, in this order).
+    domain: Vec<(usize, bool)>,
+    ends: Option<Program>,
 }
 
 impl Filter {
@@ -154,15 +158,31 @@ impl Filter {
                 .map_err(|error| CheckError::Compile { error })
         };
         let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
+        let ends = sys.domain_ends();
+        let end_ids: Vec<Id> = ends.iter().map(|&(_, e, _)| e).collect();
         Ok(Filter {
             assumptions: assumptions.iter().map(|a| a.greater).collect(),
             assumed: compile(&roots)?,
             must: compile(defined)?,
+            domain: ends.iter().map(|&(slot, _, lower)| (slot, lower)).collect(),
+            ends: compile(&end_ids)?,
         })
     }
 
     /// Whether point `x` passes.
     pub(crate) fn accepts(&self, x: &[f64]) -> bool {
+        if let Some(p) = &self.ends {
+            let Ok(v) = p.eval(x) else { return false };
+            let inside =
+                self.domain.iter().zip(&v).all(
+                    |(&(slot, lower), &end)| {
+                        if lower { x[slot] > end } else { x[slot] < end }
+                    },
+                );
+            if !inside {
+                return false;
+            }
+        }
         if let Some(p) = &self.assumed {
             let Ok(v) = p.eval(x) else { return false };
             let ok = self.assumptions.iter().enumerate().all(|(i, &greater)| {

@@ -274,6 +274,12 @@ impl Pool {
         }
     }
 
+    /// Whether `id` is a number ≥ 0.
+    pub fn is_nonnegative_constant(&self, id: Id) -> bool {
+        self.as_num(id)
+            .is_some_and(|v| !num_traits::Signed::is_negative(v))
+    }
+
     /// Whether `id` is the number 0.
     pub fn is_zero(&self, id: Id) -> bool {
         id == self.zero

@@ -2,7 +2,7 @@
 //! with the ranges where they are sampled. A leaf module, so that bodies and systems can both
 //! use it without importing each other.
 
-use crate::expr::{Dimension, Sym};
+use crate::expr::{Dimension, Id, Sym};
 
 /// A generalized coordinate.
 #[derive(Clone, Debug)]
@@ -15,6 +15,27 @@ pub struct Coordinate {
     pub periodic: bool,
     /// Where equilibria are searched and values are sampled.
     pub range: (f64, f64),
+    /// Where the coordinate can physically be (r > 0): no sample or probe leaves it.
+    pub domain: Domain,
+}
+
+/// Where a coordinate or parameter can physically be: an open interval whose ends are
+/// expressions of the parameters, each end absent when unbounded. Separate from a sampling
+/// range, which is only where values are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Domain {
+    /// The value is greater than this.
+    pub lower: Option<Id>,
+    /// The value is less than this.
+    pub upper: Option<Id>,
+}
+
+impl Domain {
+    /// No restriction.
+    pub const ANY: Domain = Domain {
+        lower: None,
+        upper: None,
+    };
 }
 
 /// A parameter (a constant of the system).
@@ -28,6 +49,9 @@ pub struct Parameter {
     pub dimension: Option<Dimension>,
     /// Sampling range (positive).
     pub range: (f64, f64),
+    /// Where the parameter can physically be: positive for a declared physical dimension,
+    /// unless the problem says otherwise.
+    pub domain: Domain,
 }
 
 /// Default sampling range of a non-periodic coordinate.

@@ -40,6 +40,7 @@ pub fn n_link_pendulum(n: usize) -> System {
                 name,
                 periodic: true,
                 range: (-std::f64::consts::PI, std::f64::consts::PI),
+                domain: crate::mechanics::system::Domain::ANY,
             }
         })
         .collect();

@@ -34,4 +34,4 @@ pub use error::MechError;
 pub use point_force::PointForce;
 pub use rigid::{Inertia, Orientation, Rigid, RigidError};
 pub use state::Layout;
-pub use system::{Constraint, ConstraintKind, Coordinate, Parameter, System};
+pub use system::{Constraint, ConstraintKind, Coordinate, Domain, Parameter, System};

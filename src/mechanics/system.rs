@@ -6,7 +6,7 @@ use rustc_hash::FxHashMap;
 
 use super::bodies::{Body, Potential, kinetic_energy, potential_energy};
 pub use super::coordinate::{
-    Coordinate, DEFAULT_COORDINATE_RANGE, DEFAULT_PARAMETER_RANGE, Parameter,
+    Coordinate, DEFAULT_COORDINATE_RANGE, DEFAULT_PARAMETER_RANGE, Domain, Parameter,
 };
 use super::error::MechError;
 use super::magnitude::{Magnitudes, non_finite_constant};
@@ -86,7 +86,17 @@ impl System {
     ) -> System {
         let t = kinetic_energy(&mut pool, &coordinates, bodies);
         let v = potential_energy(&mut pool, bodies, potentials);
-        let positive: Vec<Sym> = Vec::new();
+        // A coordinate declared positive (a distance r) has |r| = r: a spring's length
+        // √(r² cos²φ + r² sin²φ) is r, not |r|.
+        let positive: Vec<Sym> = coordinates
+            .iter()
+            .filter(|c| {
+                c.domain
+                    .lower
+                    .is_some_and(|l| pool.is_nonnegative_constant(l))
+            })
+            .map(|c| c.sym)
+            .collect();
         let t = pool.simplify(t, &positive);
         let v = pool.simplify(v, &positive);
         let l = pool.sub(t, v);
@@ -130,6 +140,7 @@ impl System {
                     } else {
                         DEFAULT_COORDINATE_RANGE
                     },
+                    domain: Domain::ANY,
                     name,
                 }
             })
@@ -269,6 +280,7 @@ impl System {
                     sym,
                     dimension: None,
                     range: DEFAULT_PARAMETER_RANGE,
+                    domain: Domain::ANY,
                 });
             }
         }
@@ -306,10 +318,50 @@ impl System {
         self.parameters.iter().map(|p| p.sym).collect()
     }
 
+    /// The symbols simplification may take as positive: every parameter (displayed forms
+    /// only; checking never relies on them) and each coordinate whose domain is positive.
+    pub(crate) fn positive_syms(&self) -> Vec<Sym> {
+        let mut out = self.parameter_syms();
+        out.extend(
+            self.coordinates
+                .iter()
+                .filter(|c| {
+                    c.domain
+                        .lower
+                        .is_some_and(|l| self.pool.is_nonnegative_constant(l))
+                })
+                .map(|c| c.sym),
+        );
+        out
+    }
+
+    /// Each declared end of a coordinate's or parameter's domain: the slot of its value in
+    /// a sample point ([`state_layout`](Self::state_layout)), the end, and whether it is the
+    /// lower one. Every sample and probe stays strictly inside.
+    pub fn domain_ends(&self) -> Vec<(usize, Id, bool)> {
+        let at = self.state_layout();
+        let coordinates = self
+            .coordinates
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (at.q(i), c.domain));
+        let parameters = self
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(j, p)| (at.param(j), p.domain));
+        let mut out = Vec::new();
+        for (slot, d) in coordinates.chain(parameters) {
+            out.extend(d.lower.map(|l| (slot, l, true)));
+            out.extend(d.upper.map(|u| (slot, u, false)));
+        }
+        out
+    }
+
     /// Simplifies for display, with parameters taken as positive, and collects terms that
     /// differ only in parameters.
     pub fn simplify(&mut self, e: Id) -> Id {
-        let positive = self.parameter_syms();
+        let positive = self.positive_syms();
         let s = self.pool.simplify(e, &positive);
         self.pool.collect(s, &positive)
     }
@@ -458,6 +510,16 @@ impl System {
             })
             .collect();
         self.parameters.retain(|p| !map.contains_key(&(p.sym, 0)));
+        let bound = |pool: &mut Pool, d: Domain| Domain {
+            lower: d.lower.map(|l| pool.substitute(l, &map)),
+            upper: d.upper.map(|u| pool.substitute(u, &map)),
+        };
+        for c in &mut self.coordinates {
+            c.domain = bound(&mut self.pool, c.domain);
+        }
+        for p in &mut self.parameters {
+            p.domain = bound(&mut self.pool, p.domain);
+        }
         self.collect_parameters();
         Ok(map)
     }

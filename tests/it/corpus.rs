@@ -15,7 +15,9 @@
 //! diagnosis rate: of the incorrect and invalid answers with codes, ≥ 90% get the labelled
 //! codes; (c) no misleading diagnosis: the headline (first, most specific) code is labelled,
 //! `+`-allowed or neutral, and no `!` code appears. `notation-examiner.txt` holds answers in the
-//! notation issue 12 adds, labelled by an examiner before that notation was read.
+//! notation issue 12 adds, labelled by an examiner before that notation was read;
+//! `curvilinear.txt` answers to the systems in `tests/corpus/problems/`, written and labelled
+//! (with SymPy, `scripts/corpus-sympy/`) by someone who had not read the checker.
 
 use std::collections::{BTreeSet, HashMap};
 
@@ -209,9 +211,27 @@ fn cases() -> Vec<Case> {
     out
 }
 
+/// The bank the corpus is checked against: the built-in problems and the systems in
+/// `tests/corpus/problems/` (written from the docs alone, for `curvilinear.txt`).
+fn bank() -> lagrange::bank::Bank {
+    let mut bank = embedded::bank();
+    let extra = lagrange::bank::load_dir(&corpus_dir().join("problems"))
+        .expect("tests/corpus/problems loads");
+    assert!(extra.failures.is_empty(), "{:?}", extra.failures);
+    for p in extra.problems {
+        assert!(
+            bank.problem(&p.id).is_none(),
+            "{} is also a bank problem",
+            p.id
+        );
+        bank.problems.push(p);
+    }
+    bank
+}
+
 /// Checks every case, one checker per problem.
 fn outcomes() -> Vec<Outcome> {
-    let bank = embedded::bank();
+    let bank = bank();
     let mut checkers: HashMap<String, Checker> = HashMap::new();
     let mut out = Vec::new();
     for case in cases() {
@@ -309,6 +329,9 @@ fn corpus_has_no_misleading_diagnosis() {
     let misleading: Vec<String> = outcomes
         .iter()
         .filter(|o| o.case.expect != Status::Correct)
+        // `curvilinear.txt` was labelled from the docs alone: its writer named a code only
+        // when sure of it, so a line without one labels the status, not the diagnosis.
+        .filter(|o| !(o.case.file == "curvilinear.txt" && o.case.codes.is_empty()))
         .filter_map(|o| o.misleading().map(|why| format!("{why}: {}", o.describe())))
         .collect();
     println!("misleading diagnoses: {}", misleading.len());

@@ -19,6 +19,7 @@ fn point_mass(coords: &[&str], position: &[&str]) -> System {
             sym: pool.symbol(name),
             periodic: false,
             range: (-2.0, 2.0),
+            domain: lagrange::mechanics::Domain::ANY,
         })
         .collect();
     let ctx = Context::open().with_coordinates(coords.iter().copied());

@@ -33,6 +33,7 @@ mod session;
 mod simulate14;
 mod simulate_bank14;
 mod simulate_cli;
+mod singular;
 mod soundness;
 mod steady13;
 mod symbolic;

@@ -51,6 +51,7 @@ fn from_points(
             sym: pool.symbol(name),
             periodic,
             range,
+            domain: lagrange::mechanics::Domain::ANY,
         })
         .collect();
     let ctx = Context::open().with_coordinates(coords.iter().map(|c| c.0));
@@ -452,6 +453,7 @@ fn rotor_and_spring_bodies() {
         sym: pool.symbol("x"),
         periodic: false,
         range: (-2.0, 2.0),
+        domain: lagrange::mechanics::Domain::ANY,
     };
     let ctx = Context::open().with_coordinates(["x"]);
     let mut rd = |s: &str| read_expr(s, &ctx, &mut pool).unwrap();
@@ -496,6 +498,7 @@ fn rotor_and_spring_bodies() {
         sym: pool.symbol("x"),
         periodic: false,
         range: (-3.0, 3.0),
+        domain: lagrange::mechanics::Domain::ANY,
     };
     let ctx = Context::open().with_coordinates(["x"]);
     let mut rd = |s: &str| read_expr(s, &ctx, &mut pool).unwrap();

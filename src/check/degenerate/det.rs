@@ -1,32 +1,89 @@
-//! det C at a point: the answer's acceleration coefficients A over the mass matrix M (or, for
-//! one equation of several coordinates, its projection on the reference equation), compiled
-//! once and evaluated into reused buffers.
+//! det C at a point, and what the physics is there: the answer's acceleration coefficients A
+//! over the mass matrix M (or, for one equation of several coordinates, its projection on the
+//! reference equation), compiled once and evaluated into reused buffers.
+//!
+//! The yardstick is the physics' own. Where M is not finite, or the true equations are not
+//! (the force k/r² at r = 0), nothing is judged. Where M is singular (r = 0 in polar
+//! coordinates, sin θ = 0 for a spherical pendulum's φ) the answer is judged direction by
+//! direction: its A must keep at least M's rank. Elsewhere det C = det A / det M must not
+//! vanish, and A must be finite.
+
+use std::cell::RefCell;
 
 use crate::check::prepare::Prepared;
 use crate::expr::{Id, Program};
 
+/// A singular value below this fraction of the matrix's typical size is zero.
+const RANK_ZERO: f64 = 1e-8;
+/// A value of M or of the true equations beyond this many times its typical size is a
+/// singularity of the physics (the force k/r² as r → 0), not a place to judge the answer.
+const BLOW_UP: f64 = 1e8;
+/// How many sample states give the typical sizes at a point's parameter values.
+const TYPICAL_STATES: usize = 5;
+
 /// What det C is at one point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Det {
-    /// The reference does not determine the accelerations here either (M singular or
-    /// undefined): nothing to judge.
+    /// Outside what is judged: M or the true equations are not finite (or blow up) here.
     Skip,
-    /// The answer is undefined where the reference is defined.
+    /// The answer is not finite where the physics determines every acceleration.
     Undefined,
+    /// det C, where M is regular.
     Value(f64),
+    /// M is singular here; `deficient` when the answer's A has a lower rank than M (it stops
+    /// determining an acceleration the physics still determines).
+    Singular { deficient: bool },
 }
 
-/// det C at any point: the answer's acceleration coefficients A and the mass matrix M, each
-/// compiled once and evaluated into reused buffers (this runs a few hundred times a check).
+/// Typical sizes at one set of parameter values: of M (or the reference row), of A, of det C
+/// and of the true equations.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Typical {
+    m: f64,
+    a: f64,
+    pub(super) det: f64,
+    equations: f64,
+}
+
+/// det C at any point: the answer's acceleration coefficients A, the mass matrix M and the
+/// true equations, each compiled once and evaluated into reused buffers (this runs a few
+/// hundred times a check).
 pub(super) struct DetC {
     a: Program,
     m: Option<Program>,
+    /// The true equations (all of them, or the one reference equation in projection mode).
+    equations: Program,
     n: usize,
     /// One equation of a system with several coordinates: `m` holds the reference
     /// equation's acceleration row r, and the factor is a·r / r·r (the answer must be the
     /// reference times a factor that vanishes nowhere).
     projection: bool,
-    scratch: std::cell::RefCell<(Vec<f64>, Vec<f64>)>,
+    /// Where the parameters start in a point, and the sample states typical sizes use.
+    params_start: usize,
+    states: Vec<Vec<f64>>,
+    scratch: RefCell<Scratch>,
+    /// Typical sizes by parameter values (a line scan in a parameter needs a few dozen).
+    typical: RefCell<Vec<(Vec<f64>, Typical)>>,
+}
+
+struct Scratch {
+    a: Vec<f64>,
+    m: Vec<f64>,
+    e: Vec<f64>,
+}
+
+/// One evaluation: M (or r) and A as matrices, or why they are not there.
+enum Raw {
+    Skip,
+    /// M and the equations are finite; A is not.
+    AnswerUndefined {
+        m: Vec<f64>,
+    },
+    Both {
+        m: Vec<f64>,
+        a: Vec<f64>,
+        equations: f64,
+    },
 }
 
 impl DetC {
@@ -47,17 +104,8 @@ impl DetC {
         } else {
             None
         };
-        let scratch = (
-            a.scratch(),
-            m.as_ref().map_or_else(Vec::new, Program::scratch),
-        );
-        Some(DetC {
-            a,
-            m,
-            n,
-            projection: false,
-            scratch: std::cell::RefCell::new(scratch),
-        })
+        let equations = p.system.compile(&p.derivation.equations()).ok()?;
+        Some(Self::assemble(p, a, m, equations, n, false))
     }
 
     /// For one equation `r` of a system with several coordinates, against the reference
@@ -73,70 +121,219 @@ impl DetC {
         let (ra, rr) = (row(p, r), row(p, reference));
         let a = p.system.compile(&ra).ok()?;
         let m = p.system.compile(&rr).ok()?;
-        let scratch = (a.scratch(), m.scratch());
-        Some(DetC {
-            a,
-            m: Some(m),
-            n: coords.len(),
-            projection: true,
-            scratch: std::cell::RefCell::new(scratch),
-        })
+        let equations = p.system.compile(&[reference]).ok()?;
+        Some(Self::assemble(p, a, Some(m), equations, coords.len(), true))
     }
 
-    /// a·r / r·r at `x` (projection mode).
-    fn ratio_at(&self, x: &[f64], m: &Program, sa: &mut [f64], sm: &mut [f64]) -> Det {
-        if m.run(x, sm).is_err() {
-            return Det::Skip;
-        }
-        let rr: f64 = (0..self.n).map(|j| m.output(j, sm).powi(2)).sum();
-        if !rr.is_finite() || rr == 0.0 {
-            return Det::Skip;
-        }
-        if self.a.run(x, sa).is_err() {
-            return Det::Undefined;
-        }
-        let ar: f64 = (0..self.n)
-            .map(|j| self.a.output(j, sa) * m.output(j, sm))
-            .sum();
-        let d = ar / rr;
-        if d.is_finite() {
-            Det::Value(d)
-        } else {
-            Det::Undefined
-        }
-    }
-
-    pub(super) fn at(&self, x: &[f64]) -> Det {
-        let n = self.n;
-        let mut guard = self.scratch.borrow_mut();
-        let (sa, sm) = &mut *guard;
-        if let (true, Some(m)) = (self.projection, &self.m) {
-            return self.ratio_at(x, m, sa, sm);
-        }
-        // The reference first: where M is undefined or singular it does not determine the
-        // accelerations either, and there is nothing to judge.
-        let det_m = match &self.m {
-            Some(m) => {
-                if m.run(x, sm).is_err() {
-                    return Det::Skip;
-                }
-                det(n, |i, j| m.output(i * n + j, sm))
-            }
-            None => 1.0,
+    fn assemble(
+        p: &Prepared,
+        a: Program,
+        m: Option<Program>,
+        equations: Program,
+        n: usize,
+        projection: bool,
+    ) -> DetC {
+        let scratch = Scratch {
+            a: a.scratch(),
+            m: m.as_ref().map_or_else(Vec::new, Program::scratch),
+            e: equations.scratch(),
         };
-        if !det_m.is_finite() || det_m == 0.0 {
-            return Det::Skip;
-        }
-        if self.a.run(x, sa).is_err() {
-            return Det::Undefined;
-        }
-        let d = det(n, |i, j| self.a.output(i * n + j, sa)) / det_m;
-        if d.is_finite() {
-            Det::Value(d)
-        } else {
-            Det::Undefined
+        DetC {
+            a,
+            m,
+            equations,
+            n,
+            projection,
+            params_start: p.system.state_layout().params_start(),
+            states: p
+                .points
+                .points
+                .iter()
+                .take(TYPICAL_STATES)
+                .cloned()
+                .collect(),
+            scratch: RefCell::new(scratch),
+            typical: RefCell::new(Vec::new()),
         }
     }
+
+    /// M (or the reference row) and A at `x`, with the size of the true equations.
+    fn raw(&self, x: &[f64]) -> Raw {
+        let mut guard = self.scratch.borrow_mut();
+        let s = &mut *guard;
+        if self.equations.run(x, &mut s.e).is_err() {
+            return Raw::Skip;
+        }
+        let rows = if self.projection { 1 } else { self.n };
+        let equations = (0..rows)
+            .map(|i| self.equations.output(i, &s.e).abs())
+            .fold(0.0, f64::max);
+        let m = match &self.m {
+            Some(m) => {
+                if m.run(x, &mut s.m).is_err() {
+                    return Raw::Skip;
+                }
+                (0..rows * self.n).map(|k| m.output(k, &s.m)).collect()
+            }
+            // With constraints A alone is judged: M counts as the identity.
+            None => identity(self.n),
+        };
+        if self.a.run(x, &mut s.a).is_err() {
+            return Raw::AnswerUndefined { m };
+        }
+        let a = (0..rows * self.n).map(|k| self.a.output(k, &s.a)).collect();
+        Raw::Both { m, a, equations }
+    }
+
+    /// Typical sizes at `x`'s parameter values: medians over a few sample states given those
+    /// values. Medians, so that one state near a pole cannot set the scale.
+    pub(super) fn typical(&self, x: &[f64]) -> Option<Typical> {
+        let params = &x[self.params_start..];
+        if let Some((_, t)) = self.typical.borrow().iter().find(|(p, _)| p == params) {
+            return Some(*t);
+        }
+        let (mut ms, mut as_, mut dets, mut es) = (vec![], vec![], vec![], vec![]);
+        for state in &self.states {
+            let mut y = state.clone();
+            y[self.params_start..].copy_from_slice(params);
+            if let Raw::Both { m, a, equations } = self.raw(&y) {
+                ms.push(norm(&m));
+                as_.push(norm(&a));
+                es.push(equations);
+                if let Some(d) = self.det_c(&m, &a) {
+                    dets.push(d.abs());
+                }
+            }
+        }
+        let t = Typical {
+            m: median(ms)?,
+            a: median(as_).unwrap_or(0.0),
+            det: median(dets).unwrap_or(0.0),
+            equations: median(es).unwrap_or(0.0),
+        };
+        let mut cache = self.typical.borrow_mut();
+        if cache.len() < 256 {
+            cache.push((params.to_vec(), t));
+        }
+        Some(t)
+    }
+
+    /// det A / det M, or a·r / r·r in projection mode (None when not finite).
+    fn det_c(&self, m: &[f64], a: &[f64]) -> Option<f64> {
+        let d = if self.projection {
+            let rr: f64 = m.iter().map(|v| v * v).sum();
+            let ar: f64 = a.iter().zip(m).map(|(x, y)| x * y).sum();
+            ar / rr
+        } else {
+            det(self.n, |i, j| a[i * self.n + j]) / det(self.n, |i, j| m[i * self.n + j])
+        };
+        d.is_finite().then_some(d)
+    }
+
+    /// det C at `x`, cheaply: a value where M is regular and det C is finite and not 0; the
+    /// [`careful`](Self::careful) verdict otherwise. A small value may still be a
+    /// singularity of the physics: ask [`careful`](Self::careful) before calling it a zero.
+    pub(super) fn at(&self, x: &[f64]) -> Det {
+        match self.raw(x) {
+            Raw::Skip => Det::Skip,
+            Raw::Both { m, a, .. } => match self.det_c(&m, &a) {
+                Some(d) if d != 0.0 => Det::Value(d),
+                _ => self.careful(x),
+            },
+            Raw::AnswerUndefined { .. } => self.careful(x),
+        }
+    }
+
+    /// det C at `x` against the typical sizes at its parameter values: [`Det::Skip`] where M
+    /// or the true equations blow up, [`Det::Singular`] where M loses rank.
+    pub(super) fn careful(&self, x: &[f64]) -> Det {
+        let Some(typical) = self.typical(x) else {
+            return Det::Skip;
+        };
+        let (m, a, equations) = match self.raw(x) {
+            Raw::Skip => return Det::Skip,
+            Raw::AnswerUndefined { m } => {
+                // Undefined where the physics determines every acceleration is a fault of
+                // the answer; where it does not, the answer is not judged (per direction,
+                // "wherever the answer is finite").
+                if !blows_up(norm(&m), typical.m) && self.rank(&m, typical.m) == self.rows() {
+                    return Det::Undefined;
+                }
+                return Det::Skip;
+            }
+            Raw::Both { m, a, equations } => (m, a, equations),
+        };
+        if blows_up(norm(&m), typical.m) || blows_up(equations, typical.equations) {
+            return Det::Skip;
+        }
+        let rank_m = self.rank(&m, typical.m);
+        if rank_m < self.rows() {
+            let rank_a = self.rank(&a, typical.a);
+            return Det::Singular {
+                deficient: rank_a < rank_m,
+            };
+        }
+        match self.det_c(&m, &a) {
+            Some(d) => Det::Value(d),
+            // det A overflowed while A is finite: far from zero, nothing to report.
+            None => Det::Skip,
+        }
+    }
+
+    /// Whether `d` is zero: exactly, or against det C's typical size at the parameter values
+    /// of `reference` (the point a search started from: a factor of the parameters alone,
+    /// cos α, is as small at every state with α near π/2).
+    pub(super) fn is_zero(&self, reference: &[f64], d: f64) -> bool {
+        d == 0.0
+            || self
+                .typical(reference)
+                .is_some_and(|t| d.abs() <= crate::check::tolerance::SAME * t.det)
+    }
+
+    /// The rows of the matrices compared: n, or 1 in projection mode.
+    fn rows(&self) -> usize {
+        if self.projection { 1 } else { self.n }
+    }
+
+    /// The numerical rank of a `rows × n` matrix, singular values below [`RANK_ZERO`] of
+    /// `scale` counting as zero.
+    fn rank(&self, entries: &[f64], scale: f64) -> usize {
+        let rows = self.rows();
+        let zero = RANK_ZERO * scale;
+        if rows == 1 {
+            return usize::from(norm(entries) > zero);
+        }
+        let mat = nalgebra::DMatrix::from_row_slice(rows, self.n, entries);
+        mat.singular_values().iter().filter(|&&s| s > zero).count()
+    }
+}
+
+fn identity(n: usize) -> Vec<f64> {
+    (0..n * n)
+        .map(|k| if k / n == k % n { 1.0 } else { 0.0 })
+        .collect()
+}
+
+/// Whether `v` is beyond [`BLOW_UP`] times its typical size `t` (a typical size of 0, as of
+/// equations that vanish at every sampled state, sets no scale).
+fn blows_up(v: f64, t: f64) -> bool {
+    t > 0.0 && v > BLOW_UP * t
+}
+
+/// The Frobenius norm.
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The median of the finite values (None when there is none or it is not positive).
+pub(super) fn median(v: Vec<f64>) -> Option<f64> {
+    let mut v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v[v.len() / 2];
+    (m > 0.0).then_some(m)
 }
 
 /// The determinant of the n×n matrix with entries `e(i, j)`: by formula up to 3×3 (no

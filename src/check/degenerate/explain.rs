@@ -1,7 +1,8 @@
 //! Naming a degeneracy: the energy law, a factor of the answer that vanishes (or is undefined)
 //! where the zero was found, or just where; and the sentence for each ([`Degeneracy`]).
 
-use super::search::{Found, REFINE, median};
+use super::det::median;
+use super::search::Found;
 use crate::check::common::state_text;
 use crate::check::compare::proportional;
 use crate::check::prepare::Prepared;
@@ -28,8 +29,6 @@ pub(crate) enum Degeneracy {
     },
     /// det C vanishes at `at`.
     Vanishes { at: String },
-    /// det C changes sign between `at` and `and`, so it vanishes in between.
-    SignChange { at: String, and: String },
     /// The answer is undefined at `at`, where the reference determines the accelerations.
     Undefined { at: String },
 }
@@ -77,9 +76,6 @@ impl Degeneracy {
             Degeneracy::Vanishes { at } => format!(
                 "your equations hold for the motion but stop determining the accelerations at {at}: they are the right ones multiplied by something that vanishes there"
             ),
-            Degeneracy::SignChange { at, and } => format!(
-                "your equations hold for the motion but are the right ones multiplied by something that changes sign between {at} and {and}, so it vanishes in between, where they no longer determine the accelerations"
-            ),
             Degeneracy::Undefined { at } => format!(
                 "your equations are undefined at {at}, where the right ones determine the accelerations"
             ),
@@ -106,11 +102,8 @@ pub(super) fn explain(p: &mut Prepared, res: &[Id], found: Found) -> Degeneracy 
     if let Some(d) = energy_law(p, res) {
         return d;
     }
-    let (x, y, undefined) = match found {
-        Found::At { x, undefined } => (x, None, undefined),
-        Found::Between(x, y) => (x, Some(y), false),
-    };
-    if let Some(f) = vanishing_factor(p, res, &x, y.as_deref()) {
+    let Found::At { x, undefined } = found;
+    if let Some(f) = vanishing_factor(p, res, &x) {
         let vars = p.system.pool.variables(f.factor);
         return Degeneracy::Factor {
             row: f.row,
@@ -119,17 +112,14 @@ pub(super) fn explain(p: &mut Prepared, res: &[Id], found: Found) -> Degeneracy 
             how: f.how,
         };
     }
-    match y {
-        Some(y) => Degeneracy::SignChange {
+    if undefined {
+        Degeneracy::Undefined {
             at: state_text(p, &x, None),
-            and: state_text(p, &y, None),
-        },
-        None if undefined => Degeneracy::Undefined {
+        }
+    } else {
+        Degeneracy::Vanishes {
             at: state_text(p, &x, None),
-        },
-        None => Degeneracy::Vanishes {
-            at: state_text(p, &x, None),
-        },
+        }
     }
 }
 
@@ -171,14 +161,8 @@ struct VanishingFactor {
 }
 
 /// A factor of one of the answer's equations, free of accelerations, that vanishes or is
-/// undefined at `x` (or changes sign between `x` and `y`, where the zero is then found by
-/// bisection).
-fn vanishing_factor(
-    p: &Prepared,
-    res: &[Id],
-    x: &[f64],
-    y: Option<&[f64]>,
-) -> Option<VanishingFactor> {
+/// undefined at `x` (or within rounding of it: a zero found by bisection).
+fn vanishing_factor(p: &Prepared, res: &[Id], x: &[f64]) -> Option<VanishingFactor> {
     for (i, &r) in res.iter().enumerate() {
         let Node::Mul(factors) = p.system.pool.node(r) else {
             continue;
@@ -201,12 +185,9 @@ fn vanishing_factor(
                     .collect(),
             )
             .unwrap_or(1.0);
-            let at = match (value(x), y) {
-                (None, _) => Some(x.to_vec()),
-                (Some(h), None) => (h.abs() <= tolerance::SAME * typical).then(|| x.to_vec()),
-                (Some(h), Some(y)) => value(y)
-                    .filter(|w| w.signum() != h.signum())
-                    .map(|_| bisect(&value, x, y)),
+            let at = match value(x) {
+                None => Some(x.to_vec()),
+                Some(h) => (h.abs() <= tolerance::SAME * typical).then(|| rounded(x, &value)),
             };
             if let Some(at) = at {
                 // A sign change through a pole (1/θ̇) leaves a huge value at the bisected
@@ -231,28 +212,21 @@ fn vanishing_factor(
     None
 }
 
-/// The point on the segment from `x` to `y` where `value` changes sign (bisection).
-fn bisect(value: &dyn Fn(&[f64]) -> Option<f64>, x: &[f64], y: &[f64]) -> Vec<f64> {
-    let along = |s: f64| -> Vec<f64> { x.iter().zip(y).map(|(a, b)| a + s * (b - a)).collect() };
-    let sign_at_x = value(x).map_or(0.0, f64::signum);
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..REFINE {
-        let mid = 0.5 * (lo + hi);
-        match value(&along(mid)) {
-            Some(v) if v.signum() == sign_at_x => lo = mid,
-            _ => hi = mid,
+/// `x` with each entry that is 0 up to rounding (a zero found by bisection carries noise,
+/// θ̇ = −6.7e-16) shown as 0, when the factor is no larger there.
+fn rounded(x: &[f64], value: &dyn Fn(&[f64]) -> Option<f64>) -> Vec<f64> {
+    let Some(here) = value(x).map(f64::abs) else {
+        return x.to_vec();
+    };
+    let mut out = x.to_vec();
+    for k in 0..out.len() {
+        if out[k] != 0.0 && out[k].abs() <= 1e-12 {
+            let keep = out[k];
+            out[k] = 0.0;
+            if value(&out).is_none_or(|v| v.abs() > here.max(f64::MIN_POSITIVE)) {
+                out[k] = keep;
+            }
         }
     }
-    // A zero found by bisection carries rounding noise (θ̇ = −6.7e-16): show it as 0.
-    along(0.5 * (lo + hi))
-        .into_iter()
-        .zip(x.iter().zip(y))
-        .map(|(v, (a, b))| {
-            if v.abs() <= tolerance::SAME * a.abs().max(b.abs()) {
-                0.0
-            } else {
-                v
-            }
-        })
-        .collect()
+    out
 }

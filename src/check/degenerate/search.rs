@@ -1,63 +1,62 @@
-//! Where det C vanishes: at the sample points, at special points (velocities and coordinates
-//! 0, ±π/2, π, equal parameters of one dimension) and along lines through a sample point, where
-//! a sign change or a minimum reaching zero is looked for.
+//! Where det C vanishes inside the problem's domain: at the sample points, at special points
+//! (velocities and coordinates 0, ±π/2, π, equal parameters of one dimension), between two
+//! points of opposite sign, and along lines through a sample point, where a sign change or a
+//! minimum reaching zero is looked for.
+//!
+//! A sign change is a zero only if the bisection that follows it ends on small values: one
+//! through a pole (1/sin θ, whose zero the physics shares) ends on huge ones, and one through
+//! a place where the physics is singular or that leaves the domain is not judged.
 
 use std::f64::consts::PI;
 
-use super::det::{Det, DetC};
+use super::det::{Det, DetC, median};
 use crate::check::points::Filter;
 use crate::check::prepare::Prepared;
-use crate::check::tolerance;
 
 /// Grid points on each line scanned through a sample point.
 const GRID: usize = 24;
 /// Golden-section steps refining a local minimum of |det C| found on a line.
-pub(super) const REFINE: usize = 48;
-/// A value of det C above this fraction of its typical size is not a candidate zero.
+const REFINE: usize = 48;
+/// Bisection steps that follow a sign change to its zero (or pole).
+const BISECT: usize = 60;
+/// A value of det C above this fraction of its typical size (over all samples) is not a
+/// candidate zero, so the careful test is not needed.
 const SCREEN: f64 = 1e-3;
+/// At the end of a bisection, values below this fraction of det C's typical size mean a
+/// zero was bracketed; a pole leaves values far above it.
+const CROSSING: f64 = 1e-6;
 /// How many sample points serve as bases for special points and line scans.
 const BASES: usize = 2;
-
-/// The size det C has at `x`'s parameter values: the largest |det C| over the states of the
-/// first few sample points with those parameters. Parameters may span many decades (wide
-/// points), so a value is small or not only next to others at the same parameters.
-fn local_scale(p: &Prepared, det: &DetC, x: &[f64]) -> f64 {
-    let start = p.system.state_layout().params_start();
-    p.points
-        .points
-        .iter()
-        .take(4)
-        .filter_map(|y| {
-            let mut y = y.clone();
-            y[start..].copy_from_slice(&x[start..]);
-            match det.at(&y) {
-                Det::Value(d) => Some(d.abs()),
-                _ => None,
-            }
-        })
-        .fold(0.0, f64::max)
-}
+/// How many sign changes between sample points are followed.
+const PAIRS: usize = 4;
 
 /// Where det C was found to vanish.
 pub(super) enum Found {
     /// At this point (zero, or undefined when `undefined`).
     At { x: Vec<f64>, undefined: bool },
-    /// Opposite signs at these points.
-    Between(Vec<f64>, Vec<f64>),
 }
 
-/// Looks for a point where det C vanishes, is undefined, or changes sign.
+/// Looks for a point of the domain where the answer stops determining the accelerations the
+/// physics determines.
 pub(super) fn probe(p: &Prepared, det: &DetC) -> Option<Found> {
     let filter = Filter::new(&p.system, &p.assumptions, &[]).ok()?;
-    let mut candidates: Vec<Vec<f64>> = p.points.points.clone();
+    // Each candidate with the point its zero test is scaled by: itself, or the sample
+    // point a special point was derived from.
+    let mut candidates: Vec<(Vec<f64>, &[f64])> = p
+        .points
+        .points
+        .iter()
+        .map(|x| (x.clone(), x.as_slice()))
+        .collect();
     for base in p.points.points.iter().take(BASES) {
         candidates.extend(
             special_points(p, base)
                 .into_iter()
-                .filter(|x| filter.accepts(x)),
+                .map(|x| (x, base.as_slice())),
         );
     }
-    // Only a value far below the typical one is worth the comparison at its own parameters.
+    candidates.retain(|(x, _)| filter.accepts(x));
+    // Only a value far below the typical one is worth the careful test at its own parameters.
     let typical = median(
         p.points
             .points
@@ -69,36 +68,111 @@ pub(super) fn probe(p: &Prepared, det: &DetC) -> Option<Found> {
             .collect(),
     )
     .unwrap_or(0.0);
-    let vanishes = |x: &[f64], d: f64| {
-        d == 0.0
-            || (d.abs() <= SCREEN * typical
-                && d.abs() <= tolerance::SAME * local_scale(p, det, x).max(d.abs()))
-    };
-    let mut signed: Option<(f64, Vec<f64>)> = None;
-    for x in candidates {
-        match det.at(&x) {
-            Det::Skip => {}
-            Det::Undefined => return Some(Found::At { x, undefined: true }),
-            Det::Value(d) if vanishes(&x, d) => {
-                return Some(Found::At {
-                    x,
-                    undefined: false,
-                });
+    let mut signed: Vec<(f64, &[f64])> = Vec::new();
+    for (x, reference) in &candidates {
+        match judge(det, x, det.at(x), typical, reference) {
+            Judged::Fault(found) => return Some(found),
+            Judged::Sign(d) => signed.push((d, x)),
+            Judged::Nothing => {}
+        }
+    }
+    if let Some(&(first, x)) = signed.first() {
+        let opposite = signed.iter().filter(|(d, _)| d.signum() != first.signum());
+        for &(_, y) in opposite.take(PAIRS) {
+            if let Some(found) = crossing(det, &filter, x, y, typical) {
+                return Some(found);
             }
-            Det::Value(d) => match &signed {
-                Some((s, y)) if s.signum() != d.signum() => {
-                    return Some(Found::Between(y.clone(), x));
-                }
-                Some(_) => {}
-                None => signed = Some((d, x)),
-            },
         }
     }
     p.points
         .points
         .iter()
         .take(BASES)
-        .find_map(|base| scan_lines(p, det, &filter, base))
+        .find_map(|base| scan_lines(p, det, &filter, base, typical))
+}
+
+/// What one evaluation says.
+enum Judged {
+    /// The answer stops determining an acceleration here.
+    Fault(Found),
+    /// A regular value, with its sign.
+    Sign(f64),
+    /// Nothing to judge here.
+    Nothing,
+}
+
+/// Judges `value`, det C at `x`; a zero is judged against the typical size at the
+/// parameters of `reference`.
+fn judge(det: &DetC, x: &[f64], value: Det, typical: f64, reference: &[f64]) -> Judged {
+    let careful = match value {
+        Det::Value(d) if d.abs() > SCREEN * typical => return Judged::Sign(d),
+        Det::Value(_) => det.careful(x),
+        other => other,
+    };
+    match careful {
+        Det::Skip | Det::Singular { deficient: false } => Judged::Nothing,
+        Det::Undefined => Judged::Fault(Found::At {
+            x: x.to_vec(),
+            undefined: true,
+        }),
+        Det::Singular { deficient: true } => Judged::Fault(Found::At {
+            x: x.to_vec(),
+            undefined: false,
+        }),
+        Det::Value(d) if det.is_zero(reference, d) => Judged::Fault(Found::At {
+            x: x.to_vec(),
+            undefined: false,
+        }),
+        Det::Value(d) => Judged::Sign(d),
+    }
+}
+
+/// Follows a sign change of det C from `x` to `y` along the segment between them: a zero
+/// where the physics is regular is a fault; a pole, a singularity of the physics or a step
+/// out of the domain is not.
+fn crossing(det: &DetC, filter: &Filter, x: &[f64], y: &[f64], typical: f64) -> Option<Found> {
+    let along = |s: f64| -> Vec<f64> { x.iter().zip(y).map(|(a, b)| a + s * (b - a)).collect() };
+    let sign = match det.at(x) {
+        Det::Value(d) => d.signum(),
+        _ => return None,
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..BISECT {
+        let mid = 0.5 * (lo + hi);
+        let z = along(mid);
+        if !filter.accepts(&z) {
+            return None;
+        }
+        // Values are followed to the end, so the zero is found to rounding; only a fault
+        // that is not a value (undefined, a lost rank) ends the search early.
+        match det.at(&z) {
+            Det::Value(d) if d.signum() == sign => lo = mid,
+            Det::Value(_) => hi = mid,
+            other => {
+                return match judge(det, &z, other, typical, x) {
+                    Judged::Fault(found) => Some(found),
+                    _ => None,
+                };
+            }
+        }
+    }
+    // Bracketed to rounding: a zero leaves small values, a pole huge ones.
+    let (a, b) = (along(lo), along(hi));
+    let small = |z: &[f64]| match (det.at(z), det.typical(x)) {
+        (Det::Value(d), Some(t)) => d.abs() <= CROSSING * t.det,
+        _ => false,
+    };
+    if !(small(&a) || small(&b)) {
+        return None;
+    }
+    let z = along(0.5 * (lo + hi));
+    match det.careful(&z) {
+        Det::Skip | Det::Singular { deficient: false } => None,
+        _ => Some(Found::At {
+            x: z,
+            undefined: false,
+        }),
+    }
 }
 
 /// Points derived from `base`: each velocity 0, all velocities 0, each coordinate at 0 (and
@@ -137,7 +211,13 @@ fn special_points(p: &Prepared, base: &[f64]) -> Vec<Vec<f64>> {
 
 /// Scans lines through `base` in each coordinate, velocity and parameter for a sign change of
 /// det C or a minimum of |det C| that reaches zero.
-fn scan_lines(p: &Prepared, det: &DetC, filter: &Filter, base: &[f64]) -> Option<Found> {
+fn scan_lines(
+    p: &Prepared,
+    det: &DetC,
+    filter: &Filter,
+    base: &[f64],
+    typical: f64,
+) -> Option<Found> {
     let at = p.system.state_layout();
     let mut lines: Vec<(usize, f64, f64)> = Vec::new();
     for (i, c) in p.system.coordinates.iter().enumerate() {
@@ -153,70 +233,85 @@ fn scan_lines(p: &Prepared, det: &DetC, filter: &Filter, base: &[f64]) -> Option
     for (j, q) in p.system.parameters.iter().enumerate() {
         lines.push((at.param(j), q.range.0 / 4.0, q.range.1 * 4.0));
     }
-    lines
-        .into_iter()
-        .find_map(|(k, lo, hi)| scan_line(det, filter, base, k, lo, hi))
+    lines.into_iter().find_map(|(k, lo, hi)| {
+        let line = Line {
+            det,
+            filter,
+            base,
+            k,
+        };
+        line.scan(lo, hi, typical)
+    })
 }
 
-/// One line: `base` with entry `k` running over [lo, hi].
-fn scan_line(
-    det: &DetC,
-    filter: &Filter,
-    base: &[f64],
+/// One line: `base` with entry `k` running over an interval.
+struct Line<'a> {
+    det: &'a DetC,
+    filter: &'a Filter,
+    base: &'a [f64],
     k: usize,
-    lo: f64,
-    hi: f64,
-) -> Option<Found> {
-    let point = |t: f64| {
-        let mut x = base.to_vec();
-        x[k] = t;
+}
+
+impl Line<'_> {
+    fn point(&self, t: f64) -> Vec<f64> {
+        let mut x = self.base.to_vec();
+        x[self.k] = t;
         x
-    };
-    let value = |t: f64| -> Option<f64> {
-        let x = point(t);
-        if !filter.accepts(&x) {
+    }
+
+    /// det C at `t`, if the point is in the domain and regular there.
+    fn value(&self, t: f64) -> Option<f64> {
+        let x = self.point(t);
+        if !self.filter.accepts(&x) {
             return None;
         }
-        match det.at(&x) {
+        match self.det.at(&x) {
             Det::Value(d) => Some(d),
             _ => None,
         }
-    };
-    let ts: Vec<f64> = (0..GRID)
-        .map(|g| lo + (hi - lo) * g as f64 / (GRID - 1) as f64)
-        .collect();
-    let vs: Vec<Option<f64>> = ts.iter().map(|&t| value(t)).collect();
-    // Zero relative to the largest value on this line.
-    let line_max = vs.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
-    let zero = tolerance::SAME * line_max;
-    for g in 1..GRID {
-        let (Some(a), Some(b)) = (vs[g - 1], vs[g]) else {
-            continue;
-        };
-        if a.signum() != b.signum() && a.abs() > zero && b.abs() > zero {
-            return Some(Found::Between(point(ts[g - 1]), point(ts[g])));
-        }
     }
-    for g in 1..GRID - 1 {
-        let (Some(a), Some(b), Some(c)) = (vs[g - 1], vs[g], vs[g + 1]) else {
-            continue;
-        };
-        // A strict local minimum well below the line's largest value (a plateau is not one).
-        if b.abs() < a.abs() && b.abs() <= c.abs() && b.abs() < 0.5 * line_max {
-            let t = golden_min(
-                &|t| value(t).map_or(f64::INFINITY, f64::abs),
-                ts[g - 1],
-                ts[g + 1],
-            );
-            if value(t).is_some_and(|d| d.abs() <= zero) {
-                return Some(Found::At {
-                    x: point(t),
-                    undefined: false,
-                });
+
+    fn scan(&self, lo: f64, hi: f64, typical: f64) -> Option<Found> {
+        let ts: Vec<f64> = (0..GRID)
+            .map(|g| lo + (hi - lo) * g as f64 / (GRID - 1) as f64)
+            .collect();
+        let vs: Vec<Option<f64>> = ts.iter().map(|&t| self.value(t)).collect();
+        for g in 1..GRID {
+            let (Some(a), Some(b)) = (vs[g - 1], vs[g]) else {
+                continue;
+            };
+            if a.signum() != b.signum()
+                && let Some(found) = crossing(
+                    self.det,
+                    self.filter,
+                    &self.point(ts[g - 1]),
+                    &self.point(ts[g]),
+                    typical,
+                )
+            {
+                return Some(found);
             }
         }
+        for g in 1..GRID - 1 {
+            let (Some(a), Some(b), Some(c)) = (vs[g - 1], vs[g], vs[g + 1]) else {
+                continue;
+            };
+            // A strict local minimum of |det C| (a plateau is not one).
+            if b.abs() < a.abs() && b.abs() <= c.abs() {
+                let t = golden_min(
+                    &|t| self.value(t).map_or(f64::INFINITY, f64::abs),
+                    ts[g - 1],
+                    ts[g + 1],
+                );
+                let x = self.point(t);
+                let value = self.det.at(&x);
+                if let Judged::Fault(found) = judge(self.det, &x, value, typical, self.base) {
+                    return Some(found);
+                }
+            }
+        }
+        None
     }
-    None
 }
 
 /// The argument of the least value of `f` on [a, b] (golden-section search).
@@ -238,13 +333,4 @@ fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
         }
     }
     if fc < fd { c } else { d }
-}
-
-pub(super) fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let m = v[v.len() / 2];
-    (m > 0.0).then_some(m)
 }
