@@ -2,6 +2,7 @@
 //! concept, sharing the helpers in `helpers.rs`.
 
 mod bank;
+mod bank19;
 mod chaos14;
 mod cli;
 mod corpus;
