@@ -154,6 +154,12 @@ pub struct Part {
     pub dimension: Option<Dimension>,
     /// For frequencies: the answers are ω² rather than ω.
     pub squared: bool,
+    /// For a Lagrangian: any L with the right motion is accepted (a constant factor, V − T,
+    /// a total time derivative), not only T − V up to a constant and a total derivative.
+    pub same_motion: bool,
+    /// For equilibria: each point's stability must be stated; an answer without it gets
+    /// partial credit.
+    pub require_stability: bool,
     /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
     /// the stated equilibria are the ones).
     pub assumptions: Vec<Assumption>,

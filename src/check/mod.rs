@@ -18,6 +18,7 @@ mod expression_diagnosis;
 mod fingerprint;
 mod item_reading;
 mod items;
+mod lagrangian;
 mod limits;
 mod lists;
 mod misconception;
@@ -32,5 +33,6 @@ pub mod verdict;
 
 pub use crate::problem::Assumption;
 pub use answer::{Checker, check};
+pub use named::unlabelled;
 pub use error::CheckError;
 pub use verdict::{Code, Diagnosis, ReadAs, Status, Verdict};

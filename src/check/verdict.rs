@@ -124,7 +124,11 @@ pub enum Code {
     WrongItem,
     /// Correct up to an allowed additive constant.
     UpToConstant,
-    /// A Lagrangian giving the same equations of motion.
+    /// A Lagrangian that differs from T − V by a total time derivative dF(q, t)/dt (another
+    /// gauge), accepted; and a momentum or h that follows from such an accepted L.
+    TotalDerivative,
+    /// A Lagrangian giving the same equations of motion at another scale, on a part that
+    /// accepts any L with the right motion (`accept = "same-motion"`).
     EquivalentLagrangian,
     /// Wrong, with no more specific diagnosis.
     NotEqual,
@@ -132,7 +136,7 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 43] = [
+    pub const ALL: [Code; 44] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
@@ -174,6 +178,7 @@ impl Code {
         Code::ExtraItem,
         Code::WrongItem,
         Code::UpToConstant,
+        Code::TotalDerivative,
         Code::EquivalentLagrangian,
         Code::NotEqual,
     ];
@@ -222,6 +227,7 @@ impl Code {
             Code::ExtraItem => "extra-item",
             Code::WrongItem => "wrong-item",
             Code::UpToConstant => "up-to-constant",
+            Code::TotalDerivative => "total-derivative",
             Code::EquivalentLagrangian => "equivalent-lagrangian",
             Code::NotEqual => "not-equal",
         }
@@ -289,7 +295,7 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 43] = [
+        const DOCUMENTED: [&str; 44] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
@@ -331,6 +337,7 @@ mod tests {
             "extra-item",
             "wrong-item",
             "up-to-constant",
+            "total-derivative",
             "equivalent-lagrangian",
             "not-equal",
         ];

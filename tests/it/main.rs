@@ -18,6 +18,7 @@ mod helpers;
 mod hostile;
 mod ladder;
 mod literature;
+mod meaning19;
 mod mechanics;
 mod modes13;
 mod notation;

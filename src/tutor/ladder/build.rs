@@ -56,6 +56,8 @@ impl Builder<'_> {
             quantity: Quantity::None,
             dimension: None,
             squared: false,
+            same_motion: false,
+            require_stability: false,
             assumptions: Vec::new(),
             line: self.problem.lagrangian_line,
         };
