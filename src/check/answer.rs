@@ -10,10 +10,10 @@ use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{nice_fraction, rounded};
 use super::error::CheckError;
 use super::expression_diagnosis::diagnose_expression;
+use super::lagrangian::{self, Motion};
 use super::prepare::{Prepared, prepare};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use super::lagrangian::{self, Motion};
 use super::{equations, lists, named};
 use crate::expr::{Id, Reading, read, read_expr};
 use crate::problem::{Part, PartKind, Problem, Quantity};
@@ -280,10 +280,12 @@ fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) ->
     match *rel {
         Relation::Equal => Judgement::Equal,
         Relation::UpToConstant(_) if free_constant => Judgement::AllowedConstant,
-        Relation::Factor(f) if lagrangian && (f - 1.0).abs() >= tolerance::ROUNDED => match lagrangian::motion(p, s, reference, Some(f)) {
-            Some(m) => by_motion(m),
-            None => Judgement::Factor(f),
-        },
+        Relation::Factor(f) if lagrangian && (f - 1.0).abs() >= tolerance::ROUNDED => {
+            match lagrangian::motion(p, s, reference, Some(f)) {
+                Some(m) => by_motion(m),
+                None => Judgement::Factor(f),
+            }
+        }
         Relation::Factor(f) if (f - 1.0).abs() < tolerance::ROUNDED => {
             match rounded(p, s, reference) {
                 Some(d) => Judgement::Rounded(d),
@@ -361,13 +363,12 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     }
     if v.status == Status::Correct {
         v.score = 1.0;
-        v.diagnoses
-            .retain(|d| {
-                matches!(
-                    d.code,
-                    Code::UpToConstant | Code::EquivalentLagrangian | Code::TotalDerivative
-                )
-            });
+        v.diagnoses.retain(|d| {
+            matches!(
+                d.code,
+                Code::UpToConstant | Code::EquivalentLagrangian | Code::TotalDerivative
+            )
+        });
     }
     v
 }

@@ -65,7 +65,12 @@ fn motion_factor(p: &mut Prepared, a: Id, b: Id) -> Option<f64> {
 /// How `s` relates to the reference L through the motion (`None`: another motion). `factor`
 /// is the constant factor between the two Lagrangians themselves, when the comparison found
 /// one.
-pub(super) fn motion(p: &mut Prepared, s: Id, reference: Id, factor: Option<f64>) -> Option<Motion> {
+pub(super) fn motion(
+    p: &mut Prepared,
+    s: Id,
+    reference: Id,
+    factor: Option<f64>,
+) -> Option<Motion> {
     if let Some(f) = factor {
         return Some(Motion::Scaled {
             f,

@@ -33,6 +33,6 @@ pub mod verdict;
 
 pub use crate::problem::Assumption;
 pub use answer::{Checker, check};
-pub use named::unlabelled;
 pub use error::CheckError;
+pub use named::unlabelled;
 pub use verdict::{Code, Diagnosis, ReadAs, Status, Verdict};

@@ -15,6 +15,7 @@ mod fuzz_replay;
 mod grade;
 mod grid14;
 mod helpers;
+mod higher_order19;
 mod hostile;
 mod ladder;
 mod literature;

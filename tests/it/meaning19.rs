@@ -67,8 +67,20 @@ fn a_lagrangian_is_t_minus_v_up_to_a_constant_and_a_total_derivative() {
             Incorrect,
             Some(Code::ConstantFactor),
         ),
-        ("simple-pendulum", "lagrangian", &twice, Incorrect, Some(Code::ConstantFactor)),
-        ("simple-pendulum", "lagrangian", &half, Incorrect, Some(Code::ConstantFactor)),
+        (
+            "simple-pendulum",
+            "lagrangian",
+            &twice,
+            Incorrect,
+            Some(Code::ConstantFactor),
+        ),
+        (
+            "simple-pendulum",
+            "lagrangian",
+            &half,
+            Incorrect,
+            Some(Code::ConstantFactor),
+        ),
         (
             "simple-pendulum",
             "lagrangian",
@@ -83,8 +95,20 @@ fn a_lagrangian_is_t_minus_v_up_to_a_constant_and_a_total_derivative() {
             Correct,
             Some(Code::UpToConstant),
         ),
-        ("simple-pendulum", "lagrangian", &gauge, Correct, Some(Code::TotalDerivative)),
-        ("simple-pendulum", "lagrangian", &gauge_t, Correct, Some(Code::TotalDerivative)),
+        (
+            "simple-pendulum",
+            "lagrangian",
+            &gauge,
+            Correct,
+            Some(Code::TotalDerivative),
+        ),
+        (
+            "simple-pendulum",
+            "lagrangian",
+            &gauge_t,
+            Correct,
+            Some(Code::TotalDerivative),
+        ),
         (
             "double-pendulum",
             "lagrangian",
@@ -122,9 +146,15 @@ fn a_scaled_lagrangian_says_it_gives_the_same_motion_but_other_momenta() {
     let m = &v.diagnoses[0].message;
     assert!(m.contains("same equations of motion"), "{m}");
     assert!(m.contains("not the Lagrangian asked for"), "{m}");
-    assert!(m.contains("momenta") && m.contains("energy function h"), "{m}");
+    assert!(
+        m.contains("momenta") && m.contains("energy function h"),
+        "{m}"
+    );
     let v = verdict(&p, "lagrangian", "m*l^2*theta'^2 + 2*m*g*l*cos(theta)");
-    assert!(v.diagnoses[0].message.contains("your L is 2 times T − V"), "{v:?}");
+    assert!(
+        v.diagnoses[0].message.contains("your L is 2 times T − V"),
+        "{v:?}"
+    );
 }
 
 /// The simple pendulum with `accept = "same-motion"` on its Lagrangian part.
@@ -148,8 +178,14 @@ fn a_part_can_accept_any_lagrangian_with_the_right_motion() {
     let p = same_motion_pendulum();
     assert!(lagrange::bank::verify::verify(&p).is_empty());
     for (answer, code) in [
-        ("m*l^2*theta'^2 + 2*m*g*l*cos(theta)", Code::EquivalentLagrangian),
-        ("-m*g*l*cos(theta) - 1/2*m*l^2*theta'^2", Code::EquivalentLagrangian),
+        (
+            "m*l^2*theta'^2 + 2*m*g*l*cos(theta)",
+            Code::EquivalentLagrangian,
+        ),
+        (
+            "-m*g*l*cos(theta) - 1/2*m*l^2*theta'^2",
+            Code::EquivalentLagrangian,
+        ),
         (
             "1/2*m*l^2*theta'^2 + m*g*l*cos(theta) + m*sqrt(g*l^3)*cos(theta)*theta'",
             Code::TotalDerivative,
@@ -171,11 +207,7 @@ fn accept_same_motion_is_refused_off_a_lagrangian_part() {
         .find(|(n, _)| *n == "simple-pendulum.toml")
         .map(|(_, t)| *t)
         .expect("the simple pendulum");
-    let wrong_part = text.replacen(
-        "id = \"eom\"",
-        "id = \"eom\"\naccept = \"same-motion\"",
-        1,
-    );
+    let wrong_part = text.replacen("id = \"eom\"", "id = \"eom\"\naccept = \"same-motion\"", 1);
     let err = load_str("bad.toml", &wrong_part).expect_err("refused");
     assert_eq!(err.code, "bad-accept");
     let misspelt = text.replacen(
@@ -183,7 +215,10 @@ fn accept_same_motion_is_refused_off_a_lagrangian_part() {
         "kind = \"lagrangian\"\naccept = \"any\"",
         1,
     );
-    assert_eq!(load_str("bad.toml", &misspelt).unwrap_err().code, "bad-accept");
+    assert_eq!(
+        load_str("bad.toml", &misspelt).unwrap_err().code,
+        "bad-accept"
+    );
 }
 
 #[test]
@@ -260,7 +295,10 @@ fn the_frame_moves_only_where_it_does() {
             "1/2*m*l^2*theta'^2 + m*g*l*(1 - cos(theta)) + m*g*l*theta",
         ),
         ("simple-pendulum", "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)"),
-        ("spring-incline", "1/2*m*x'^2 - 1/2*k*x^2 - m*g*x*sin(alpha)"),
+        (
+            "spring-incline",
+            "1/2*m*x'^2 - 1/2*k*x^2 - m*g*x*sin(alpha)",
+        ),
         (
             "double-pendulum",
             "1/2*(m1+m2)*l1^2*theta1'^2 + 1/2*m2*l2^2*theta2'^2 - (m1+m2)*g*l1*cos(theta1) - m2*g*l2*cos(theta2)",
@@ -319,7 +357,6 @@ fn follow_through_reads_a_labelled_earlier_answer_as_the_quantity() {
     }
 }
 
-
 #[test]
 fn the_momentum_of_an_accepted_gauge_lagrangian_is_accepted() {
     let p = bank("simple-pendulum");
@@ -338,8 +375,13 @@ fn the_momentum_of_an_accepted_gauge_lagrangian_is_accepted() {
     assert_eq!(v.status, Status::Correct, "{v:#?}");
     assert_eq!(v.diagnoses[0].code, Code::TotalDerivative);
     // h of that L is the same h (F has no t): the reference's h is right, and stays so.
-    let v = check_with_history(&p, energy, "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)", &history)
-        .expect("checks");
+    let v = check_with_history(
+        &p,
+        energy,
+        "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)",
+        &history,
+    )
+    .expect("checks");
     assert_eq!(v.status, Status::Correct);
     // A momentum that follows from neither stays wrong.
     let v = check_with_history(
@@ -355,7 +397,10 @@ fn the_momentum_of_an_accepted_gauge_lagrangian_is_accepted() {
         .expect("checks");
     assert_eq!(v.status, Status::Incorrect);
     // A scaled L is not accepted, so its momentum is only follows-from-earlier.
-    let history = [Earlier::new("lagrangian", "m*l^2*theta'^2 + 2*m*g*l*cos(theta)")];
+    let history = [Earlier::new(
+        "lagrangian",
+        "m*l^2*theta'^2 + 2*m*g*l*cos(theta)",
+    )];
     let v = check_with_history(&p, momentum, "2*m*l^2*theta'", &history).expect("checks");
     assert_eq!(v.status, Status::Incorrect);
     assert_eq!(v.diagnoses[0].code, Code::FollowsFromEarlier);
@@ -380,7 +425,11 @@ fn the_repl_follows_through_from_a_labelled_lagrangian() {
         panic!("{r:?}")
     };
     assert_eq!(v.verdict.part, "eom");
-    assert_eq!(v.verdict.diagnoses[0].code, Code::FollowsFromEarlier, "{v:?}");
+    assert_eq!(
+        v.verdict.diagnoses[0].code,
+        Code::FollowsFromEarlier,
+        "{v:?}"
+    );
 }
 
 #[test]
