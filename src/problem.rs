@@ -169,7 +169,8 @@ pub struct Part {
 
 impl Part {
     /// The reference answer as a student would type it in one line (`none` for an
-    /// explicitly empty list).
+    /// explicitly empty list), each point's stability stated where the part requires it
+    /// (`r = 0 (unstable)`).
     pub fn reference_text(&self, coordinates: usize) -> String {
         if self.answers.is_empty() {
             return NONE_ANSWER.to_string();
@@ -179,7 +180,22 @@ impl Part {
             PartKind::Equilibria if coordinates > 1 => "; ",
             _ => ", ",
         };
+        if self.require_stability {
+            let items: Vec<String> = self
+                .answers
+                .iter()
+                .zip(&self.stability)
+                .map(|(a, s)| format!("{a} ({s})"))
+                .collect();
+            return items.join(sep);
+        }
         self.answers.join(sep)
+    }
+
+    /// Whether the prompt asks about stability (`stable`, `stability`, `unstable`), so that an
+    /// equilibria part should require it.
+    pub fn prompt_asks_stability(&self) -> bool {
+        self.prompt.to_lowercase().contains("stab")
     }
 }
 

@@ -110,6 +110,8 @@ pub enum Code {
     LostRoot,
     /// An equilibrium's stability stated wrongly.
     WrongStability,
+    /// An equilibrium's stability not stated where the part asks for it.
+    MissingStability,
     /// Not as many equations as asked for.
     EquationCount,
     /// Equations that hold but do not determine the accelerations.
@@ -136,7 +138,7 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 44] = [
+    pub const ALL: [Code; 45] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
@@ -171,6 +173,7 @@ impl Code {
         Code::RoundedConstant,
         Code::LostRoot,
         Code::WrongStability,
+        Code::MissingStability,
         Code::EquationCount,
         Code::DependentEquations,
         Code::WrongEquation,
@@ -220,6 +223,7 @@ impl Code {
             Code::RoundedConstant => "rounded-constant",
             Code::LostRoot => "lost-root",
             Code::WrongStability => "wrong-stability",
+            Code::MissingStability => "missing-stability",
             Code::EquationCount => "equation-count",
             Code::DependentEquations => "dependent-equations",
             Code::WrongEquation => "wrong-equation",
@@ -295,7 +299,7 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 44] = [
+        const DOCUMENTED: [&str; 45] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
@@ -330,6 +334,7 @@ mod tests {
             "rounded-constant",
             "lost-root",
             "wrong-stability",
+            "missing-stability",
             "equation-count",
             "dependent-equations",
             "wrong-equation",

@@ -202,6 +202,10 @@ fn follows_with(
     known: &dyn Fn(&Earlier) -> Option<Verdict>,
 ) -> Option<Diagnosis> {
     let to = Stage::of(part)?;
+    // A frequency labelled as another quantity (ω² for ω) is that mistake, not a follow-through.
+    if crate::check::states_another_frequency(part, input) {
+        return None;
+    }
     let mut seen: Vec<&str> = vec![part.id.as_str()];
     for e in earlier.iter().rev() {
         // Only the problem's own parts are remembered, so `seen` stays as short as its parts.
@@ -427,7 +431,11 @@ fn verified_in(mut variant: Problem, part: &Part, input: &str) -> bool {
     }
     let mut vp = part.clone();
     vp.answers = items;
+    // Only the points are followed through: their stability (and a prompt asking for it)
+    // is not the question here.
     vp.stability.clear();
+    vp.require_stability = false;
+    vp.prompt.clear();
     variant.parts = vec![vp];
     verify(&variant).iter().all(|f| f.part.is_none())
 }

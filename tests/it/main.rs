@@ -17,6 +17,7 @@ mod grid14;
 mod helpers;
 mod higher_order19;
 mod hostile;
+mod judged19;
 mod ladder;
 mod literature;
 mod meaning19;

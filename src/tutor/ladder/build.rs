@@ -214,7 +214,10 @@ impl Builder<'_> {
             let prompt = format!(
                 "Find every equilibrium, where all the generalized forces vanish at rest; write each as {form}."
             );
-            self.adopt(eq, "equilibria", prompt);
+            // This step's prompt asks for the points only.
+            let mut eq = eq.clone();
+            eq.require_stability = false;
+            self.adopt(&eq, "equilibria", prompt);
         }
         let Some(freq) = problem
             .parts
