@@ -31,10 +31,18 @@ pub(crate) enum Said {
 }
 
 impl Said {
-    /// The quantity's symbol, as a label.
+    /// The quantity's symbol, as a label (Unicode).
     pub(crate) fn symbol(self) -> &'static str {
+        self.label(crate::expr::Style::Unicode)
+    }
+
+    /// The quantity's symbol in `style` (`omega^2` plain, `ω²` in Unicode).
+    pub(crate) fn label(self, style: crate::expr::Style) -> &'static str {
+        let plain = style == crate::expr::Style::Plain;
         match self {
+            Said::Omega if plain => "omega",
             Said::Omega => "ω",
+            Said::OmegaSquared if plain => "omega^2",
             Said::OmegaSquared => "ω²",
             Said::Ordinary => "f",
             Said::Period => "T",

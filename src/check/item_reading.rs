@@ -159,11 +159,7 @@ type LabelledValues = (Vec<Vec<Id>>, Vec<Option<ItemLabel>>);
 
 /// Values, frequencies: one expression per item (`±` giving two), and the label of each
 /// that names a frequency's quantity (frequencies only; other labels are dropped).
-fn read_values(
-    part: &Part,
-    p: &mut Prepared,
-    input: &str,
-) -> Result<LabelledValues, ParseError> {
+fn read_values(part: &Part, p: &mut Prepared, input: &str) -> Result<LabelledValues, ParseError> {
     let mut items = Vec::new();
     let mut labels = Vec::new();
     for (text, off) in split_items(input) {

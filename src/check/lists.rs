@@ -144,7 +144,7 @@ fn list_reading(
             .map(|(i, l)| {
                 let value = show_item(part, p, coords, i, style);
                 match l {
-                    Some(l) => format!("{} = {value}", l.said.symbol()),
+                    Some(l) => format!("{} = {value}", l.said.label(style)),
                     None => value,
                 }
             })

@@ -449,3 +449,16 @@ fn follow_through_sees_the_frequency_the_label_states() {
         );
     }
 }
+
+#[test]
+fn the_reading_shows_the_label_in_each_style() {
+    let p = embedded::problem("double-pendulum").expect("bank");
+    let v = Checker::new(&p)
+        .check("omega-squared", "ω² = (2 ± √2) g/l")
+        .expect("part");
+    assert_eq!(
+        v.reading.plain,
+        "omega^2 = (2 + sqrt(2))*g/l, omega^2 = (2 - sqrt(2))*g/l"
+    );
+    assert_eq!(v.reading.unicode, "ω² = (2 + √2)·g/l, ω² = (2 − √2)·g/l");
+}
