@@ -468,3 +468,38 @@ fn grade_follows_through_from_a_labelled_lagrangian() {
         "{results}"
     );
 }
+
+#[test]
+fn on_every_bank_lagrangian_part_a_constant_factor_is_not_the_lagrangian() {
+    let mut checked = 0;
+    for p in &embedded::bank().problems {
+        for part in p
+            .parts
+            .iter()
+            .filter(|x| x.kind == lagrange::PartKind::Lagrangian)
+        {
+            let reference = &part.answers[0];
+            let mut c = Checker::new(p);
+            assert_eq!(
+                c.check(&part.id, reference).expect("part").status,
+                Status::Correct
+            );
+            for (factor, code) in [
+                ("-1", Code::SignError),
+                ("2", Code::ConstantFactor),
+                ("1/2", Code::ConstantFactor),
+                ("3", Code::ConstantFactor),
+                ("-2", Code::ConstantFactor),
+            ] {
+                let v = c
+                    .check(&part.id, &format!("{factor}*({reference})"))
+                    .expect("part");
+                assert_eq!(v.status, Status::Incorrect, "{}: {factor}·L", p.id);
+                assert_eq!(v.score, 0.0, "{}: {factor}·L", p.id);
+                assert_eq!(v.diagnoses[0].code, code, "{}: {factor}·L {v:#?}", p.id);
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "{checked}");
+}
