@@ -154,6 +154,12 @@ pub struct Part {
     pub dimension: Option<Dimension>,
     /// For frequencies: the answers are ω² rather than ω.
     pub squared: bool,
+    /// For a Lagrangian: any L with the right motion is accepted (a constant factor, V − T,
+    /// a total time derivative), not only T − V up to a constant and a total derivative.
+    pub same_motion: bool,
+    /// For equilibria: each point's stability must be stated; an answer without it gets
+    /// partial credit.
+    pub require_stability: bool,
     /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
     /// the stated equilibria are the ones).
     pub assumptions: Vec<Assumption>,
@@ -163,7 +169,8 @@ pub struct Part {
 
 impl Part {
     /// The reference answer as a student would type it in one line (`none` for an
-    /// explicitly empty list).
+    /// explicitly empty list), each point's stability stated where the part requires it
+    /// (`r = 0 (unstable)`).
     pub fn reference_text(&self, coordinates: usize) -> String {
         if self.answers.is_empty() {
             return NONE_ANSWER.to_string();
@@ -173,7 +180,22 @@ impl Part {
             PartKind::Equilibria if coordinates > 1 => "; ",
             _ => ", ",
         };
+        if self.require_stability {
+            let items: Vec<String> = self
+                .answers
+                .iter()
+                .zip(&self.stability)
+                .map(|(a, s)| format!("{a} ({s})"))
+                .collect();
+            return items.join(sep);
+        }
         self.answers.join(sep)
+    }
+
+    /// Whether the prompt asks about stability (`stable`, `stability`, `unstable`), so that an
+    /// equilibria part should require it.
+    pub fn prompt_asks_stability(&self) -> bool {
+        self.prompt.to_lowercase().contains("stab")
     }
 }
 

@@ -78,6 +78,9 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         }
     }
     system.parameters = declared;
+    system
+        .check_first_order()
+        .map_err(|e| b.fail(lagrangian_line, e.code(), e.to_string()))?;
     let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
     // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
     reader.point_forces(&pf, &mut system)?;

@@ -99,6 +99,36 @@ pub(super) fn build_part(
         .map(Dimension::parse)
         .transpose()
         .map_err(|e| ("bad-dimension", e))?;
+    let same_motion = match sp.accept.as_deref() {
+        None => false,
+        Some("same-motion") if kind == PartKind::Lagrangian || quantity == Quantity::Lagrangian => {
+            true
+        }
+        Some("same-motion") => {
+            return Err((
+                "bad-accept",
+                "accept = \"same-motion\" applies to a Lagrangian part only".into(),
+            ));
+        }
+        Some(other) => {
+            return Err((
+                "bad-accept",
+                format!("accept = \"{other}\" (only \"same-motion\", on a Lagrangian part)"),
+            ));
+        }
+    };
+    if sp.require_stability && kind != PartKind::Equilibria {
+        return Err((
+            "bad-require-stability",
+            "require_stability applies to an equilibria part only".into(),
+        ));
+    }
+    if sp.require_stability && sp.stability.len() != answers.len() {
+        return Err((
+            "bad-require-stability",
+            "require_stability needs the stability of every stated point: give `stability`, one word per answer item".into(),
+        ));
+    }
     for s in &sp.stability {
         if !matches!(s.as_str(), "stable" | "unstable" | "marginal") {
             return Err((
@@ -127,6 +157,8 @@ pub(super) fn build_part(
         quantity,
         dimension,
         squared: sp.squared,
+        same_motion,
+        require_stability: sp.require_stability,
         // Read by the builder, which holds the system mutably.
         assumptions: Vec::new(),
         line,

@@ -68,8 +68,16 @@ pub const FILES: &[(&str, &str)] = &[
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is
-/// built (a full scan is the fallback if a name and an id ever disagree).
+/// built (a full scan is the fallback if a name and an id ever disagree). An id two files
+/// declare is refused, as in a folder ([`Bank::add`]).
 pub fn problem(id: &str) -> Option<crate::problem::Problem> {
+    let declaring = FILES
+        .iter()
+        .filter(|(_, text)| super::load::declared_id(text).is_none_or(|d| d == id))
+        .count();
+    if declaring > 1 {
+        return bank().problems.into_iter().find(|p| p.id == id);
+    }
     let by_name = FILES
         .iter()
         .find(|(name, _)| name.strip_suffix(".toml") == Some(id))
@@ -83,7 +91,7 @@ pub fn bank() -> Bank {
     let mut b = Bank::default();
     for (name, text) in FILES {
         match load_str(&format!("problems/{name}"), text) {
-            Ok(p) => b.problems.push(p),
+            Ok(p) => b.add(p, format!("problems/{name}")),
             Err(f) => b.failures.push(f),
         }
     }

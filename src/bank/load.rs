@@ -26,21 +26,45 @@ impl Bank {
         self.problems.iter().find(|p| p.id == id)
     }
 
-    /// Adds a problem loaded from `file`, or a `duplicate-id` finding when its id is taken.
+    /// Adds a problem loaded from `file`. A problem whose id another file already defines
+    /// is refused, and so is the one loaded before it: neither is in the bank (a command
+    /// would otherwise reach one file and a grader the other), and the `duplicate-id`
+    /// finding names both files.
     pub fn add(&mut self, p: Problem, file: String) {
-        if self.problem(&p.id).is_some() {
-            self.failures.push(Finding {
-                file,
-                problem: Some(p.id.clone()),
-                part: None,
-                line: 1,
-                code: "duplicate-id",
-                message: format!("another file already defines `{}`", p.id),
-            });
-        } else {
-            self.problems.push(p);
-        }
+        let earlier = self.problems.iter().position(|q| q.id == p.id);
+        let refused = self
+            .failures
+            .iter()
+            .find(|f| f.code == DUPLICATE_ID && f.problem.as_deref() == Some(p.id.as_str()))
+            .map(|f| f.file.clone());
+        let first = match (earlier, refused) {
+            (Some(k), _) => self.problems.remove(k).file,
+            (None, Some(f)) => f,
+            (None, None) => {
+                self.problems.push(p);
+                return;
+            }
+        };
+        self.failures.push(Finding {
+            file: file.clone(),
+            problem: Some(p.id.clone()),
+            part: None,
+            line: 1,
+            code: DUPLICATE_ID,
+            message: duplicate_message(&p.id, &first, &file),
+        });
     }
+}
+
+/// The code of two files defining one problem id.
+pub const DUPLICATE_ID: &str = "duplicate-id";
+
+/// Why a problem defined by two files is refused, naming both.
+pub fn duplicate_message(id: &str, first: &str, second: &str) -> String {
+    format!(
+        "the problem `{}` is defined by two files, {first} and {second}: neither is loaded until one of them is renamed or removed (an id names one problem)",
+        crate::expr::error::visible(id)
+    )
 }
 
 /// Loads one problem from TOML text; `file` names it in findings.
@@ -213,14 +237,11 @@ pub fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
 }
 
 /// Loads only the problem `id` from the folder `dir`, so that a command about one problem
-/// does not build a whole bank: `dir/ID.toml` first (problems are named after their id),
-/// then, if that file does not define it, the first file in name order that does. A file
-/// whose `id` line names another problem is read but not built. Files that fail to load
-/// are skipped, as [`load_dir`] would list them as failures.
+/// does not build a whole bank: a file is built only when it mentions the id and its `id`
+/// line does not name another problem. Files that fail to load are skipped, as
+/// [`load_dir`] would list them as failures. Two files that define the id are an error
+/// naming both (the id would mean whichever file a command happened to read).
 pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
-    let plain_name =
-        !id.is_empty() && !id.starts_with('.') && !id.contains(['/', '\\', '\0']) && id.len() < 200;
-    let named = dir.join(format!("{id}.toml"));
     let load = |path: &Path| -> Option<Problem> {
         let text = read_file(path).ok()?;
         // A file that does not mention the id cannot define it (a fast substring search);
@@ -232,24 +253,22 @@ pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
             .ok()
             .filter(|p| p.id == id)
     };
-    if plain_name && let Some(p) = load(&named) {
-        return Ok(Some(p));
-    }
+    let mut found: Option<Problem> = None;
     for path in toml_files(dir)? {
-        if plain_name && path == named {
-            continue;
-        }
         if let Some(p) = load(&path) {
-            return Ok(Some(p));
+            if let Some(first) = &found {
+                return Err(duplicate_message(id, &first.file, &p.file));
+            }
+            found = Some(p);
         }
     }
-    Ok(None)
+    Ok(found)
 }
 
 /// The id a problem file declares, found without parsing the TOML: a top-level line
 /// `id = "…"` (or `'…'`) before the first table, outside multi-line strings. `None` when
 /// the file says it some other way (escapes, a quoted key): then it is parsed to find out.
-fn declared_id(text: &str) -> Option<&str> {
+pub(super) fn declared_id(text: &str) -> Option<&str> {
     let mut open: Option<&str> = None;
     for line in text.lines() {
         let t = line.trim();

@@ -252,4 +252,10 @@ pub struct PartSpec {
     /// Inequalities on the parameters for this part only, besides the problem's.
     #[serde(default)]
     pub assume: Vec<String>,
+    /// What else a part accepts: `"same-motion"` (a Lagrangian part) accepts any L with the
+    /// right equations of motion.
+    pub accept: Option<String>,
+    /// For equilibria: each point's stability must be stated.
+    #[serde(default)]
+    pub require_stability: bool,
 }

@@ -103,6 +103,14 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     if let Some(why) = unprovable(part) {
         return Err(fail("unprovable", why));
     }
+    // A prompt that asks about stability is answered in full only with it.
+    if part.kind == PartKind::Equilibria && part.prompt_asks_stability() && !part.require_stability
+    {
+        return Err(fail(
+            "stability-not-required",
+            "the prompt asks about stability, but the part does not require it: an answer without any stability would get full marks; set `require_stability = true` (with `stability`, one word per point)".into(),
+        ));
+    }
     let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
     let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {

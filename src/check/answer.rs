@@ -10,12 +10,13 @@ use super::compare::{Relation, fmt_value, relate, values};
 use super::diagnose::{nice_fraction, rounded};
 use super::error::CheckError;
 use super::expression_diagnosis::diagnose_expression;
+use super::lagrangian::{self, Motion};
 use super::prepare::{Prepared, prepare};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use super::{equations, lists, named};
 use crate::expr::{Id, Reading, read, read_expr};
-use crate::problem::{Part, PartKind, Problem};
+use crate::problem::{Part, PartKind, Problem, Quantity};
 
 /// Checks answers to one problem, preparing each part once.
 pub struct Checker<'a> {
@@ -149,10 +150,12 @@ enum Judgement {
     Equal,
     /// Off by a constant, which this part allows.
     AllowedConstant,
-    /// A Lagrangian `f` times the reference.
-    ScaledLagrangian(f64),
-    /// A Lagrangian differing by a total time derivative.
-    EquivalentLagrangian,
+    /// A Lagrangian with the reference's motion, accepted (a total time derivative; any
+    /// factor on a part that accepts the same motion).
+    SameMotion(Motion),
+    /// A Lagrangian with the reference's motion at another scale (2L, V − T): not the
+    /// Lagrangian asked for.
+    OtherScale(Motion),
     /// Constants rounded (the diagnosis is the search's).
     Rounded(Diagnosis),
     /// The negative of the reference.
@@ -170,10 +173,7 @@ impl Judgement {
     fn accepts(&self) -> bool {
         matches!(
             self,
-            Judgement::Equal
-                | Judgement::AllowedConstant
-                | Judgement::ScaledLagrangian(_)
-                | Judgement::EquivalentLagrangian
+            Judgement::Equal | Judgement::AllowedConstant | Judgement::SameMotion(_)
         )
     }
 
@@ -185,17 +185,8 @@ impl Judgement {
                 Code::UpToConstant,
                 "your answer differs from the reference by a constant; that is allowed here (the zero of potential energy is a free choice)",
             ),
-            Judgement::ScaledLagrangian(f) => Diagnosis::new(
-                Code::EquivalentLagrangian,
-                format!(
-                    "your L is {} times the reference; a constant factor gives the same equations of motion",
-                    nice_fraction(f).unwrap_or_else(|| fmt_value(f))
-                ),
-            ),
-            Judgement::EquivalentLagrangian => Diagnosis::new(
-                Code::EquivalentLagrangian,
-                "your L differs from the reference by a total time derivative (or a constant); it gives the same equations of motion",
-            ),
+            Judgement::SameMotion(m) => lagrangian::accepted(m),
+            Judgement::OtherScale(m) => lagrangian::refused(m)?,
             Judgement::Rounded(d) => d,
             Judgement::Negated => Diagnosis::new(
                 Code::SignError,
@@ -273,15 +264,28 @@ fn dimension_check(
     })
 }
 
-/// Classifies how the answer `s` relates to the reference.
+/// Classifies how the answer `s` relates to the reference. V, L and h are each defined up
+/// to an added constant; L also up to a total time derivative.
 fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) -> Judgement {
-    let lagrangian = part.kind == PartKind::Lagrangian;
+    let lagrangian = lagrangian::asks_lagrangian(part);
+    let free_constant =
+        part.up_to_constant || lagrangian || part.quantity == Quantity::EnergyFunction;
+    let by_motion = |m: Motion| {
+        if m == Motion::Gauge || part.same_motion {
+            Judgement::SameMotion(m)
+        } else {
+            Judgement::OtherScale(m)
+        }
+    };
     match *rel {
         Relation::Equal => Judgement::Equal,
-        Relation::UpToConstant(_) if part.up_to_constant || lagrangian => {
-            Judgement::AllowedConstant
+        Relation::UpToConstant(_) if free_constant => Judgement::AllowedConstant,
+        Relation::Factor(f) if lagrangian && (f - 1.0).abs() >= tolerance::ROUNDED => {
+            match lagrangian::motion(p, s, reference, Some(f)) {
+                Some(m) => by_motion(m),
+                None => Judgement::Factor(f),
+            }
         }
-        Relation::Factor(f) if lagrangian => Judgement::ScaledLagrangian(f),
         Relation::Factor(f) if (f - 1.0).abs() < tolerance::ROUNDED => {
             match rounded(p, s, reference) {
                 Some(d) => Judgement::Rounded(d),
@@ -292,10 +296,12 @@ fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) ->
         Relation::Factor(f) => Judgement::Factor(f),
         Relation::Undefined { point } => Judgement::Undefined { point },
         Relation::UpToConstant(_) | Relation::Different { .. } => {
-            if lagrangian && equivalent_lagrangian(p, s, reference) {
-                Judgement::EquivalentLagrangian
-            } else {
-                Judgement::Unexplained
+            match lagrangian
+                .then(|| lagrangian::motion(p, s, reference, None))
+                .flatten()
+            {
+                Some(m) => by_motion(m),
+                None => Judgement::Unexplained,
             }
         }
     }
@@ -357,8 +363,12 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
     }
     if v.status == Status::Correct {
         v.score = 1.0;
-        v.diagnoses
-            .retain(|d| matches!(d.code, Code::UpToConstant | Code::EquivalentLagrangian));
+        v.diagnoses.retain(|d| {
+            matches!(
+                d.code,
+                Code::UpToConstant | Code::EquivalentLagrangian | Code::TotalDerivative
+            )
+        });
     }
     v
 }
@@ -388,33 +398,4 @@ fn rate_for_its_square(part: &Part, p: &mut Prepared, s: Id, reference: Id) -> O
             "that is the rate, but this part asks for its square: square it",
         )
     })
-}
-
-/// Same Euler–Lagrange equations (up to a nonzero factor) for two Lagrangians.
-fn equivalent_lagrangian(p: &mut Prepared, a: Id, b: Id) -> bool {
-    let coords = p.system.coordinate_syms();
-    let mut ea = Vec::new();
-    let mut eb = Vec::new();
-    for &c in &coords {
-        for (l, out) in [(a, &mut ea), (b, &mut eb)] {
-            let pm = p.system.pool.diff(l, c, 1);
-            let dp = p.system.pool.dt(pm, &coords);
-            let dl = p.system.pool.diff(l, c, 0);
-            out.push(p.system.pool.sub(dp, dl));
-        }
-    }
-    let mut factor: Option<f64> = None;
-    for (x, y) in ea.into_iter().zip(eb) {
-        match relate(&p.system, x, y, &p.points, tolerance::SAME) {
-            Ok(Relation::Equal) => factor = factor.or(Some(1.0)),
-            Ok(Relation::Factor(f)) => {
-                if factor.is_some_and(|g| (g - f).abs() > tolerance::NUMBER * f.abs()) {
-                    return false;
-                }
-                factor = Some(f);
-            }
-            _ => return false,
-        }
-    }
-    true
 }

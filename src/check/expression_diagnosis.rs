@@ -18,8 +18,9 @@ use crate::problem::{Part, PartKind, Quantity};
 enum Mistake {
     /// T + V where the Lagrangian T − V is asked.
     PlusForLagrangian,
-    /// T + V where the energy function h (not T + V here) is asked.
-    PlusForEnergy,
+    /// T + V where the energy function h (not T + V here) is asked; `moving` when T is not a
+    /// quadratic form in the velocities (terms linear in them, or none: the frame moves).
+    PlusForEnergy { moving: bool },
     /// The Lagrangian where `what` is asked.
     GaveLagrangian { what: &'static str },
     /// Found by one of the shared searches (rounding, swapped symbols, a term).
@@ -45,9 +46,13 @@ impl Mistake {
             Mistake::PlusForLagrangian => {
                 Diagnosis::new(Code::TPlusV, "you wrote T + V; the Lagrangian is L = T − V")
             }
-            Mistake::PlusForEnergy => Diagnosis::new(
+            Mistake::PlusForEnergy { moving: true } => Diagnosis::new(
                 Code::TPlusV,
                 "you wrote T + V, but here h = Σ q̇ ∂L/∂q̇ − L is not T + V: T is not a quadratic form in the velocities (the frame moves), so compute h from its definition",
+            ),
+            Mistake::PlusForEnergy { moving: false } => Diagnosis::new(
+                Code::TPlusV,
+                "you wrote T + V, but here h = Σ q̇ ∂L/∂q̇ − L is not T + V, so compute h from its definition",
             ),
             Mistake::GaveLagrangian { what } => Diagnosis::new(
                 Code::GaveLagrangian,
@@ -95,7 +100,8 @@ fn wrong_quantity(part: &Part, p: &mut Prepared, s: Id) -> Vec<Mistake> {
             out.push(Mistake::PlusForLagrangian);
         }
         if part.quantity == Quantity::EnergyFunction && eq_const(p, tv) {
-            out.push(Mistake::PlusForEnergy);
+            let moving = not_quadratic(p, t);
+            out.push(Mistake::PlusForEnergy { moving });
         }
     }
     let what = match part.quantity {
@@ -109,6 +115,30 @@ fn wrong_quantity(part: &Part, p: &mut Prepared, s: Id) -> Vec<Mistake> {
         out.push(Mistake::GaveLagrangian { what });
     }
     out
+}
+
+/// Whether the kinetic energy `t` is not a quadratic form in the velocities: at rest (every
+/// velocity 0) it, or its slope in some velocity, does not vanish at some sample point. A
+/// frame that moves (a spinning wire, a rotating frame) gives such terms; a fixed one never.
+fn not_quadratic(p: &mut Prepared, t: Id) -> bool {
+    let coords = p.system.coordinate_syms();
+    let zero = p.system.pool.zero();
+    let rest: rustc_hash::FxHashMap<_, Id> = coords.iter().map(|&c| ((c, 1), zero)).collect();
+    let mut at_rest = vec![t, p.system.pool.substitute(t, &rest)];
+    for &c in &coords {
+        let slope = p.system.pool.diff(t, c, 1);
+        at_rest.push(p.system.pool.substitute(slope, &rest));
+    }
+    let Ok(vals) = values(&p.system, &at_rest, &p.points) else {
+        return true;
+    };
+    // Relative to T itself at the same point, so that the scale of the masses does not
+    // decide.
+    vals.iter().flatten().any(|x| {
+        x[1..]
+            .iter()
+            .any(|y| y.abs() > tolerance::SAME * (x[0].abs() + tolerance::TINY))
+    })
 }
 
 /// Rounded constants, one term that differs (a sign, a factor, a wrong factor inside, a term

@@ -14,7 +14,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::compare::values;
-use super::lists::read_items;
+use super::item_reading::read_stated_items;
 use super::points::PointSet;
 use super::prepare::Prepared;
 use crate::expr::{Id, Reading, Style, read};
@@ -34,14 +34,17 @@ const ZERO: f64 = 1e-10;
 pub(crate) fn canonical(part: &Part, p: &mut Prepared, input: &str) -> Option<String> {
     let input = unnamed(part, p, input);
     if is_list(part) {
-        let items = read_items(part, p, input).ok()?;
+        let (items, said) = read_said(part, p, input)?;
         let mut shown: Vec<String> = items
             .iter()
-            .map(|it| {
-                it.iter()
+            .zip(&said)
+            .map(|(it, s)| {
+                let value = it
+                    .iter()
                     .map(|&x| p.system.pool.display(x, Style::Plain))
                     .collect::<Vec<_>>()
-                    .join(", ")
+                    .join(", ");
+                format!("{s}{value}")
             })
             .collect();
         shown.sort();
@@ -78,6 +81,21 @@ fn unnamed<'i>(part: &Part, p: &mut Prepared, input: &'i str) -> &'i str {
     }
 }
 
+/// A list's items, each with a mark of the quantity its label states when that is not what
+/// the part asks for (`ω² = √(g/l)` is not `√(g/l)`: its verdict differs); empty otherwise.
+fn read_said(part: &Part, p: &mut Prepared, input: &str) -> Option<(Vec<Vec<Id>>, Vec<String>)> {
+    let read = read_stated_items(part, p, input).ok()?;
+    let said = read
+        .labels
+        .iter()
+        .map(|l| match l {
+            Some(l) if !super::freq_label::fits(part, Some(l.said)) => format!("{:?}:", l.said),
+            _ => String::new(),
+        })
+        .collect();
+    Some((read.items, said))
+}
+
 fn is_list(part: &Part) -> bool {
     matches!(
         part.kind,
@@ -92,16 +110,16 @@ pub(crate) fn fingerprint(part: &Part, p: &mut Prepared, input: &str) -> Option<
         points: p.points.points.iter().take(POINTS).cloned().collect(),
     };
     if is_list(part) {
-        let items = read_items(part, p, input).ok()?;
+        let (items, said) = read_said(part, p, input)?;
         let mut keys: Vec<String> = Vec::with_capacity(items.len());
-        for it in &items {
+        for (it, s) in items.iter().zip(&said) {
             let vals = values(&p.system, it, &pts).ok()?;
-            keys.push(
-                vals.iter()
-                    .map(|v| v.as_deref().map_or("u".to_string(), quantise_all))
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            );
+            let key = vals
+                .iter()
+                .map(|v| v.as_deref().map_or("u".to_string(), quantise_all))
+                .collect::<Vec<_>>()
+                .join(" ");
+            keys.push(format!("{s}{key}"));
         }
         keys.sort();
         return Some(format!("[{}]", keys.join("; ")));

@@ -6,6 +6,7 @@
 //! Inputs with none of the newer notations take the original path, so their readings (and
 //! error messages) are unchanged.
 
+use super::freq_label::{self, Said};
 use super::prepare::Prepared;
 use super::stability::{self, Stated};
 use crate::expr::{Id, Node, ParseError, ParseErrorKind, Reading, read, read_expr};
@@ -35,38 +36,63 @@ fn split_at<'a>(input: &'a str, seps: &[char]) -> Vec<(&'a str, usize)> {
     out
 }
 
-/// `omega1 = …` → (`…`, offset of it); a bare item is returned as is.
-fn strip_label(item: &str) -> (&str, usize) {
+/// `omega1 = …` → (`…`, offset of it, the label); a bare item is returned as is.
+fn strip_label(item: &str) -> (&str, usize, Option<&str>) {
     if let Some(k) = item.find('=') {
         let label = item[..k].trim();
         if !label.is_empty()
-            && label
-                .chars()
-                .all(|c| c.is_alphanumeric() || c == '_' || "₀₁₂₃₄₅₆₇₈₉²'".contains(c))
+            && label.chars().all(|c| {
+                c.is_alphanumeric() || c == '_' || c == ' ' || "₀₁₂₃₄₅₆₇₈₉²'^*".contains(c)
+            })
         {
-            return (&item[k + 1..], k + 1);
+            return (&item[k + 1..], k + 1, Some(label));
         }
     }
-    (item, 0)
+    (item, 0, None)
+}
+
+/// Whether an item of the frequencies answer `input` is labelled as another quantity than
+/// `part` asks for (`ω² = …` where ω is asked): such an answer states something else, and is
+/// not followed through as a list of the asked frequencies.
+pub fn states_another_frequency(part: &Part, input: &str) -> bool {
+    part.kind == PartKind::Frequencies
+        && split_items(input).iter().any(|(text, _)| {
+            let said = strip_label(text).2.and_then(freq_label::said);
+            !freq_label::fits(part, said)
+        })
 }
 
 fn shifted(e: ParseError, by: usize) -> ParseError {
     ParseError::new(e.kind, e.span.start + by..e.span.end + by)
 }
 
-/// The student's items, each one value per coordinate (equilibria) or one value.
-pub(crate) fn read_items(
-    part: &Part,
-    p: &mut Prepared,
-    input: &str,
-) -> Result<Vec<Vec<Id>>, ParseError> {
-    read_stated_items(part, p, input).map(|(items, _)| items)
+/// A frequency item's label that names a quantity (`ω² = …`, `omega1 = …`, `f = …`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ItemLabel {
+    pub(crate) said: Said,
 }
 
-/// Items (one value per coordinate each) and the stability stated for each.
-pub(crate) type StatedItems = (Vec<Vec<Id>>, Vec<Option<Stated>>);
+/// A list answer as read: the items (one value per coordinate each), the stability stated
+/// for each (equilibria), and each item's label (frequencies).
+pub(crate) struct StatedItems {
+    pub(crate) items: Vec<Vec<Id>>,
+    pub(crate) stated: Vec<Option<Stated>>,
+    pub(crate) labels: Vec<Option<ItemLabel>>,
+}
 
-/// The student's items and the stability stated for each (equilibria only).
+impl StatedItems {
+    fn unlabelled(items: Vec<Vec<Id>>, stated: Vec<Option<Stated>>) -> StatedItems {
+        let n = items.len();
+        StatedItems {
+            items,
+            stated,
+            labels: vec![None; n],
+        }
+    }
+}
+
+/// The student's items, the stability stated for each (equilibria only) and the label of
+/// each (frequencies only).
 pub(crate) fn read_stated_items(
     part: &Part,
     p: &mut Prepared,
@@ -74,12 +100,16 @@ pub(crate) fn read_stated_items(
 ) -> Result<StatedItems, ParseError> {
     // `none`: the empty list, stated.
     if crate::problem::is_none_answer(input) {
-        return Ok((Vec::new(), Vec::new()));
+        return Ok(StatedItems::unlabelled(Vec::new(), Vec::new()));
     }
     if part.kind != PartKind::Equilibria {
-        let items = read_values(part, p, input)?;
+        let (items, labels) = read_values(part, p, input)?;
         let n = items.len();
-        return Ok((items, vec![None; n]));
+        return Ok(StatedItems {
+            items,
+            stated: vec![None; n],
+            labels,
+        });
     }
     let input = &super::prepare::any_as_marker(p, input);
     let marked = stability::mark(p, input)?;
@@ -88,7 +118,7 @@ pub(crate) fn read_stated_items(
     if marked.stated.is_empty() && !input.contains(['±', '∓']) && !tuples {
         let items = read_points(p, input)?;
         let n = items.len();
-        return Ok((items, vec![None; n]));
+        return Ok(StatedItems::unlabelled(items, vec![None; n]));
     }
     let pieces = if n == 1 || tuples {
         split_items(&marked.text)
@@ -121,25 +151,34 @@ pub(crate) fn read_stated_items(
             stated.push(said);
         }
     }
-    Ok((items, stated))
+    Ok(StatedItems::unlabelled(items, stated))
 }
 
-/// Values, frequencies: one expression per item (labels dropped, `±` giving two).
-fn read_values(part: &Part, p: &mut Prepared, input: &str) -> Result<Vec<Vec<Id>>, ParseError> {
+/// Items of one value each, with the label of each.
+type LabelledValues = (Vec<Vec<Id>>, Vec<Option<ItemLabel>>);
+
+/// Values, frequencies: one expression per item (`±` giving two), and the label of each
+/// that names a frequency's quantity (frequencies only; other labels are dropped).
+fn read_values(part: &Part, p: &mut Prepared, input: &str) -> Result<LabelledValues, ParseError> {
     let mut items = Vec::new();
+    let mut labels = Vec::new();
     for (text, off) in split_items(input) {
-        let (body, k) = if matches!(part.kind, PartKind::Frequencies | PartKind::Values) {
+        let (body, k, label) = if matches!(part.kind, PartKind::Frequencies | PartKind::Values) {
             strip_label(text)
         } else {
-            (text, 0)
+            (text, 0, None)
         };
+        let said = label
+            .filter(|_| part.kind == PartKind::Frequencies)
+            .and_then(freq_label::said);
         for variant in plus_minus(body) {
             let id = read_expr(&variant, &p.context, &mut p.system.pool)
                 .map_err(|e| shifted(e, off + k))?;
             items.push(vec![id]);
+            labels.push(said.map(|said| ItemLabel { said }));
         }
     }
-    Ok(items)
+    Ok((items, labels))
 }
 
 /// `±a` as `+ a` and `- a` (each `±` two bytes wide, like its replacements, so offsets

@@ -10,8 +10,8 @@ use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Style};
 use crate::problem::{Part, PartKind, Problem};
 
-pub(crate) use super::item_reading::read_items;
-use super::item_reading::read_stated_items;
+use super::freq_label;
+use super::item_reading::{ItemLabel, read_stated_items};
 
 fn reference_items(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, CheckError> {
     part.answers
@@ -49,10 +49,19 @@ fn show_item(part: &Part, p: &Prepared, coords: &[Id], it: &[Id], style: Style) 
 }
 
 /// Matches student items to reference items one to one: (matched reference, matched student).
-fn match_items(part: &Part, p: &Prepared, lists: &Lists) -> (Vec<bool>, Vec<bool>) {
+/// A `blocked` item (labelled as another quantity) matches nothing.
+fn match_items(
+    part: &Part,
+    p: &Prepared,
+    lists: &Lists,
+    blocked: &[bool],
+) -> (Vec<bool>, Vec<bool>) {
     let mut matched_ref = vec![false; lists.reference.len()];
-    let mut matched_stu = vec![false; lists.student.len()];
+    let mut matched_stu = blocked.to_vec();
     for (i, s) in lists.student.iter().enumerate() {
+        if blocked[i] {
+            continue;
+        }
         if let Some(j) = (0..lists.reference.len()).find(|&j| {
             !matched_ref[j] && same_item(part, p, s, &lists.reference[j], part.tolerance)
         }) {
@@ -62,6 +71,10 @@ fn match_items(part: &Part, p: &Prepared, lists: &Lists) -> (Vec<bool>, Vec<bool
     }
     if part.kind == PartKind::Frequencies {
         match_zero_frequencies(part, lists, &mut matched_ref, &mut matched_stu);
+    }
+    // Blocked items were marked only to keep them out of the matching.
+    for (m, b) in matched_stu.iter_mut().zip(blocked) {
+        *m &= !b;
     }
     (matched_ref, matched_stu)
 }
@@ -110,8 +123,15 @@ fn match_zero_frequencies(
     }
 }
 
-/// How the items were read, joined as a student would type them.
-fn list_reading(part: &Part, p: &Prepared, coords: &[Id], items: &[Vec<Id>]) -> ReadAs {
+/// How the items were read, joined as a student would type them (with the label of a
+/// frequency that names its quantity, `ω² = g/l`).
+fn list_reading(
+    part: &Part,
+    p: &Prepared,
+    coords: &[Id],
+    items: &[Vec<Id>],
+    labels: &[Option<ItemLabel>],
+) -> ReadAs {
     let sep = if part.kind == PartKind::Equilibria && p.system.n() > 1 {
         "; "
     } else {
@@ -120,7 +140,14 @@ fn list_reading(part: &Part, p: &Prepared, coords: &[Id], items: &[Vec<Id>]) -> 
     let shown = |style: Style| -> String {
         items
             .iter()
-            .map(|i| show_item(part, p, coords, i, style))
+            .zip(labels)
+            .map(|(i, l)| {
+                let value = show_item(part, p, coords, i, style);
+                match l {
+                    Some(l) => format!("{} = {value}", l.said.label(style)),
+                    None => value,
+                }
+            })
             .collect::<Vec<_>>()
             .join(sep)
     };
@@ -143,10 +170,15 @@ fn cached_reference(part: &Part, p: &mut Prepared) -> Result<Vec<Vec<Id>>, Check
 /// Checks a list answer.
 pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str) -> Verdict {
     let mut v = verdict(problem, part, Status::Incorrect);
-    let (items, stated) = match read_stated_items(part, p, input) {
-        Ok(i) => i,
+    let (items, stated, labels) = match read_stated_items(part, p, input) {
+        Ok(r) => (r.items, r.stated, r.labels),
         Err(e) => return invalid_reading(problem, part, e),
     };
+    // An item labelled as another quantity than the part asks for is never the answer.
+    let blocked: Vec<bool> = labels
+        .iter()
+        .map(|l| !freq_label::fits(part, l.as_ref().map(|l| l.said)))
+        .collect();
     // The coordinates as expressions, interned once, to show equilibria as `θ = π`.
     let names: Vec<String> = p
         .system
@@ -155,7 +187,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         .map(|c| c.name.clone())
         .collect();
     let coords: Vec<Id> = names.iter().map(|n| p.system.pool.sym(n)).collect();
-    v.reading = list_reading(part, p, &coords, &items);
+    v.reading = list_reading(part, p, &coords, &items, &labels);
     v.reading.note = stability_note(part, p, &coords, (&items, &stated));
     let refs = match cached_reference(part, p) {
         Ok(r) => r,
@@ -180,10 +212,17 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         reference: &rv,
         reference_ids: &refs,
     };
-    let (matched_ref, matched_stu) = match_items(part, p, &lists);
+    let (matched_ref, matched_stu) = match_items(part, p, &lists, &blocked);
     let matched = matched_stu.iter().filter(|m| **m).count();
     let mut free: Vec<usize> = (0..refs.len()).filter(|&j| !matched_ref[j]).collect();
     for i in (0..items.len()).filter(|&i| !matched_stu[i]) {
+        if let Some(l) = labels[i].as_ref().filter(|_| blocked[i]) {
+            let value = show_item(part, p, &coords, &items[i], Style::Unicode);
+            let shown = format!("{} = {value}", l.said.symbol());
+            let d = freq_label::mislabelled(part, p, &lists, (i, l.said, &shown), &mut free);
+            v.diagnoses.push(d);
+            continue;
+        }
         let label = format!(
             "item {} ({})",
             i + 1,
@@ -204,13 +243,33 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     let wrong_stability = stated_stability(part, p, &lists, &coords, (&items, &stated));
     let wrong = wrong_stability.len();
     v.diagnoses.extend(wrong_stability);
+    // Stability the part asks for and the answer does not state: half of each such point's
+    // credit, once the points themselves are right (until then, they are the mistake).
+    let all_points = matched == refs.len() && items.len() == refs.len();
+    let unstated = if all_points {
+        unstated_stability(part, &matched_stu, &stated)
+    } else {
+        0
+    };
     let total = refs.len().max(items.len()).max(1);
-    v.score = matched.saturating_sub(wrong) as f64 / total as f64;
-    if matched == refs.len()
-        && items.len() == refs.len()
-        && v.diagnoses
-            .iter()
-            .all(|d| d.code != Code::Dimension && d.code != Code::WrongStability)
+    v.score = (matched.saturating_sub(wrong) as f64 - 0.5 * unstated as f64) / total as f64;
+    if unstated > 0 {
+        v.diagnoses.push(Diagnosis::new(
+            Code::MissingStability,
+            format!(
+                "this part asks for the stability of each equilibrium, and {} of your points {} none: write stable or unstable after each point, as in `{} = … (stable)`",
+                unstated,
+                if unstated == 1 { "states" } else { "state" },
+                p.system.coordinates.first().map_or("q", |c| c.name.as_str())
+            ),
+        ));
+    }
+    if all_points
+        && v.diagnoses.iter().all(|d| {
+            d.code != Code::Dimension
+                && d.code != Code::WrongStability
+                && d.code != Code::MissingStability
+        })
     {
         v.status = Status::Correct;
         v.score = 1.0;
@@ -230,6 +289,9 @@ fn show_any(part: &Part, input: &str, v: &mut Verdict) {
     for (marker, word) in [("√3·π", "any"), ("sqrt(3)*pi", "any")] {
         v.reading.plain = v.reading.plain.replace(marker, word);
         v.reading.unicode = v.reading.unicode.replace(marker, word);
+        if let Some(n) = &mut v.reading.note {
+            *n = n.replace(marker, word);
+        }
         for d in &mut v.diagnoses {
             d.message = d.message.replace(marker, word);
         }
@@ -251,6 +313,22 @@ fn show_any(part: &Part, input: &str, v: &mut Verdict) {
             ),
         ));
     }
+}
+
+/// How many matched items state no stability where the part requires it.
+fn unstated_stability(
+    part: &Part,
+    matched_stu: &[bool],
+    stated: &[Option<super::stability::Stated>],
+) -> usize {
+    if !part.require_stability {
+        return 0;
+    }
+    matched_stu
+        .iter()
+        .zip(stated)
+        .filter(|(m, s)| **m && s.is_none())
+        .count()
 }
 
 /// `wrong-stability` for each matched item whose stated stability the part contradicts.

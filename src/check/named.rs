@@ -9,9 +9,10 @@
 
 use super::prepare::Prepared;
 use super::verdict::{Code, Diagnosis, Status, Verdict};
-use crate::expr::ParseError;
 use crate::expr::lexer::{Tok, lex};
-use crate::problem::{Part, PartKind, Quantity};
+use crate::expr::{Context, ParseError};
+use crate::mechanics::System;
+use crate::problem::{Part, PartKind, Problem, Quantity};
 
 /// A quantity a student can name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +48,7 @@ pub(super) fn label(part: &Part, p: &Prepared, input: &str) -> Option<Label> {
     }
     let k = input.find('=')?;
     let text = input[..k].trim();
-    let named = classify(p, text)?;
+    let named = classify(&p.system, &p.context, text)?;
     Some(Label {
         text: text.to_string(),
         named,
@@ -55,12 +56,32 @@ pub(super) fn label(part: &Part, p: &Prepared, input: &str) -> Option<Label> {
     })
 }
 
+/// The answer `input` to `part` without a name that fits the quantity the part asks for
+/// (`L = …` for a Lagrangian, `p_θ = …` for that momentum): what the checker judges, and what
+/// follow-through reads as the student's quantity. Anything else is returned whole.
+pub fn unlabelled<'i>(problem: &Problem, part: &Part, input: &'i str) -> &'i str {
+    if !matches!(
+        part.kind,
+        PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce
+    ) {
+        return input;
+    }
+    let Some(k) = input.find('=') else {
+        return input;
+    };
+    let ctx = problem.context();
+    match classify(&problem.system, &ctx, input[..k].trim()) {
+        Some(named) if asked(part).is_none_or(|a| fits(named, a)) => &input[k + 1..],
+        _ => input,
+    }
+}
+
 /// What the name `text` stands for, if it is a quantity's name and no symbol of the problem.
-fn classify(p: &Prepared, text: &str) -> Option<Named> {
+fn classify(sys: &System, ctx: &Context, text: &str) -> Option<Named> {
     let toks: Vec<Tok> = lex(text).ok()?.into_iter().map(|t| t.tok).collect();
     let coordinate = |name: &str| {
         let name = crate::expr::names::normalize(name);
-        p.system.coordinates.iter().position(|c| c.name == name)
+        sys.coordinates.iter().position(|c| c.name == name)
     };
     let named = match toks.as_slice() {
         [Tok::Name { text: n, dots: 2 }] => Named::Acceleration(Some(coordinate(n)?)),
@@ -71,7 +92,7 @@ fn classify(p: &Prepared, text: &str) -> Option<Named> {
             Tok::Name { text: p_, dots: 0 },
             Tok::Name { text: q, dots: 0 },
         ] if p_ == "p" || p_ == "p_" => Named::Momentum(Some(coordinate(q)?)),
-        [Tok::Name { text: n, dots: 0 }] if !p.context.is_declared(n) => match n.as_str() {
+        [Tok::Name { text: n, dots: 0 }] if !ctx.is_declared(n) => match n.as_str() {
             "T" => Named::Kinetic,
             "V" | "U" => Named::Potential,
             "L" => Named::Lagrangian,

@@ -110,6 +110,8 @@ pub enum Code {
     LostRoot,
     /// An equilibrium's stability stated wrongly.
     WrongStability,
+    /// An equilibrium's stability not stated where the part asks for it.
+    MissingStability,
     /// Not as many equations as asked for.
     EquationCount,
     /// Equations that hold but do not determine the accelerations.
@@ -124,7 +126,11 @@ pub enum Code {
     WrongItem,
     /// Correct up to an allowed additive constant.
     UpToConstant,
-    /// A Lagrangian giving the same equations of motion.
+    /// A Lagrangian that differs from T − V by a total time derivative dF(q, t)/dt (another
+    /// gauge), accepted; and a momentum or h that follows from such an accepted L.
+    TotalDerivative,
+    /// A Lagrangian giving the same equations of motion at another scale, on a part that
+    /// accepts any L with the right motion (`accept = "same-motion"`).
     EquivalentLagrangian,
     /// Wrong, with no more specific diagnosis.
     NotEqual,
@@ -132,7 +138,7 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 43] = [
+    pub const ALL: [Code; 45] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
@@ -167,6 +173,7 @@ impl Code {
         Code::RoundedConstant,
         Code::LostRoot,
         Code::WrongStability,
+        Code::MissingStability,
         Code::EquationCount,
         Code::DependentEquations,
         Code::WrongEquation,
@@ -174,6 +181,7 @@ impl Code {
         Code::ExtraItem,
         Code::WrongItem,
         Code::UpToConstant,
+        Code::TotalDerivative,
         Code::EquivalentLagrangian,
         Code::NotEqual,
     ];
@@ -215,6 +223,7 @@ impl Code {
             Code::RoundedConstant => "rounded-constant",
             Code::LostRoot => "lost-root",
             Code::WrongStability => "wrong-stability",
+            Code::MissingStability => "missing-stability",
             Code::EquationCount => "equation-count",
             Code::DependentEquations => "dependent-equations",
             Code::WrongEquation => "wrong-equation",
@@ -222,6 +231,7 @@ impl Code {
             Code::ExtraItem => "extra-item",
             Code::WrongItem => "wrong-item",
             Code::UpToConstant => "up-to-constant",
+            Code::TotalDerivative => "total-derivative",
             Code::EquivalentLagrangian => "equivalent-lagrangian",
             Code::NotEqual => "not-equal",
         }
@@ -289,7 +299,7 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (README, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 43] = [
+        const DOCUMENTED: [&str; 45] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
@@ -324,6 +334,7 @@ mod tests {
             "rounded-constant",
             "lost-root",
             "wrong-stability",
+            "missing-stability",
             "equation-count",
             "dependent-equations",
             "wrong-equation",
@@ -331,6 +342,7 @@ mod tests {
             "extra-item",
             "wrong-item",
             "up-to-constant",
+            "total-derivative",
             "equivalent-lagrangian",
             "not-equal",
         ];

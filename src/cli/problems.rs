@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::Subcommand;
 
 use super::system_args::Terminal;
-use lagrange::bank::load::{load_one, read_file};
+use lagrange::bank::load::{DUPLICATE_ID, load_one, read_file};
 use lagrange::bank::{Bank, Problem, embedded, load_dir, load_str};
 use lagrange::report::{problem_list, problem_sheet, verification};
 
@@ -29,8 +29,19 @@ pub enum ProblemsCommand {
     },
 }
 
-/// The bank from `dir`, or the embedded one.
+/// The bank from `dir`, or the embedded one, refused whole when two files define one
+/// problem id (a grade and a check would otherwise judge by different files).
 pub fn load_bank(dir: Option<&Path>) -> Result<Bank, String> {
+    let bank = load_bank_with_findings(dir)?;
+    match bank.failures.iter().find(|f| f.code == DUPLICATE_ID) {
+        Some(f) => Err(f.message.clone()),
+        None => Ok(bank),
+    }
+}
+
+/// The bank from `dir`, or the embedded one, with every file that failed to load (a
+/// duplicate id among them) as a finding: what `problems verify` reports.
+fn load_bank_with_findings(dir: Option<&Path>) -> Result<Bank, String> {
     match dir {
         Some(d) => load_dir(d),
         None => Ok(embedded::bank()),
@@ -70,7 +81,7 @@ pub fn run(
         }
         ProblemsCommand::Verify { paths } => {
             let bank = if paths.is_empty() {
-                load_bank(dir).map_err(anyhow::Error::msg)?
+                load_bank_with_findings(dir).map_err(anyhow::Error::msg)?
             } else {
                 match load_paths(paths)? {
                     Ok(b) => b,
@@ -100,14 +111,17 @@ fn load_paths(paths: &[PathBuf]) -> anyhow::Result<Result<Bank, String>> {
     for path in paths {
         if path.is_dir() {
             let sub = load_dir(path).map_err(anyhow::Error::msg)?;
-            b.problems.extend(sub.problems);
             b.failures.extend(sub.failures);
+            for p in sub.problems {
+                let file = p.file.clone();
+                b.add(p, file);
+            }
             continue;
         }
         let name = path.display().to_string();
         match read_file(path) {
             Ok(text) => match load_str(&name, &text) {
-                Ok(p) => b.problems.push(p),
+                Ok(p) => b.add(p, name),
                 Err(f) => b.failures.push(f),
             },
             Err(f) if f.code == "unreadable-file" => {

@@ -14,7 +14,7 @@ use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::Problem;
 use lagrange::tutor::command::did_you_mean;
-use lagrange::tutor::follow::{Earlier, follows_from_earlier};
+use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::input::Row;
 
@@ -374,6 +374,14 @@ fn follow_through(
         if let Some(d) = &answers[k] {
             let g = &mut graded[i];
             let (p, q) = g.target.unwrap_or_default();
+            // Right for the student's own accepted L (a total derivative added): full marks.
+            if accepts(d) {
+                g.status = Status::Correct;
+                g.score = bank.problems[p].parts[q].points;
+                g.codes = vec![d.code.to_string()];
+                g.message = d.message.clone();
+                continue;
+            }
             // A list already partly right keeps the larger of its own score and the credit.
             g.score = g.score.max(credit * bank.problems[p].parts[q].points);
             g.codes.insert(0, d.code.to_string());

@@ -41,9 +41,10 @@ impl Derivation {
 }
 
 impl System {
-    /// Derives the equations of motion. Fails when a coordinate has no kinetic term or the
-    /// mass matrix is singular everywhere.
+    /// Derives the equations of motion. Fails when L contains an acceleration, a coordinate
+    /// has no kinetic term or the mass matrix is singular everywhere.
     pub fn derive(&mut self) -> Result<Derivation, MechError> {
+        self.check_first_order()?;
         let coords = self.coordinate_syms();
         let l = self.lagrangian;
         let mut steps = Vec::with_capacity(self.n());
@@ -103,6 +104,20 @@ impl System {
             self.validate_constraints(&rows.a)?;
         }
         Ok(d)
+    }
+
+    /// Refuses a Lagrangian with an acceleration (or a higher derivative) of a coordinate: the
+    /// derivation below treats L as a function of q, q' and t, and would drop such terms
+    /// (`½ẋ² − ½x² + x ẍ` would give ẍ = −x, where its own higher-order equations give ẍ = x).
+    pub fn check_first_order(&self) -> Result<(), MechError> {
+        let coords = self.coordinate_syms();
+        let vars = self.pool.variables(self.lagrangian);
+        match vars.iter().find(|(s, o)| *o >= 2 && coords.contains(s)) {
+            Some(&(s, o)) => Err(MechError::AccelerationInLagrangian {
+                acceleration: format!("{}{}", self.pool.name(s), "'".repeat(o.into())),
+            }),
+            None => Ok(()),
+        }
     }
 
     /// A zero row of M names the coordinate without a kinetic term; otherwise M must be

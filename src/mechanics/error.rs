@@ -107,6 +107,12 @@ pub enum MechError {
         coordinate: String,
         acceleration: String,
     },
+    /// The Lagrangian depends on an acceleration: the Euler–Lagrange equations of a first-order
+    /// L do not apply to it (the terms with q'' would be silently dropped).
+    #[error(
+        "the Lagrangian contains the acceleration {acceleration}: the Euler–Lagrange equations d/dt ∂L/∂q' − ∂L/∂q = 0 hold for an L of positions, velocities and time only"
+    )]
+    AccelerationInLagrangian { acceleration: String },
     /// A name of the system collides with a Lagrange multiplier's name.
     #[error(
         "`{}` is the name of a Lagrange multiplier here, and cannot also name a parameter or coordinate",
@@ -202,6 +208,7 @@ impl MechError {
             } => "redundant-constraint",
             MechError::DependentConstraint { .. } => "dependent-constraint",
             MechError::ForceWithAcceleration { .. } => "force-with-acceleration",
+            MechError::AccelerationInLagrangian { .. } => "acceleration-in-lagrangian",
             MechError::MultiplierName { .. } => "multiplier-name",
             MechError::ModesRolling => "modes-rolling-constraint",
             MechError::OffConstraint { .. } => "off-constraint",
@@ -254,6 +261,9 @@ impl MechError {
             }
             MechError::ForceWithAcceleration { .. } => {
                 "move the term with the acceleration into the kinetic energy (a mass term), so that M includes it".into()
+            }
+            MechError::AccelerationInLagrangian { .. } => {
+                "remove the acceleration, e.g. by integrating a term such as x·x'' by parts (x·x'' = d/dt(x·x') − x'^2: drop the total derivative)".into()
             }
             MechError::Overflow { .. } => {
                 "choose units in which the quantities are moderate numbers".into()

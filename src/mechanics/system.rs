@@ -59,6 +59,7 @@ impl System {
         let mut sys = System::empty(coordinates);
         let ctx = sys.open_context();
         sys.lagrangian = sys.read(text, "the Lagrangian", &ctx)?;
+        sys.check_first_order()?;
         sys.collect_parameters();
         Ok(sys)
     }
@@ -73,6 +74,7 @@ impl System {
         sys.kinetic = Some(t);
         sys.potential = Some(v);
         sys.lagrangian = sys.pool.sub(t, v);
+        sys.check_first_order()?;
         sys.collect_parameters();
         Ok(sys)
     }

@@ -73,8 +73,8 @@ pub fn follows_from_earlier(
 }
 
 /// Checks `input` against `part` (as [`check`]) and, when the answer is incorrect but follows
-/// from one of the student's earlier wrong answers, adds the `follows-from-earlier` diagnosis.
-/// The status and score are never changed.
+/// from one of the student's earlier answers, adds the diagnosis [`follows_from_earlier`]
+/// gives, as [`apply`] does.
 pub fn check_with_history(
     problem: &Problem,
     part: &Part,
@@ -85,10 +85,30 @@ pub fn check_with_history(
     if v.status == Status::Incorrect
         && let Some(d) = follows(problem, part, input, earlier)
     {
+        apply(&mut v, d);
+    }
+    Ok(v)
+}
+
+/// Whether a follow-through diagnosis accepts the answer: it follows from an earlier
+/// Lagrangian that was accepted though it is not T − V up to a constant (a total time
+/// derivative added: `total-derivative`; any L with the right motion on a part that accepts
+/// it: `equivalent-lagrangian`), so it is right for the student's own L.
+pub fn accepts(d: &Diagnosis) -> bool {
+    matches!(d.code, Code::TotalDerivative | Code::EquivalentLagrangian)
+}
+
+/// Adds a follow-through diagnosis to the incorrect verdict `v`: one that [`accepts`] makes
+/// the answer correct (with it as the note); `follows-from-earlier` leaves it incorrect.
+pub fn apply(v: &mut Verdict, d: Diagnosis) {
+    if accepts(&d) {
+        v.status = Status::Correct;
+        v.score = 1.0;
+        v.diagnoses = vec![d];
+    } else {
         v.diagnoses.push(d);
         v.sort();
     }
-    Ok(v)
 }
 
 /// The step of a derivation a part asks for.
@@ -182,6 +202,10 @@ fn follows_with(
     known: &dyn Fn(&Earlier) -> Option<Verdict>,
 ) -> Option<Diagnosis> {
     let to = Stage::of(part)?;
+    // A frequency labelled as another quantity (ω² for ω) is that mistake, not a follow-through.
+    if crate::check::states_another_frequency(part, input) {
+        return None;
+    }
     let mut seen: Vec<&str> = vec![part.id.as_str()];
     for e in earlier.iter().rev() {
         // Only the problem's own parts are remembered, so `seen` stays as short as its parts.
@@ -199,20 +223,44 @@ fn follows_with(
         let Some(before) = known(e).or_else(|| check(problem, ep, &e.answer).ok()) else {
             continue;
         };
-        if before.status != Status::Incorrect {
+        // An L accepted though it is not T − V (a total derivative added) has momenta and an
+        // h of its own; its equations of motion, equilibria and frequencies are the right ones.
+        let other_l = before.status == Status::Correct
+            && from == Stage::Lagrangian
+            && matches!(to, Stage::Momentum(_) | Stage::Energy)
+            && before.diagnoses.first().is_some_and(accepts);
+        if before.status != Status::Incorrect && !other_l {
             continue;
         }
-        let Some((system, dynamics)) = variant_system(problem, from, &e.answer) else {
+        let answer = crate::check::unlabelled(problem, ep, &e.answer);
+        let Some((system, dynamics)) = variant_system(problem, from, answer) else {
             continue;
         };
         if to == Stage::Frequencies && !dynamics {
             continue;
         }
         if holds_in(problem, system, part, to, input) {
-            return Some(diagnosis(part, to, ep, from, &before));
+            return Some(match before.diagnoses.first() {
+                Some(note) if other_l => accepted(part, to, ep, note),
+                _ => diagnosis(part, to, ep, from, &before),
+            });
         }
     }
     None
+}
+
+/// The note on an answer that is right for the student's own accepted L (`note` is the note
+/// that L got).
+fn accepted(part: &Part, to: Stage, ep: &Part, note: &Diagnosis) -> Diagnosis {
+    Diagnosis::new(
+        note.code,
+        format!(
+            "your {} follows correctly from your Lagrangian (part `{}`), which was accepted: it differs from T − V by more than a constant, so its {} differs from the reference's too",
+            to.noun(part),
+            ep.id,
+            to.noun(part)
+        ),
+    )
 }
 
 /// The sentence naming where the real mistake is.
@@ -383,7 +431,11 @@ fn verified_in(mut variant: Problem, part: &Part, input: &str) -> bool {
     }
     let mut vp = part.clone();
     vp.answers = items;
+    // Only the points are followed through: their stability (and a prompt asking for it)
+    // is not the question here.
     vp.stability.clear();
+    vp.require_stability = false;
+    vp.prompt.clear();
     variant.parts = vec![vp];
     verify(&variant).iter().all(|f| f.part.is_none())
 }

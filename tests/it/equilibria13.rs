@@ -398,7 +398,10 @@ fn a_point_of_a_continuum_is_not_the_continuum() {
         "{:?}",
         v.diagnoses
     );
-    let v = c.check("equilibria", "s = 0, x = any").expect("a part");
+    // The part asks for stability (issue 19 §3), stated here after the point.
+    let v = c
+        .check("equilibria", "s = 0 (stable), x = any")
+        .expect("a part");
     assert_eq!(v.status, lagrange::check::Status::Correct);
     assert_eq!(v.reading.unicode, "x = any, s = 0");
 }

@@ -479,8 +479,8 @@ fn a_wrong_equilibrium_condition_carries_into_the_equilibria() {
         &earlier,
         "your equation (part `equilibrium-condition`)",
     );
-    // The true equilibrium is just correct.
-    let v = verdict(&p, "equilibria", "r = 0", &earlier);
+    // The true equilibrium is just correct (with the stability the part asks for).
+    let v = verdict(&p, "equilibria", "r = 0 (stable)", &earlier);
     assert_eq!(v.status, Status::Correct);
     assert!(!follows(&v));
 }

@@ -47,11 +47,13 @@ fn duplicate_problem_ids_across_separately_named_files_are_refused() {
     std::fs::remove_dir_all(&tmp).ok();
     assert_eq!(code, 1, "{out}");
     assert!(out.contains("[duplicate-id]"), "{out}");
+    // Issue 19 §5: both files are named, and neither is verified as the problem.
     assert!(
-        out.contains("already defines the problem `simple-pendulum`"),
+        out.contains("the problem `simple-pendulum` is defined by two files"),
         "{out}"
     );
-    assert!(out.contains("2 problems, 1 failing"), "{out}");
+    assert!(out.contains(&a) && out.contains(&b), "{out}");
+    assert!(!out.contains("✓ simple-pendulum"), "{out}");
 }
 
 #[test]

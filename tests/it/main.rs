@@ -2,6 +2,7 @@
 //! concept, sharing the helpers in `helpers.rs`.
 
 mod bank;
+mod bank19;
 mod chaos14;
 mod cli;
 mod corpus;
@@ -14,9 +15,12 @@ mod fuzz_replay;
 mod grade;
 mod grid14;
 mod helpers;
+mod higher_order19;
 mod hostile;
+mod judged19;
 mod ladder;
 mod literature;
+mod meaning19;
 mod mechanics;
 mod modes13;
 mod notation;

@@ -64,27 +64,29 @@ fn tuples_are_points_in_the_coordinates_order() {
 #[test]
 fn plus_minus_and_stated_stability() {
     use Status::*;
+    // `±` gives both points (else `missing-item`); the hoop's part asks for stability, so
+    // without it the answer is `missing-stability` (issue 19 §3).
     verdicts(&[
         (
             "rotating-hoop",
             "equilibria",
             "0, π, ±arccos(g/(R ω²))",
-            Correct,
-            &[],
+            Incorrect,
+            &["missing-stability"],
         ),
         (
             "rotating-hoop",
             "equilibria",
             "θ = 0, θ = π, θ = ±acos(g/(R ω^2))",
-            Correct,
-            &[],
+            Incorrect,
+            &["missing-stability"],
         ),
         (
             "rotating-hoop",
             "equilibria",
             "0, π, ∓acos(g/(R ω^2))",
-            Correct,
-            &[],
+            Incorrect,
+            &["missing-stability"],
         ),
         (
             "rotating-hoop",

@@ -203,7 +203,12 @@ fn a_spring_with_an_electron_mass_loads_and_checks() {
                 "1/2*m*x'^2 - 1/2*k*x^2 + m*g*x*sin(alpha)",
                 Status::Correct,
             ),
-            ("equilibria", "x = m*g*sin(alpha)/k", Status::Correct),
+            // The part asks for the stability too (issue 19 §3).
+            (
+                "equilibria",
+                "x = m*g*sin(alpha)/k (stable)",
+                Status::Correct,
+            ),
             ("frequencies", "sqrt(k/m)", Status::Correct),
             ("frequencies", "k/m", Status::Incorrect),
         ],

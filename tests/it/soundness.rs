@@ -224,7 +224,10 @@ fn huge_and_tiny_factors_are_named_by_their_size() {
             "lagrangian",
             &format!("{factor}*{reference}"),
         );
-        assert_eq!(v.status, Status::Correct, "{v:#?}");
+        // Issue 19 §2: a constant factor gives the same motion but is not the Lagrangian
+        // asked for (it was accepted as `equivalent-lagrangian` before).
+        assert_eq!(v.status, Status::Incorrect, "{v:#?}");
+        assert_eq!(v.diagnoses[0].code, Code::ConstantFactor, "{v:#?}");
         let text = &v.diagnoses[0].message;
         assert!(text.contains(&format!("your L is {shown} times")), "{text}");
         let v = verdict(

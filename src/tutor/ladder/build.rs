@@ -56,6 +56,8 @@ impl Builder<'_> {
             quantity: Quantity::None,
             dimension: None,
             squared: false,
+            same_motion: false,
+            require_stability: false,
             assumptions: Vec::new(),
             line: self.problem.lagrangian_line,
         };
@@ -212,7 +214,10 @@ impl Builder<'_> {
             let prompt = format!(
                 "Find every equilibrium, where all the generalized forces vanish at rest; write each as {form}."
             );
-            self.adopt(eq, "equilibria", prompt);
+            // This step's prompt asks for the points only.
+            let mut eq = eq.clone();
+            eq.require_stability = false;
+            self.adopt(&eq, "equilibria", prompt);
         }
         let Some(freq) = problem
             .parts

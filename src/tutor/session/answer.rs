@@ -10,7 +10,7 @@ use crate::check::{Status, Verdict};
 use crate::problem::{Part, PartKind, Problem, Quantity};
 use crate::report;
 use crate::report::problems::terminal_math;
-use crate::tutor::follow::{Earlier, follows_from_earlier};
+use crate::tutor::follow::{Earlier, apply, follows_from_earlier};
 use crate::tutor::ladder::ladder;
 use crate::tutor::response::{HintReply, Response, SolutionReply, VerdictReply, WorkedStep};
 
@@ -50,7 +50,8 @@ impl Session {
 
     /// Adds `follows-from-earlier` to an incorrect verdict on the current part when the answer
     /// follows from the student's own latest wrong answer to another part of the open problem
-    /// (read from the progress, in part order: a later part counts as more recent).
+    /// (read from the progress, in part order: a later part counts as more recent), or accepts
+    /// it when it follows from an L accepted with a total time derivative added.
     fn follow_through(&self, input: &str, verdict: &mut Verdict) {
         let (Some(problem), Some(part)) = (self.problem(), self.part()) else {
             return;
@@ -74,8 +75,7 @@ impl Session {
             (*answer == e.answer).then(|| v.clone())
         };
         if let Some(d) = follows_from_earlier(problem, part, input, &earlier, &known) {
-            verdict.diagnoses.push(d);
-            verdict.sort();
+            apply(verdict, d);
         }
     }
 
