@@ -2,12 +2,12 @@
 //! concept, sharing the helpers in `helpers.rs`.
 
 mod bank;
-mod bank19;
 mod chaos14;
 mod cli;
 mod corpus;
 mod diagnostics;
 mod dimensions;
+mod duplicate_ids;
 mod energy13;
 mod equilibria13;
 mod follow;
@@ -15,12 +15,12 @@ mod fuzz_replay;
 mod grade;
 mod grid14;
 mod helpers;
-mod higher_order19;
+mod higher_order_lagrangian;
 mod hostile;
-mod judged19;
+mod labels_stability;
 mod ladder;
+mod lagrangian_meaning;
 mod literature;
-mod meaning19;
 mod mechanics;
 mod modes13;
 mod notation;
