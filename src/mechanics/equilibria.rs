@@ -210,7 +210,7 @@ impl System {
     /// All equilibria inside the coordinate ranges for parameter values `params`.
     pub fn equilibria(&mut self, d: &Derivation, params: &[f64]) -> Result<Equilibria, MechError> {
         let statics = Statics::new(self, d, params)?;
-        let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
+        let ranges = search_ranges(&self.coordinates);
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let starts = start_points(&ranges);
         if let Some(q) = starts.first()
@@ -297,7 +297,7 @@ impl System {
             return Ok(Shape::default());
         }
         let statics = Statics::new(self, d, params)?;
-        let ranges: Vec<(f64, f64)> = self.coordinates.iter().map(|c| c.range).collect();
+        let ranges = search_ranges(&self.coordinates);
         let periodic: Vec<bool> = self.coordinates.iter().map(|c| c.periodic).collect();
         let widths = range_widths(&ranges, &periodic);
         let all: Vec<usize> = (0..q.len()).collect();
@@ -514,4 +514,20 @@ mod tests {
         let e = sys.check_equilibrium(&d, &[], &[2.0]).unwrap_err();
         assert_eq!(e.to_string(), "x = 2 is not an equilibrium: ∂V/∂x = 2");
     }
+}
+
+/// Where equilibria are searched: a periodic coordinate over its whole period (−π, π], whatever
+/// its sampling range (an equilibrium is a point of the configuration space, and an angle's
+/// range only says where states are drawn); any other coordinate over its range.
+fn search_ranges(coordinates: &[crate::mechanics::Coordinate]) -> Vec<(f64, f64)> {
+    coordinates
+        .iter()
+        .map(|c| {
+            if c.periodic {
+                (-std::f64::consts::PI, std::f64::consts::PI)
+            } else {
+                c.range
+            }
+        })
+        .collect()
 }

@@ -20,6 +20,7 @@ mod hostile;
 mod labels_stability;
 mod ladder;
 mod lagrangian_meaning;
+mod laws;
 mod literature;
 mod mechanics;
 mod modes13;

@@ -267,3 +267,40 @@ fn a_bad_domain_is_a_finding() {
         );
     }
 }
+
+/// One rule for a periodic coordinate with a range (issue 19 §5): its range says where
+/// states are sampled; its equilibria are searched over the whole period. A pendulum sampled
+/// on [0.5, 2.5] still has its equilibria at 0 and π, and stating only one is missing one.
+#[test]
+fn a_periodic_range_does_not_narrow_the_equilibrium_search() {
+    let text = r#"
+id = "pendulum-ranged"
+title = "Pendulum sampled on part of its circle"
+coordinates = [{ name = "theta", periodic = true, range = [0.5, 2.5] }]
+lagrangian = "1/2*m*l^2*theta'^2 + m*g*l*cos(theta)"
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+l = { dimension = "L", range = [0.5, 2.0] }
+g = { dimension = "L T^-2", range = [5.0, 15.0] }
+[[parts]]
+id = "equilibria"
+kind = "equilibria"
+prompt = "Where can the bob rest?"
+answer = ["theta = 0", "theta = pi"]
+stability = ["stable", "unstable"]
+"#;
+    let p = lagrange::bank::load_str("ranged.toml", text).expect("loads");
+    let findings: Vec<String> = verify(&p).iter().map(|f| f.to_string()).collect();
+    assert!(findings.is_empty(), "{findings:?}");
+    let one = text.replace(
+        "answer = [\"theta = 0\", \"theta = pi\"]\nstability = [\"stable\", \"unstable\"]",
+        "answer = [\"theta = pi\"]\nstability = [\"unstable\"]",
+    );
+    assert_ne!(one, text);
+    let p = lagrange::bank::load_str("ranged.toml", &one).expect("loads");
+    let findings: Vec<String> = verify(&p).iter().map(|f| f.to_string()).collect();
+    assert!(
+        findings.iter().any(|f| f.contains("missing")),
+        "{findings:?}"
+    );
+}

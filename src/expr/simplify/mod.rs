@@ -158,7 +158,7 @@ impl Pool {
         new[&e]
     }
     /// Replaces variables by expressions (`theta'' → 0`, `m1 → m`).
-    pub(crate) fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
+    pub fn substitute(&mut self, e: Id, map: &FxHashMap<(Sym, u8), Id>) -> Id {
         if map.is_empty() {
             return e;
         }
