@@ -137,9 +137,16 @@ pub(crate) struct Filter {
     assumed: Option<Program>,
     must: Option<Program>,
     /// The domain's ends: the slot of the value, whether the end is a lower one, and the
-    /// ends' values (computed by `ends`, in this order).
-    domain: Vec<(usize, bool)>,
+    /// end — a number, or output k of `ends` (the ends that depend on parameters).
+    domain: Vec<(usize, bool, End)>,
     ends: Option<Program>,
+}
+
+/// One end of a domain: most are numbers (r > 0), checked without running a program.
+#[derive(Clone, Copy, Debug)]
+enum End {
+    Number(f64),
+    Output(usize),
 }
 
 impl Filter {
@@ -158,27 +165,44 @@ impl Filter {
                 .map_err(|error| CheckError::Compile { error })
         };
         let roots: Vec<Id> = assumptions.iter().flat_map(|a| [a.lhs, a.rhs]).collect();
-        let ends = sys.domain_ends();
-        let end_ids: Vec<Id> = ends.iter().map(|&(_, e, _)| e).collect();
+        let mut end_ids: Vec<Id> = Vec::new();
+        let mut domain = Vec::new();
+        for (slot, e, lower) in sys.domain_ends() {
+            let end = match sys.pool.number_value(e) {
+                Some(v) => End::Number(v),
+                None => {
+                    end_ids.push(e);
+                    End::Output(end_ids.len() - 1)
+                }
+            };
+            domain.push((slot, lower, end));
+        }
         Ok(Filter {
             assumptions: assumptions.iter().map(|a| a.greater).collect(),
             assumed: compile(&roots)?,
             must: compile(defined)?,
-            domain: ends.iter().map(|&(slot, _, lower)| (slot, lower)).collect(),
+            domain,
             ends: compile(&end_ids)?,
         })
     }
 
     /// Whether point `x` passes.
     pub(crate) fn accepts(&self, x: &[f64]) -> bool {
-        if let Some(p) = &self.ends {
-            let Ok(v) = p.eval(x) else { return false };
-            let inside =
-                self.domain.iter().zip(&v).all(
-                    |(&(slot, lower), &end)| {
-                        if lower { x[slot] > end } else { x[slot] < end }
-                    },
-                );
+        if !self.domain.is_empty() {
+            let values = match &self.ends {
+                Some(p) => match p.eval(x) {
+                    Ok(v) => v,
+                    Err(_) => return false,
+                },
+                None => Vec::new(),
+            };
+            let inside = self.domain.iter().all(|&(slot, lower, end)| {
+                let end = match end {
+                    End::Number(v) => v,
+                    End::Output(k) => values[k],
+                };
+                if lower { x[slot] > end } else { x[slot] < end }
+            });
             if !inside {
                 return false;
             }

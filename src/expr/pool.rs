@@ -274,6 +274,11 @@ impl Pool {
         }
     }
 
+    /// The value of `id` as a float, if it is a number.
+    pub fn number_value(&self, id: Id) -> Option<f64> {
+        num_traits::ToPrimitive::to_f64(self.as_num(id)?)
+    }
+
     /// Whether `id` is a number ≥ 0.
     pub fn is_nonnegative_constant(&self, id: Id) -> bool {
         self.as_num(id)

@@ -157,17 +157,21 @@ impl DetC {
         }
     }
 
-    /// M (or the reference row) and A at `x`, with the size of the true equations.
-    fn raw(&self, x: &[f64]) -> Raw {
+    /// M (or the reference row) and A at `x`, with the size of the true equations when
+    /// `sized` (only the careful test needs it; the equations cost more than M and A).
+    fn raw(&self, x: &[f64], sized: bool) -> Raw {
         let mut guard = self.scratch.borrow_mut();
         let s = &mut *guard;
-        if self.equations.run(x, &mut s.e).is_err() {
-            return Raw::Skip;
-        }
         let rows = if self.projection { 1 } else { self.n };
-        let equations = (0..rows)
-            .map(|i| self.equations.output(i, &s.e).abs())
-            .fold(0.0, f64::max);
+        let mut equations = 0.0;
+        if sized {
+            if self.equations.run(x, &mut s.e).is_err() {
+                return Raw::Skip;
+            }
+            equations = (0..rows)
+                .map(|i| self.equations.output(i, &s.e).abs())
+                .fold(0.0, f64::max);
+        }
         let m = match &self.m {
             Some(m) => {
                 if m.run(x, &mut s.m).is_err() {
@@ -196,7 +200,7 @@ impl DetC {
         for state in &self.states {
             let mut y = state.clone();
             y[self.params_start..].copy_from_slice(params);
-            if let Raw::Both { m, a, equations } = self.raw(&y) {
+            if let Raw::Both { m, a, equations } = self.raw(&y, true) {
                 ms.push(norm(&m));
                 as_.push(norm(&a));
                 es.push(equations);
@@ -234,7 +238,7 @@ impl DetC {
     /// [`careful`](Self::careful) verdict otherwise. A small value may still be a
     /// singularity of the physics: ask [`careful`](Self::careful) before calling it a zero.
     pub(super) fn at(&self, x: &[f64]) -> Det {
-        match self.raw(x) {
+        match self.raw(x, false) {
             Raw::Skip => Det::Skip,
             Raw::Both { m, a, .. } => match self.det_c(&m, &a) {
                 Some(d) if d != 0.0 => Det::Value(d),
@@ -250,7 +254,7 @@ impl DetC {
         let Some(typical) = self.typical(x) else {
             return Det::Skip;
         };
-        let (m, a, equations) = match self.raw(x) {
+        let (m, a, equations) = match self.raw(x, true) {
             Raw::Skip => return Det::Skip,
             Raw::AnswerUndefined { m } => {
                 // Undefined where the physics determines every acceleration is a fault of

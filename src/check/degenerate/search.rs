@@ -292,12 +292,14 @@ impl Line<'_> {
                 return Some(found);
             }
         }
+        let line_max = vs.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
         for g in 1..GRID - 1 {
             let (Some(a), Some(b), Some(c)) = (vs[g - 1], vs[g], vs[g + 1]) else {
                 continue;
             };
-            // A strict local minimum of |det C| (a plateau is not one).
-            if b.abs() < a.abs() && b.abs() <= c.abs() {
+            // A strict local minimum of |det C| well below the line's largest value (a
+            // plateau, or rounding noise on a constant det C, is not one).
+            if b.abs() < a.abs() && b.abs() <= c.abs() && b.abs() < 0.5 * line_max {
                 let t = golden_min(
                     &|t| self.value(t).map_or(f64::INFINITY, f64::abs),
                     ts[g - 1],
