@@ -5,6 +5,8 @@
 
 use std::borrow::Cow;
 
+use super::output::unquote_cell;
+
 /// The two layouts a class file may have.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -147,10 +149,11 @@ fn layout(names: &[String]) -> Result<Layout, BadFile> {
 }
 
 /// A field decoded lossily, and whether it had to be.
+/// A cell lagrange neutralised for spreadsheets (`'=…`) reads as its text again.
 fn text(record: &csv::ByteRecord, i: usize) -> (String, bool) {
     match record.get(i).map(String::from_utf8_lossy) {
-        Some(Cow::Borrowed(s)) => (s.to_string(), false),
-        Some(Cow::Owned(s)) => (s, true),
+        Some(Cow::Borrowed(s)) => (unquote_cell(s).to_string(), false),
+        Some(Cow::Owned(s)) => (unquote_cell(&s).to_string(), true),
         None => (String::new(), false),
     }
 }

@@ -21,6 +21,8 @@ const MAX_SHOWN: usize = 80;
 /// The whole class at a glance.
 #[derive(Debug, Serialize)]
 pub struct Summary {
+    /// The run's id, as in every row of results.csv.
+    pub run: String,
     /// Rows of results.csv (= answers in the input).
     pub rows: usize,
     /// Distinct non-empty student keys.
@@ -135,6 +137,7 @@ pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
     }
     add_groups(&mut parts, tallies, judged);
     Summary {
+        run: String::new(),
         rows: rows.len(),
         students: students(rows).len(),
         status,
@@ -255,19 +258,39 @@ pub fn num(x: f64) -> String {
     }
 }
 
-/// A Markdown table cell: pipes escaped, one line.
+/// A Markdown table cell of text: control characters shown escaped (`\u{1b}`), HTML's
+/// `& < >` as entities and the marks Markdown acts on inside a line (`\ ` * _ [ ] | ~`)
+/// backslash-escaped, so a student's text is shown, never run (no link, no image, no tag, no
+/// emphasis, no broken table). Nothing in a cell is at the start of a line.
 fn cell(s: &str) -> String {
-    s.replace('|', "\\|")
+    let s = lagrange::expr::error::visible(s);
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '\\' | '`' | '*' | '_' | '[' | ']' | '|' | '~' => {
+                out.push('\\');
+                out.push(c);
+            }
+            _ => out.push(c),
+        }
+    }
+    out
 }
 
-/// A Markdown code span that survives backticks in the text.
+/// A Markdown code span of text, in a table cell: control characters shown escaped, pipes
+/// escaped (a table would split there), fenced by more backticks than the text holds in a
+/// row. Inside a code span nothing is interpreted, HTML included.
 fn code(s: &str) -> String {
-    let s = cell(s);
-    if s.contains('`') {
-        format!("`` {s} ``")
-    } else {
-        format!("`{s}`")
+    let s = lagrange::expr::error::visible(s).replace('|', "\\|");
+    let longest = s.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    if longest == 0 {
+        return format!("`{s}`");
     }
+    let fence = "`".repeat(longest + 1);
+    format!("{fence} {s} {fence}")
 }
 
 /// The summary as Markdown (summary.md).
@@ -292,7 +315,8 @@ pub fn markdown(s: &Summary) -> String {
     for (key, p) in &s.parts {
         let _ = writeln!(
             out,
-            "| {key} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            cell(key),
             num(p.points),
             p.answers,
             p.correct,
@@ -305,7 +329,7 @@ pub fn markdown(s: &Summary) -> String {
     if !s.codes.is_empty() {
         out.push_str("\n## Diagnosis codes\n\n| code | answers |\n|---|---:|\n");
         for (c, n) in &s.codes {
-            let _ = writeln!(out, "| {c} | {n} |");
+            let _ = writeln!(out, "| {} | {n} |", cell(c));
         }
     }
     wrong_answers(s, &mut out);
@@ -321,7 +345,8 @@ fn wrong_answers(s: &Summary, out: &mut String) {
         }
         let _ = write!(
             out,
-            "\n### {key}\n\n| count | answer (as read) | status | codes | diagnosis | typed as |\n|---:|---|---|---|---|---|\n"
+            "\n### {}\n\n| count | answer (as read) | status | codes | diagnosis | typed as |\n|---:|---|---|---|---|---|\n",
+            cell(key)
         );
         for g in &p.wrong {
             let typed: Vec<String> = g.examples.iter().map(|e| code(e)).collect();
@@ -329,9 +354,9 @@ fn wrong_answers(s: &Summary, out: &mut String) {
                 out,
                 "| {} | {} | {} | {} | {} | {} |",
                 g.count,
-                cell(&g.answer),
+                code(&g.answer),
                 g.status,
-                g.codes.join(", "),
+                cell(&g.codes.join(", ")),
                 cell(&g.diagnosis),
                 typed.join(", ")
             );

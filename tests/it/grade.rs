@@ -81,7 +81,7 @@ fn long_format_grades_the_physics_and_ignores_extra_columns() {
     let header = &records(&dir.join("results.csv"))[0];
     assert_eq!(
         header.join(","),
-        "row,student,problem,part,answer,status,score,codes,message"
+        "row,student,problem,part,answer,status,score,codes,message,run"
     );
     let rows = results(&dir);
     assert_eq!(rows.len(), 6);
@@ -475,10 +475,19 @@ fn the_summary_does_not_depend_on_row_order() {
     std::fs::write(&reversed, format!("{header}\n{}\n", lines.join("\n"))).expect("write");
     let a = graded(&fixture("long.csv"), "order-a", &[]);
     let b = graded(&reversed, "order-b", &[]);
-    for name in ["summary.md", "summary.json"] {
-        let read = |d: &Path| std::fs::read(d.join(name)).expect("summary");
-        assert_eq!(read(&a), read(&b), "{name}");
-    }
+    let read = |d: &Path| std::fs::read(d.join("summary.md")).expect("summary");
+    assert_eq!(read(&a), read(&b), "summary.md");
+    // summary.json differs only in the run id (the input's bytes differ).
+    let json = |d: &Path| {
+        let mut v: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(d.join("summary.json")).expect("summary"))
+                .expect("valid JSON");
+        let run = v["run"].take();
+        (run, v)
+    };
+    let ((run_a, a), (run_b, b)) = (json(&a), json(&b));
+    assert_eq!(a, b, "summary.json");
+    assert_ne!(run_a, run_b, "different class files, different runs");
 }
 
 #[test]

@@ -9,6 +9,7 @@ mod diagnostics;
 mod dimensions;
 mod energy13;
 mod equilibria13;
+mod files;
 mod follow;
 mod fuzz_replay;
 mod grade;
