@@ -13,6 +13,7 @@ mod files;
 mod follow;
 mod fuzz_replay;
 mod grade;
+mod grade_alone;
 mod grid14;
 mod helpers;
 mod hostile;
