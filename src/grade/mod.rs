@@ -7,6 +7,7 @@
 //! Exit codes: 0 graded (even when rows are wrong or errors: they are in results.csv), 2 the
 //! file cannot be read at all, its header is neither format, or an option is bad.
 
+mod decode;
 mod input;
 mod judge;
 mod output;
@@ -41,6 +42,8 @@ pub struct Options {
     pub best: bool,
     /// Print the summary JSON instead of the table.
     pub json: bool,
+    /// The parts the instructor set (`PROBLEM/PART`), the gradebook's columns (`--parts`).
+    pub parts: Option<Vec<String>>,
 }
 
 /// Grades a class file; see the module docs for the exit codes.
@@ -74,6 +77,27 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     };
     let bank =
         crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
+        Ok(c) => c,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    if opts.lms == Some(Lms::Moodle)
+        && let Err(message) = output::moodle_keys(&summary::students(&table.rows))
+    {
+        eprintln!("error: {message}");
+        return Ok(ExitCode::from(2));
+    }
+    for (kept, other) in &table.merged {
+        eprintln!(
+            "note: the student keys `{}` and `{}` differ only in case: graded as one student, `{}`",
+            lagrange::expr::error::visible(kept),
+            lagrange::expr::error::visible(other),
+            lagrange::expr::error::visible(kept),
+        );
+    }
     let run = run_id(&bytes, opts, &bank);
     drop(bytes);
     let settings = judge::Settings {
@@ -83,7 +107,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     let judged = judge::judge(&table.rows, &bank, settings, &progress_bar);
     let mut summary = summary::summarise(&table.rows, &judged, &bank);
     summary.run = run.clone();
-    let book = output::gradebook(&table.rows, &judged, &bank);
+    let book = output::gradebook(&table.rows, &judged, &bank, columns.as_deref());
     let mut files: Vec<(&str, Vec<u8>)> = vec![
         ("results.csv", output::results(&table.rows, &judged, &run)?),
         ("gradebook.csv", output::gradebook_csv(&book)?),
@@ -117,6 +141,51 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("{what}, see {}", shown(&dir.join("results.csv")));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The gradebook's columns: `--parts` (each `PROBLEM/PART` of the bank, else an error), else
+/// the wide format's part columns that name a bank part, else `None` (every part some row
+/// names).
+fn set_parts(
+    asked: Option<&[String]>,
+    table: &input::Table,
+    bank: &lagrange::bank::Bank,
+) -> Result<Option<Vec<(usize, usize)>>, String> {
+    let find = |problem: &str, part: &str| {
+        let p = bank.problems.iter().position(|x| x.id == problem)?;
+        let q = bank.problems[p].parts.iter().position(|x| x.id == part)?;
+        Some((p, q))
+    };
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    if let Some(asked) = asked {
+        for item in asked {
+            let found = item
+                .split_once('/')
+                .and_then(|(p, q)| find(p.trim(), q.trim()));
+            let Some(t) = found else {
+                return Err(format!(
+                    "--parts: `{}` is not a PROBLEM/PART of the bank (see `lagrange problems list`)",
+                    lagrange::expr::error::visible(item)
+                ));
+            };
+            if !out.contains(&t) {
+                out.push(t);
+            }
+        }
+        return Ok(Some(out));
+    }
+    if table.format == input::Format::Wide {
+        for (p, q) in &table.columns {
+            if let Some(t) = find(p, q)
+                && !out.contains(&t)
+            {
+                out.push(t);
+            }
+        }
+        out.sort_unstable();
+        return Ok(Some(out));
+    }
+    Ok(None)
 }
 
 /// A path as shown to the user (`-` is standard input; control characters escaped).
@@ -210,7 +279,7 @@ fn run_id(bytes: &[u8], opts: &Options, bank: &lagrange::bank::Bank) -> String {
     h.add(env!("CARGO_PKG_VERSION").as_bytes());
     h.add(&(bytes.len() as u64).to_le_bytes());
     h.add(bytes);
-    let settings = format!("{:?}|{}", opts.follow_through, opts.best);
+    let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
     h.add(settings.as_bytes());
     for p in &bank.problems {
         for part in &p.parts {

@@ -102,11 +102,24 @@ impl Gradebook {
     }
 }
 
-/// Builds the gradebook from the rows that count.
-pub fn gradebook(rows: &[Row], judged: &Judged, bank: &Bank) -> Gradebook {
-    let mut targets: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
-    targets.sort_unstable();
-    targets.dedup();
+/// Builds the gradebook from the rows that count. Its columns are `parts` (`--parts`, or the
+/// wide format's part columns) when given, else every part some row names, in bank order;
+/// every student's maximum is the sum of all columns, answered or not.
+pub fn gradebook(
+    rows: &[Row],
+    judged: &Judged,
+    bank: &Bank,
+    parts: Option<&[(usize, usize)]>,
+) -> Gradebook {
+    let targets: Vec<(usize, usize)> = match parts {
+        Some(p) => p.to_vec(),
+        None => {
+            let mut t: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
+            t.sort_unstable();
+            t.dedup();
+            t
+        }
+    };
     let column: std::collections::HashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
     let names = students(rows);
@@ -114,8 +127,10 @@ pub fn gradebook(rows: &[Row], judged: &Judged, bank: &Bank) -> Gradebook {
         names.iter().enumerate().map(|(i, &s)| (s, i)).collect();
     let mut scores = vec![vec![None; targets.len()]; names.len()];
     for (r, g) in rows.iter().zip(&judged.rows) {
-        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str())) {
-            scores[s][column[&t]] = Some(g.score);
+        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str()))
+            && let Some(&c) = column.get(&t)
+        {
+            scores[s][c] = Some(g.score);
         }
     }
     Gradebook {
@@ -161,10 +176,36 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     csv_bytes(&header, lines)
 }
 
-/// Whether every student key looks like an email address (Moodle and Gradescope then match on
-/// email rather than on an ID number).
+/// Whether every student key looks like an email address (Moodle then matches on email
+/// rather than on an ID number).
 fn emails(book: &Gradebook) -> bool {
     !book.students.is_empty() && book.students.iter().all(|(s, _)| s.contains('@'))
+}
+
+/// Moodle matches every row on one user field: student keys mixing email addresses and other
+/// IDs cannot be imported. The error names the keys of the smaller kind (at most five).
+pub fn moodle_keys(students: &[&str]) -> Result<(), String> {
+    let (with, without): (Vec<&str>, Vec<&str>) = students.iter().partition(|s| s.contains('@'));
+    if with.is_empty() || without.is_empty() {
+        return Ok(());
+    }
+    let (few, kind) = if without.len() <= with.len() {
+        (without, "without `@`")
+    } else {
+        (with, "with `@`")
+    };
+    let shown: Vec<String> = few
+        .iter()
+        .take(5)
+        .map(|s| format!("`{}`", lagrange::expr::error::visible(s)))
+        .collect();
+    Err(format!(
+        "--lms moodle: Moodle matches every row on one field (email address or ID number), \
+         but {} student key(s) are {kind}: {}{}; make the keys one kind",
+        few.len(),
+        shown.join(", "),
+        if few.len() > 5 { ", …" } else { "" }
+    ))
 }
 
 /// The LMS import file's name and contents; `assignment` names the total column.
@@ -209,10 +250,10 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
             csv_bytes(&[id, assignment], totals.map(|(s, t)| vec![s, t]))?
         }
         // Gradescope's score upload matches on SID or Email, with the score and its maximum.
+        // Each row on its own key: an email address in Email, anything else in SID.
         Lms::Gradescope => {
-            let by_email = emails(book);
             let rows = totals.map(|(s, t)| {
-                let (sid, email) = if by_email {
+                let (sid, email) = if s.contains('@') {
                     (String::new(), s)
                 } else {
                     (s, String::new())

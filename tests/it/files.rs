@@ -69,7 +69,7 @@ fn out_dot_replaces_only_the_files_grade_names() {
     ] {
         std::fs::write(d.join(name), text).expect("write");
     }
-    let (code, _, err) = grade_in(d, &["class.csv", "--out", ".", "--lms", "moodle"]);
+    let (code, _, err) = grade_in(d, &["class.csv", "--out", ".", "--lms", "gradescope"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(
         names(d),
@@ -77,7 +77,7 @@ fn out_dot_replaces_only_the_files_grade_names() {
             ".results.csv.1234.tmp",
             "class.csv",
             "gradebook.csv",
-            "moodle.csv",
+            "gradescope.csv",
             "notes.txt",
             "results.csv",
             "results.csv.bak",

@@ -14,6 +14,7 @@ mod follow;
 mod fuzz_replay;
 mod grade;
 mod grade_alone;
+mod grade_input;
 mod grid14;
 mod helpers;
 mod hostile;
