@@ -335,6 +335,14 @@ fn read_input(path: &Path) -> Result<Vec<u8>, String> {
         if meta.is_dir() {
             return Err(format!("{} is a folder, not a class file", path.display()));
         }
+        // A FIFO or a device would be read until it ends, perhaps never: pipe it in with `-`.
+        if !meta.is_file() {
+            return Err(format!(
+                "{} is not a regular file (a FIFO or a device); give a file, or pipe it in: \
+                 `lagrange grade - < …`",
+                shown(path)
+            ));
+        }
         if meta.len() > MAX_FILE_BYTES {
             return Err(too_large());
         }

@@ -172,3 +172,24 @@ fn no_output_holds_a_negative_zero() {
         );
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_given_as_the_class_file_is_refused_not_read_forever() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let fifo = dir.path().join("class.csv");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        return;
+    }
+    let run = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .arg("grade")
+        .arg(&fifo)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("not a regular file"), "{err}");
+}
