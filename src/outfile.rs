@@ -173,11 +173,21 @@ impl Folder {
         let path = self.path(name);
         check(&path, false)?;
         let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
-        let mut tmp = tempfile::Builder::new()
-            .prefix(&format!(".{name}."))
-            .suffix(TMP_SUFFIX)
-            .tempfile_in(&self.dir)
-            .map_err(fail)?;
+        let prefix = format!(".{name}.");
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(TMP_SUFFIX);
+        // The mode a new file gets (0666 less the umask, as `File::create` gives), or the
+        // replaced file's own: not tempfile's private 0600.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt as _;
+            let mode = std::fs::symlink_metadata(&path)
+                .ok()
+                .filter(|m| m.is_file())
+                .map_or(0o666, |m| m.permissions().mode() & 0o7777);
+            builder.permissions(std::fs::Permissions::from_mode(mode));
+        }
+        let mut tmp = builder.tempfile_in(&self.dir).map_err(fail)?;
         tmp.write_all(bytes)
             .and_then(|()| tmp.as_file().sync_all())
             .map_err(fail)?;
@@ -266,6 +276,22 @@ mod tests {
         assert!(e.contains("symbolic link"), "{e}");
         assert_eq!(std::fs::read(&target).expect("read"), b"keep");
         assert!(std::fs::symlink_metadata(&link).is_ok_and(|m| m.file_type().is_symlink()));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_new_file_gets_the_usual_mode_and_a_replaced_one_keeps_its_own() {
+        use std::os::unix::fs::PermissionsExt as _;
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (new, old) = (dir.path().join("new.csv"), dir.path().join("old.csv"));
+        std::fs::write(&old, "x").expect("write");
+        let plain = std::fs::metadata(&old).expect("stat").permissions().mode() & 0o777;
+        std::fs::set_permissions(&old, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+        write_named(&new, b"y").expect("written");
+        write_named(&old, b"z").expect("written");
+        let mode = |p: &Path| std::fs::metadata(p).expect("stat").permissions().mode() & 0o777;
+        assert_eq!(mode(&new), plain, "as File::create makes it");
+        assert_eq!(mode(&old), 0o640);
     }
 
     #[cfg(unix)]
