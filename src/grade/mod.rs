@@ -220,6 +220,13 @@ fn lms_name(lms: Lms) -> &'static str {
 /// Refuses, before any work, an output name holding a link, a device, a FIFO or a folder,
 /// and an input file that is one of the outputs (it would be replaced by its own results).
 fn check_outputs(dir: &Path, names: &[&str], input: &Path) -> Result<(), String> {
+    // `--out` follows a link to a folder; anything else that exists there is not a folder.
+    if dir.exists() && !dir.is_dir() {
+        return Err(format!(
+            "--out {} is not a folder; grade writes its files into a folder",
+            shown(dir)
+        ));
+    }
     let input_id = (input != Path::new("-"))
         .then(|| std::fs::metadata(input).ok())
         .flatten();

@@ -356,3 +356,21 @@ fn pictures_are_written_whole_with_no_temporary_file_left() {
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
     assert_eq!(names(d), ["phase.png", "q.svg"]);
 }
+
+#[cfg(unix)]
+#[test]
+fn out_naming_a_device_or_a_file_is_exit_2_in_one_line() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    std::fs::write(d.join("class.csv"), HOSTILE).expect("write");
+    for out in ["/dev/null", "class.csv"] {
+        let (code, _, err) = grade_in(d, &["class.csv", "--out", out]);
+        assert_eq!(code, 2, "{out}: {err}");
+        assert!(err.contains("is not a folder"), "{out}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join("class.csv")).ok().as_deref(),
+        Some(HOSTILE)
+    );
+}
