@@ -158,7 +158,8 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
                 ));
             }
         } else if path.extension().is_some_and(|e| e == "rs")
-            && !["lib", "main", "layers"].contains(&name.as_str())
+            // `outfile.rs` belongs to the binary (the faces' file writing), like main.rs.
+            && !["lib", "main", "layers", "outfile"].contains(&name.as_str())
         {
             let text = std::fs::read_to_string(&path).unwrap_or_default();
             out.push((

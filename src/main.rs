@@ -6,6 +6,7 @@
 
 mod cli;
 mod grade;
+mod outfile;
 mod plot;
 mod repl;
 

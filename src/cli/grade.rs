@@ -42,6 +42,11 @@ pub struct GradeArgs {
     /// Print the summary as JSON instead of the table.
     #[arg(long)]
     json: bool,
+    /// The parts the instructor set, comma-separated PROBLEM/PART: the gradebook's columns and
+    /// every student's maximum (default: every part column of a wide file, every part some row
+    /// of a long file names).
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    parts: Option<Vec<String>>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -70,5 +75,6 @@ pub fn run(args: &GradeArgs, problems: Option<&Path>) -> anyhow::Result<ExitCode
         follow_through,
         best: args.best,
         json: args.json,
+        parts: args.parts.clone(),
     })
 }

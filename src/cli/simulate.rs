@@ -185,6 +185,10 @@ fn check_pictures(args: &SimulateArgs) -> Result<(), CliError> {
             crate::plot::check_picture_path(flag, path, terminal).map_err(CliError::Usage)?;
         }
     }
+    // The CSV's name too: a link or a folder there is refused before any work.
+    if let Some(path) = args.out.as_deref().filter(|p| *p != Path::new("-")) {
+        crate::outfile::check(path, true).map_err(|e| CliError::Usage(format!("--out: {e}")))?;
+    }
     Ok(())
 }
 
@@ -269,18 +273,8 @@ pub(super) fn failure(e: &SimulationError) -> ExitCode {
     ExitCode::from(if e.along_the_way() { 1 } else { 2 })
 }
 
-/// Writes `bytes` to `path` through a temporary file beside it and a rename.
-pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let name = path
-        .file_name()
-        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
-        .and_then(|()| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+/// Writes `bytes` to `path` as [`crate::outfile::write_named`] does: a regular file through a
+/// temporary file beside it and a rename, a device or FIFO by streaming, never through a link.
+pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    crate::outfile::write_named(path, bytes)
 }

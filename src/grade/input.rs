@@ -5,6 +5,8 @@
 
 use std::borrow::Cow;
 
+use super::output::unquote_cell;
+
 /// The two layouts a class file may have.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -19,7 +21,8 @@ pub enum Format {
 pub struct Row {
     /// The input line number the record starts on (the header is line 1).
     pub line: u64,
-    /// The student key (trimmed), as the LMS knows the student.
+    /// The student key (trimmed; a key differing only in case from an earlier one takes the
+    /// earlier spelling), as the LMS knows the student.
     pub student: String,
     /// The problem id (trimmed; in the wide format, from the column name).
     pub problem: String,
@@ -38,6 +41,10 @@ pub struct Table {
     pub format: Format,
     /// One row per answer, in input order.
     pub rows: Vec<Row>,
+    /// The wide format's part columns, `(problem, part)` in header order (empty when long).
+    pub columns: Vec<(String, String)>,
+    /// Student keys read as one because they differ only in case: (kept, merged into it).
+    pub merged: Vec<(String, String)>,
 }
 
 /// Why a class file cannot be read at all (exit 2).
@@ -69,10 +76,12 @@ enum Layout {
 /// Parses a whole class file. Only an unusable header (or none) is an error; every other
 /// problem is recorded on the row it concerns.
 pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
+    let decoded = super::decode::decode(bytes).map_err(BadFile)?;
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
-        .from_reader(bytes);
+        .delimiter(decoded.delimiter)
+        .from_reader(&*decoded.text);
     let mut records = reader.byte_records();
     let header = match records.next() {
         Some(Ok(h)) => h,
@@ -90,14 +99,47 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
             // loop, and keep what was read.
             Err(e) => return Err(BadFile(format!("cannot read the file: {e}"))),
         };
-        let line = record.position().map_or(0, |p| p.line());
+        // The file's own line (the reader's count misses CR-only and CRLF endings).
+        let line = record
+            .position()
+            .map_or(0, |p| decoded.record_line(p.byte() as usize));
         push_rows(&layout, width, line, &record, &mut rows);
     }
-    let format = match layout {
-        Layout::Long { .. } => Format::Long,
-        Layout::Wide { .. } => Format::Wide,
+    let merged = merge_students(&mut rows);
+    let (format, columns) = match layout {
+        Layout::Long { .. } => (Format::Long, Vec::new()),
+        Layout::Wide { parts, .. } => (
+            Format::Wide,
+            parts.into_iter().map(|(_, p, q)| (p, q)).collect(),
+        ),
     };
-    Ok(Table { format, rows })
+    Ok(Table {
+        format,
+        rows,
+        columns,
+        merged,
+    })
+}
+
+/// Student keys that differ only in case or surrounding spaces are one student: every row
+/// takes the first spelling of its key. The keys merged, as (first spelling, other spelling).
+fn merge_students(rows: &mut [Row]) -> Vec<(String, String)> {
+    let mut first: std::collections::HashMap<String, String> = std::collections::HashMap::new();
+    let mut merged = Vec::new();
+    for row in rows.iter_mut().filter(|r| !r.student.is_empty()) {
+        let key = row.student.to_lowercase();
+        let spelling = first.entry(key).or_insert_with(|| row.student.clone());
+        if *spelling != row.student {
+            let pair = (
+                spelling.clone(),
+                std::mem::replace(&mut row.student, spelling.clone()),
+            );
+            if !merged.contains(&pair) {
+                merged.push(pair);
+            }
+        }
+    }
+    merged
 }
 
 /// A header cell as compared: trimmed, lower-case, without a byte-order mark.
@@ -147,10 +189,11 @@ fn layout(names: &[String]) -> Result<Layout, BadFile> {
 }
 
 /// A field decoded lossily, and whether it had to be.
+/// A cell lagrange neutralised for spreadsheets (`'=…`) reads as its text again.
 fn text(record: &csv::ByteRecord, i: usize) -> (String, bool) {
     match record.get(i).map(String::from_utf8_lossy) {
-        Some(Cow::Borrowed(s)) => (s.to_string(), false),
-        Some(Cow::Owned(s)) => (s, true),
+        Some(Cow::Borrowed(s)) => (unquote_cell(s).to_string(), false),
+        Some(Cow::Owned(s)) => (unquote_cell(&s).to_string(), true),
         None => (String::new(), false),
     }
 }

@@ -1,6 +1,7 @@
 //! Rows → verdicts, checking as little as possible: answers are deduplicated on their exact
 //! text, then on the checker's canonical form, and one representative per canonical form
-//! (the first in input order) is checked; every row sharing it reuses the verdict. The two
+//! (the first in input order) is checked; every row sharing it reuses the verdict (a list only
+//! with the same text: its canonical form drops stated stability and item order). The two
 //! passes run in parallel (rayon), one `Checker` per worker and problem. Which answer
 //! represents a form never depends on the thread count, so neither does any output.
 
@@ -12,7 +13,7 @@ use rayon::prelude::*;
 use lagrange::bank::Bank;
 use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
-use lagrange::problem::Problem;
+use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::tutor::command::did_you_mean;
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
@@ -131,18 +132,21 @@ pub fn judge(
     bar.set_message("reading");
     let canon = par_map(bank, &distinct, |c, part, text| {
         bar.inc(1);
-        c.canonical(part, text).ok().flatten()
+        // A list's verdict depends on what its canonical form leaves out (the stated
+        // stability of each equilibrium, labels, the items' order that messages name), so
+        // lists share a verdict only with the same text.
+        (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
     bar.set_message("checking");
     bar.set_length(rep_inputs.len() as u64);
     bar.set_position(0);
     let checked = par_map(bank, &rep_inputs, |c, part, text| {
-        let verdict = c.check(part, text).map_err(|e| e.to_string());
+        let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.
         let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
         let fingerprint = wrong
-            .then(|| c.fingerprint(part, text).ok().flatten())
+            .then(|| c.fingerprint(&part.id, text).ok().flatten())
             .flatten();
         bar.inc(1);
         (verdict, fingerprint)
@@ -171,14 +175,22 @@ pub fn judge(
     Judged { rows: graded, reps }
 }
 
-/// Maps `f(checker, part id, answer)` over `(problem, part, answer)` items in parallel, in
+/// Whether a part's answer is a list (equilibria, frequencies, values).
+fn is_list(part: &Part) -> bool {
+    matches!(
+        part.kind,
+        PartKind::Equilibria | PartKind::Frequencies | PartKind::Values
+    )
+}
+
+/// Maps `f(checker, part, answer)` over `(problem, part, answer)` items in parallel, in
 /// order, giving each chunk of work one checker per problem. A checker prepares each part
 /// once, so chunks are not tiny; but its expression pool grows with every answer it reads,
 /// which makes a long chunk slower per answer, so chunks are not long either.
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
     items: &[(usize, usize, &str)],
-    f: impl Fn(&mut Checker<'b>, &str, &str) -> R + Sync + Send,
+    f: impl Fn(&mut Checker<'b>, &'b Part, &str) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -190,7 +202,7 @@ fn par_map<'b, R: Send>(
             |checkers, &(p, q, text)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q].id, text)
+                f(checker, &problem.parts[q], text)
             },
         )
         .collect()

@@ -7,6 +7,7 @@
 //! Exit codes: 0 graded (even when rows are wrong or errors: they are in results.csv), 2 the
 //! file cannot be read at all, its header is neither format, or an option is bad.
 
+mod decode;
 mod input;
 mod judge;
 mod output;
@@ -16,7 +17,6 @@ use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 pub use output::Lms;
@@ -42,6 +42,8 @@ pub struct Options {
     pub best: bool,
     /// Print the summary JSON instead of the table.
     pub json: bool,
+    /// The parts the instructor set (`PROBLEM/PART`), the gradebook's columns (`--parts`).
+    pub parts: Option<Vec<String>>,
 }
 
 /// Grades a class file; see the module docs for the exit codes.
@@ -50,6 +52,13 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         && !(0.0..=1.0).contains(&c)
     {
         eprintln!("error: --follow-through-credit must be between 0 and 1, not {c}");
+        return Ok(ExitCode::from(2));
+    }
+    let dir = out_dir(opts);
+    let names = output_names(opts.lms);
+    // Before any work: every output name must be free or a regular file, and none the input.
+    if let Err(message) = check_outputs(&dir, &names, &opts.input) {
+        eprintln!("error: {message}");
         return Ok(ExitCode::from(2));
     }
     let bytes = match read_input(&opts.input) {
@@ -66,32 +75,56 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    drop(bytes);
     let bank =
         crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
+        Ok(c) => c,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    if opts.lms == Some(Lms::Moodle)
+        && let Err(message) = output::moodle_keys(&summary::students(&table.rows))
+    {
+        eprintln!("error: {message}");
+        return Ok(ExitCode::from(2));
+    }
+    for (kept, other) in &table.merged {
+        eprintln!(
+            "note: the student keys `{}` and `{}` differ only in case: graded as one student, `{}`",
+            lagrange::expr::error::visible(kept),
+            lagrange::expr::error::visible(other),
+            lagrange::expr::error::visible(kept),
+        );
+    }
+    let run = run_id(&bytes, opts, &bank);
+    drop(bytes);
     let settings = judge::Settings {
         follow_through: opts.follow_through,
         best: opts.best,
     };
     let judged = judge::judge(&table.rows, &bank, settings, &progress_bar);
-    let summary = summary::summarise(&table.rows, &judged, &bank);
-    let dir = out_dir(opts);
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let book = output::gradebook(&table.rows, &judged, &bank);
-    let mut written = vec![
-        output::write_atomic(&dir, "results.csv", &output::results(&table.rows, &judged)?)?,
-        output::write_atomic(&dir, "gradebook.csv", &output::gradebook_csv(&book)?)?,
-        output::write_atomic(&dir, "summary.md", summary::markdown(&summary).as_bytes())?,
-        output::write_atomic(
-            &dir,
-            "summary.json",
-            output::summary_json(&summary)?.as_bytes(),
-        )?,
+    let mut summary = summary::summarise(&table.rows, &judged, &bank);
+    summary.run = run.clone();
+    let book = output::gradebook(&table.rows, &judged, &bank, columns.as_deref());
+    let mut files: Vec<(&str, Vec<u8>)> = vec![
+        ("results.csv", output::results(&table.rows, &judged, &run)?),
+        ("gradebook.csv", output::gradebook_csv(&book)?),
     ];
     if let Some(lms) = opts.lms {
-        let (name, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
-        written.push(output::write_atomic(&dir, &name, &bytes)?);
+        let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
+        files.push((lms_name(lms), bytes));
     }
+    files.push(("summary.md", summary::markdown(&summary).into_bytes()));
+    files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
+    let written = match write_outputs(&dir, &names, files) {
+        Ok(w) => w,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     let text = if opts.json {
         output::summary_json(&summary)?
     } else {
@@ -110,12 +143,186 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// A path as shown to the user (`-` is standard input).
+/// The gradebook's columns: `--parts` (each `PROBLEM/PART` of the bank, else an error), else
+/// the wide format's part columns that name a bank part, else `None` (every part some row
+/// names).
+fn set_parts(
+    asked: Option<&[String]>,
+    table: &input::Table,
+    bank: &lagrange::bank::Bank,
+) -> Result<Option<Vec<(usize, usize)>>, String> {
+    let find = |problem: &str, part: &str| {
+        let p = bank.problems.iter().position(|x| x.id == problem)?;
+        let q = bank.problems[p].parts.iter().position(|x| x.id == part)?;
+        Some((p, q))
+    };
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    if let Some(asked) = asked {
+        for item in asked {
+            let found = item
+                .split_once('/')
+                .and_then(|(p, q)| find(p.trim(), q.trim()));
+            let Some(t) = found else {
+                return Err(format!(
+                    "--parts: `{}` is not a PROBLEM/PART of the bank (see `lagrange problems list`)",
+                    lagrange::expr::error::visible(item)
+                ));
+            };
+            if !out.contains(&t) {
+                out.push(t);
+            }
+        }
+        return Ok(Some(out));
+    }
+    if table.format == input::Format::Wide {
+        for (p, q) in &table.columns {
+            if let Some(t) = find(p, q)
+                && !out.contains(&t)
+            {
+                out.push(t);
+            }
+        }
+        out.sort_unstable();
+        return Ok(Some(out));
+    }
+    Ok(None)
+}
+
+/// A path as shown to the user (`-` is standard input; control characters escaped).
 fn shown(p: &Path) -> String {
     if p == Path::new("-") {
         "standard input".to_string()
     } else {
-        p.display().to_string()
+        lagrange::expr::error::visible(&p.display().to_string())
+    }
+}
+
+/// The names of the files this run writes, in the order they are renamed into place:
+/// summary.json last, so when its `run` equals results.csv's, the set is whole.
+fn output_names(lms: Option<Lms>) -> Vec<&'static str> {
+    let mut names = vec!["results.csv", "gradebook.csv"];
+    if let Some(lms) = lms {
+        names.push(lms_name(lms));
+    }
+    names.extend(["summary.md", "summary.json"]);
+    names
+}
+
+/// The LMS file's name (as [`output::lms_file`] names it).
+fn lms_name(lms: Lms) -> &'static str {
+    match lms {
+        Lms::Canvas => "canvas.csv",
+        Lms::Moodle => "moodle.csv",
+        Lms::Gradescope => "gradescope.csv",
+    }
+}
+
+/// Refuses, before any work, an output name holding a link, a device, a FIFO or a folder,
+/// and an input file that is one of the outputs (it would be replaced by its own results).
+fn check_outputs(dir: &Path, names: &[&str], input: &Path) -> Result<(), String> {
+    // `--out` follows a link to a folder; anything else that exists there is not a folder.
+    if dir.exists() && !dir.is_dir() {
+        return Err(format!(
+            "--out {} is not a folder; grade writes its files into a folder",
+            shown(dir)
+        ));
+    }
+    let input_id = (input != Path::new("-"))
+        .then(|| std::fs::metadata(input).ok())
+        .flatten();
+    for name in names {
+        let path = dir.join(name);
+        crate::outfile::check(&path, false).map_err(|e| {
+            format!("{e}; grade writes only regular files it names (choose another --out)")
+        })?;
+        if let (Some(a), Ok(b)) = (&input_id, std::fs::metadata(&path))
+            && same_file(a, &b)
+        {
+            return Err(format!(
+                "the class file {} is one of grade's outputs and would be replaced; \
+                 choose another --out",
+                shown(input)
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether two metadata describe one file (device and inode on Unix).
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt as _;
+        a.dev() == b.dev() && a.ino() == b.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (a, b);
+        false
+    }
+}
+
+/// Writes every output whole under a temporary name, then renames them all into place (the
+/// folder locked meanwhile; stale temporary files of a killed run removed): the paths written.
+fn write_outputs(
+    dir: &Path,
+    names: &[&str],
+    files: Vec<(&str, Vec<u8>)>,
+) -> Result<Vec<PathBuf>, String> {
+    let folder = crate::outfile::Folder::open(dir, names)?;
+    let staged = files
+        .iter()
+        .map(|(name, bytes)| folder.stage(name, bytes))
+        .collect::<Result<Vec<_>, _>>()?;
+    crate::outfile::commit(staged)
+}
+
+/// The run's id: 16 hex digits of a hash of everything the outputs depend on (the class
+/// file's bytes, the options, the bank's parts, lagrange's version). Files of one run carry
+/// the same id; two runs with equal ids wrote equal files, so outputs stay byte-identical
+/// from run to run.
+fn run_id(bytes: &[u8], opts: &Options, bank: &lagrange::bank::Bank) -> String {
+    let mut h = Fnv::default();
+    h.add(env!("CARGO_PKG_VERSION").as_bytes());
+    h.add(&(bytes.len() as u64).to_le_bytes());
+    h.add(bytes);
+    let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
+    h.add(settings.as_bytes());
+    for p in &bank.problems {
+        for part in &p.parts {
+            let key = format!(
+                "{}/{}|{:?}|{}|{:?}|{:?}|{}|{:?}|{:?}\n",
+                p.id,
+                part.id,
+                part.kind,
+                part.points,
+                part.answers,
+                part.stability,
+                part.tolerance,
+                part.substitute,
+                part.at
+            );
+            h.add(key.as_bytes());
+        }
+    }
+    format!("{:016x}", h.0)
+}
+
+/// FNV-1a, 64 bits: a hash that is the same on every machine and Rust version.
+struct Fnv(u64);
+
+impl Default for Fnv {
+    fn default() -> Self {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv {
+    fn add(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
+        }
     }
 }
 
@@ -134,6 +341,14 @@ fn read_input(path: &Path) -> Result<Vec<u8>, String> {
         let meta = std::fs::metadata(path).map_err(cannot)?;
         if meta.is_dir() {
             return Err(format!("{} is a folder, not a class file", path.display()));
+        }
+        // A FIFO or a device would be read until it ends, perhaps never: pipe it in with `-`.
+        if !meta.is_file() {
+            return Err(format!(
+                "{} is not a regular file (a FIFO or a device); give a file, or pipe it in: \
+                 `lagrange grade - < …`",
+                shown(path)
+            ));
         }
         if meta.len() > MAX_FILE_BYTES {
             return Err(too_large());
@@ -216,7 +431,7 @@ fn table_text(s: &summary::Summary, format: input::Format, written: &[PathBuf]) 
     }
     out.push_str("wrote:\n");
     for w in written {
-        let _ = writeln!(out, "  {}", w.display());
+        let _ = writeln!(out, "  {}", shown(w));
     }
     out
 }

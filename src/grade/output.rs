@@ -1,12 +1,6 @@
 //! The files `lagrange grade` writes: results.csv (one row per answer), gradebook.csv (one
-//! row per student), summary.md / summary.json, and an LMS import file. Each file is written
-//! under a temporary name in the same folder and renamed over the old one, so a reader never
-//! sees half a file and an interrupted run leaves the previous outputs whole.
-
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
-
-use anyhow::Context as _;
+//! row per student), summary.md / summary.json, and an LMS import file, as bytes (written by
+//! [`crate::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
 
 use lagrange::bank::Bank;
 
@@ -25,18 +19,33 @@ pub enum Lms {
     Gradescope,
 }
 
-/// Writes `bytes` to `dir/name` atomically (temporary file in `dir`, then rename).
-pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> anyhow::Result<PathBuf> {
-    let path = dir.join(name);
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
-        .and_then(|()| std::fs::rename(&tmp, &path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+/// What a spreadsheet would run as a formula at the start of a cell.
+const FORMULA_START: [char; 6] = ['=', '+', '-', '@', '\t', '\r'];
+
+/// Whether a cell must be neutralised: it starts like a formula, or it is a neutralised cell
+/// already (a `'` before such a start), so that reading back strips exactly one `'`.
+fn needs_quote(s: &str) -> bool {
+    s.starts_with(FORMULA_START) || s.strip_prefix('\'').is_some_and(needs_quote)
+}
+
+/// A text cell a spreadsheet will show rather than run: a leading `'` before `=`, `+`, `-`,
+/// `@`, a tab or a carriage return (`=HYPERLINK(…)` → `'=HYPERLINK(…)`). [`unquote_cell`]
+/// gives the text back.
+pub fn quote_cell(s: &str) -> String {
+    if needs_quote(s) {
+        format!("'{s}")
+    } else {
+        s.to_string()
     }
-    Ok(path)
+}
+
+/// The text of a cell [`quote_cell`] wrote (the class file's own cells are read through it
+/// too, so a results.csv graded again reads `-m g l cos θ` as typed).
+pub fn unquote_cell(s: &str) -> &str {
+    match s.strip_prefix('\'') {
+        Some(rest) if needs_quote(rest) => rest,
+        _ => s,
+    }
 }
 
 /// A CSV document built in memory.
@@ -52,22 +61,24 @@ fn csv_bytes(
     w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))
 }
 
-/// results.csv: every input answer, in input order.
-pub fn results(rows: &[Row], judged: &Judged) -> anyhow::Result<Vec<u8>> {
+/// results.csv: every input answer, in input order, each row with the run's id. Text cells
+/// are neutralised ([`quote_cell`]).
+pub fn results(rows: &[Row], judged: &Judged, run: &str) -> anyhow::Result<Vec<u8>> {
     let header = [
-        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message",
+        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
     ];
     let lines = rows.iter().zip(&judged.rows).map(|(r, g)| {
         vec![
             r.line.to_string(),
-            r.student.clone(),
-            r.problem.clone(),
-            r.part.clone(),
-            r.answer.clone(),
+            quote_cell(&r.student),
+            quote_cell(&r.problem),
+            quote_cell(&r.part),
+            quote_cell(&r.answer),
             g.status.name().to_string(),
             num(g.score),
             g.codes.join(";"),
-            g.message.clone(),
+            quote_cell(&g.message),
+            run.to_string(),
         ]
     });
     csv_bytes(&header, lines)
@@ -91,11 +102,24 @@ impl Gradebook {
     }
 }
 
-/// Builds the gradebook from the rows that count.
-pub fn gradebook(rows: &[Row], judged: &Judged, bank: &Bank) -> Gradebook {
-    let mut targets: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
-    targets.sort_unstable();
-    targets.dedup();
+/// Builds the gradebook from the rows that count. Its columns are `parts` (`--parts`, or the
+/// wide format's part columns) when given, else every part some row names, in bank order;
+/// every student's maximum is the sum of all columns, answered or not.
+pub fn gradebook(
+    rows: &[Row],
+    judged: &Judged,
+    bank: &Bank,
+    parts: Option<&[(usize, usize)]>,
+) -> Gradebook {
+    let targets: Vec<(usize, usize)> = match parts {
+        Some(p) => p.to_vec(),
+        None => {
+            let mut t: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
+            t.sort_unstable();
+            t.dedup();
+            t
+        }
+    };
     let column: std::collections::HashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
     let names = students(rows);
@@ -103,8 +127,10 @@ pub fn gradebook(rows: &[Row], judged: &Judged, bank: &Bank) -> Gradebook {
         names.iter().enumerate().map(|(i, &s)| (s, i)).collect();
     let mut scores = vec![vec![None; targets.len()]; names.len()];
     for (r, g) in rows.iter().zip(&judged.rows) {
-        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str())) {
-            scores[s][column[&t]] = Some(g.score);
+        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str()))
+            && let Some(&c) = column.get(&t)
+        {
+            scores[s][c] = Some(g.score);
         }
     }
     Gradebook {
@@ -141,7 +167,7 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     header.extend(["total", "max", "percent"]);
     let max = book.max();
     let lines = book.students.iter().map(|(s, scores)| {
-        let mut line = vec![s.clone()];
+        let mut line = vec![quote_cell(s)];
         line.extend(scores.iter().map(|x| x.map_or(String::new(), num)));
         let t = total(scores);
         line.extend([num(t), num(max), percent(t, max)]);
@@ -150,10 +176,36 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     csv_bytes(&header, lines)
 }
 
-/// Whether every student key looks like an email address (Moodle and Gradescope then match on
-/// email rather than on an ID number).
+/// Whether every student key looks like an email address (Moodle then matches on email
+/// rather than on an ID number).
 fn emails(book: &Gradebook) -> bool {
     !book.students.is_empty() && book.students.iter().all(|(s, _)| s.contains('@'))
+}
+
+/// Moodle matches every row on one user field: student keys mixing email addresses and other
+/// IDs cannot be imported. The error names the keys of the smaller kind (at most five).
+pub fn moodle_keys(students: &[&str]) -> Result<(), String> {
+    let (with, without): (Vec<&str>, Vec<&str>) = students.iter().partition(|s| s.contains('@'));
+    if with.is_empty() || without.is_empty() {
+        return Ok(());
+    }
+    let (few, kind) = if without.len() <= with.len() {
+        (without, "without `@`")
+    } else {
+        (with, "with `@`")
+    };
+    let shown: Vec<String> = few
+        .iter()
+        .take(5)
+        .map(|s| format!("`{}`", lagrange::expr::error::visible(s)))
+        .collect();
+    Err(format!(
+        "--lms moodle: Moodle matches every row on one field (email address or ID number), \
+         but {} student key(s) are {kind}: {}{}; make the keys one kind",
+        few.len(),
+        shown.join(", "),
+        if few.len() > 5 { ", …" } else { "" }
+    ))
 }
 
 /// The LMS import file's name and contents; `assignment` names the total column.
@@ -162,7 +214,7 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
     let totals = book
         .students
         .iter()
-        .map(|(s, scores)| (s.clone(), num(total(scores))));
+        .map(|(s, scores)| (quote_cell(s), num(total(scores))));
     let bytes = match lms {
         // Canvas matches a student on SIS Login ID (among its ID columns) and reads the
         // optional "Points Possible" row right under the header.
@@ -198,10 +250,10 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
             csv_bytes(&[id, assignment], totals.map(|(s, t)| vec![s, t]))?
         }
         // Gradescope's score upload matches on SID or Email, with the score and its maximum.
+        // Each row on its own key: an email address in Email, anything else in SID.
         Lms::Gradescope => {
-            let by_email = emails(book);
             let rows = totals.map(|(s, t)| {
-                let (sid, email) = if by_email {
+                let (sid, email) = if s.contains('@') {
                     (String::new(), s)
                 } else {
                     (s, String::new())

@@ -21,6 +21,8 @@ const MAX_SHOWN: usize = 80;
 /// The whole class at a glance.
 #[derive(Debug, Serialize)]
 pub struct Summary {
+    /// The run's id, as in every row of results.csv.
+    pub run: String,
     /// Rows of results.csv (= answers in the input).
     pub rows: usize,
     /// Distinct non-empty student keys.
@@ -52,16 +54,23 @@ pub struct PartSummary {
     pub students: usize,
     /// Mean score (in points) of the answers that count.
     pub mean_score: f64,
-    /// The most common wrong (incorrect or invalid) answers, grouped by meaning.
+    /// The most common wrong (readable, incorrect) answers, grouped by meaning.
     pub wrong: Vec<Group>,
     /// Wrong answers in groups not listed.
     pub other_wrong: usize,
+    /// The most common unreadable (invalid) answers, grouped by their text: kept apart from
+    /// the mistakes, which are about physics.
+    pub unreadable: Vec<Group>,
+    /// Unreadable answers in groups not listed.
+    pub other_unreadable: usize,
 }
 
 /// Wrong answers equal at the sample points (or, unreadable, equal as typed).
 #[derive(Debug, Serialize)]
 pub struct Group {
-    /// Rows in the group.
+    /// Students who gave an answer of the group (each counted once).
+    pub students: usize,
+    /// Rows (attempts) in the group.
     pub count: usize,
     /// `incorrect` or `invalid`.
     pub status: String,
@@ -73,12 +82,17 @@ pub struct Group {
     pub diagnosis: String,
     /// Up to two spellings as typed, most common first.
     pub examples: Vec<String>,
+    /// The reading and spellings uncut: ties in the order are broken by the full text, never
+    /// by the cut one.
+    #[serde(skip)]
+    full: (String, Vec<String>),
 }
 
 /// A group being counted: rows per representative and per spelling.
 #[derive(Default)]
 struct Tally<'a> {
     count: usize,
+    students: std::collections::HashSet<&'a str>,
     by_rep: HashMap<usize, usize>,
     by_text: HashMap<&'a str, usize>,
 }
@@ -122,19 +136,22 @@ pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
             .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
         let t = tallies.entry((key, g.status, meaning)).or_default();
         t.count += 1;
+        t.students.insert(row.student.as_str());
         *t.by_rep.entry(rep).or_insert(0) += 1;
         *t.by_text.entry(row.answer.trim()).or_insert(0) += 1;
     }
     for (key, s) in parts.iter_mut() {
         let sum = sums.get(key).copied().unwrap_or(0.0);
+        // `+ 0.0` turns a −0.0 into 0.0.
         s.mean_score = if s.students == 0 {
             0.0
         } else {
-            sum / s.students as f64
+            sum / s.students as f64 + 0.0
         };
     }
     add_groups(&mut parts, tallies, judged);
     Summary {
+        run: String::new(),
         rows: rows.len(),
         students: students(rows).len(),
         status,
@@ -164,6 +181,8 @@ fn empty(points: f64) -> PartSummary {
         mean_score: 0.0,
         wrong: Vec::new(),
         other_wrong: 0,
+        unreadable: Vec::new(),
+        other_unreadable: 0,
     }
 }
 
@@ -182,17 +201,23 @@ fn add_groups(
     }
     for (key, mut groups) in per_part {
         groups.sort_by(|a, b| {
-            b.count
-                .cmp(&a.count)
-                .then_with(|| a.answer.cmp(&b.answer))
+            b.students
+                .cmp(&a.students)
+                .then_with(|| b.count.cmp(&a.count))
+                .then_with(|| a.full.cmp(&b.full))
                 .then_with(|| a.status.cmp(&b.status))
-                .then_with(|| a.examples.cmp(&b.examples))
         });
-        let other = groups.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
-        groups.truncate(MAX_GROUPS);
+        let (mut wrong, mut unreadable): (Vec<Group>, Vec<Group>) =
+            groups.into_iter().partition(|g| g.status != "invalid");
+        let other = |g: &[Group]| g.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
+        let (other_wrong, other_unreadable) = (other(&wrong), other(&unreadable));
+        wrong.truncate(MAX_GROUPS);
+        unreadable.truncate(MAX_GROUPS);
         if let Some(s) = parts.get_mut(&key) {
-            s.wrong = groups;
-            s.other_wrong = other;
+            s.wrong = wrong;
+            s.other_wrong = other_wrong;
+            s.unreadable = unreadable;
+            s.other_unreadable = other_unreadable;
         }
     }
 }
@@ -220,6 +245,7 @@ fn group(status: Status, t: &Tally, judged: &Judged) -> Group {
     let mut texts: Vec<(&str, usize)> = t.by_text.iter().map(|(&s, &n)| (s, n)).collect();
     texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
     Group {
+        students: t.students.len(),
         count: t.count,
         status: status.name().to_string(),
         answer: cut(&answer),
@@ -230,6 +256,7 @@ fn group(status: Status, t: &Tally, judged: &Judged) -> Group {
             .and_then(|v| v.diagnoses.first())
             .map_or(String::new(), |d| d.message.clone()),
         examples: texts.iter().take(2).map(|(s, _)| cut(s)).collect(),
+        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
     }
 }
 
@@ -255,19 +282,39 @@ pub fn num(x: f64) -> String {
     }
 }
 
-/// A Markdown table cell: pipes escaped, one line.
+/// A Markdown table cell of text: control characters shown escaped (`\u{1b}`), HTML's
+/// `& < >` as entities and the marks Markdown acts on inside a line (`\ ` * _ [ ] | ~`)
+/// backslash-escaped, so a student's text is shown, never run (no link, no image, no tag, no
+/// emphasis, no broken table). Nothing in a cell is at the start of a line.
 fn cell(s: &str) -> String {
-    s.replace('|', "\\|")
+    let s = lagrange::expr::error::visible(s);
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '\\' | '`' | '*' | '_' | '[' | ']' | '|' | '~' => {
+                out.push('\\');
+                out.push(c);
+            }
+            _ => out.push(c),
+        }
+    }
+    out
 }
 
-/// A Markdown code span that survives backticks in the text.
+/// A Markdown code span of text, in a table cell: control characters shown escaped, pipes
+/// escaped (a table would split there), fenced by more backticks than the text holds in a
+/// row. Inside a code span nothing is interpreted, HTML included.
 fn code(s: &str) -> String {
-    let s = cell(s);
-    if s.contains('`') {
-        format!("`` {s} ``")
-    } else {
-        format!("`{s}`")
+    let s = lagrange::expr::error::visible(s).replace('|', "\\|");
+    let longest = s.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    if longest == 0 {
+        return format!("`{s}`");
     }
+    let fence = "`".repeat(longest + 1);
+    format!("{fence} {s} {fence}")
 }
 
 /// The summary as Markdown (summary.md).
@@ -292,7 +339,8 @@ pub fn markdown(s: &Summary) -> String {
     for (key, p) in &s.parts {
         let _ = writeln!(
             out,
-            "| {key} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            cell(key),
             num(p.points),
             p.answers,
             p.correct,
@@ -305,43 +353,51 @@ pub fn markdown(s: &Summary) -> String {
     if !s.codes.is_empty() {
         out.push_str("\n## Diagnosis codes\n\n| code | answers |\n|---|---:|\n");
         for (c, n) in &s.codes {
-            let _ = writeln!(out, "| {c} | {n} |");
+            let _ = writeln!(out, "| {} | {n} |", cell(c));
         }
     }
     wrong_answers(s, &mut out);
     out
 }
 
-/// The "most common wrong answers" section.
+/// The "most common wrong answers" section, then the unreadable answers apart.
 fn wrong_answers(s: &Summary, out: &mut String) {
-    out.push_str("\n## Most common wrong answers\n\nGrouped by meaning: answers equal at the sample points are one group.\n");
+    out.push_str("\n## Most common wrong answers\n\nGrouped by meaning: answers equal at the sample points are one group; students count once per group.\n");
     for (key, p) in &s.parts {
-        if p.wrong.is_empty() {
-            continue;
+        groups_table(out, key, &p.wrong, p.other_wrong, "wrong");
+    }
+    if s.parts.values().any(|p| !p.unreadable.is_empty()) {
+        out.push_str("\n## Unreadable answers\n\nAnswers lagrange could not read (syntax, the wrong kind of answer), grouped by their text.\n");
+        for (key, p) in &s.parts {
+            groups_table(out, key, &p.unreadable, p.other_unreadable, "unreadable");
         }
-        let _ = write!(
+    }
+}
+
+/// One part's table of groups (nothing when there are none).
+fn groups_table(out: &mut String, key: &str, groups: &[Group], other: usize, what: &str) {
+    if groups.is_empty() {
+        return;
+    }
+    let _ = write!(
+        out,
+        "\n### {}\n\n| students | answers | answer (as read) | codes | diagnosis | typed as |\n|---:|---:|---|---|---|---|\n",
+        cell(key)
+    );
+    for g in groups {
+        let typed: Vec<String> = g.examples.iter().map(|e| code(e)).collect();
+        let _ = writeln!(
             out,
-            "\n### {key}\n\n| count | answer (as read) | status | codes | diagnosis | typed as |\n|---:|---|---|---|---|---|\n"
+            "| {} | {} | {} | {} | {} | {} |",
+            g.students,
+            g.count,
+            code(&g.answer),
+            cell(&g.codes.join(", ")),
+            cell(&g.diagnosis),
+            typed.join(", ")
         );
-        for g in &p.wrong {
-            let typed: Vec<String> = g.examples.iter().map(|e| code(e)).collect();
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} | {} | {} |",
-                g.count,
-                cell(&g.answer),
-                g.status,
-                g.codes.join(", "),
-                cell(&g.diagnosis),
-                typed.join(", ")
-            );
-        }
-        if p.other_wrong > 0 {
-            let _ = writeln!(
-                out,
-                "\n{} more wrong answers in smaller groups.",
-                p.other_wrong
-            );
-        }
+    }
+    if other > 0 {
+        let _ = writeln!(out, "\n{other} more {what} answers in smaller groups.");
     }
 }

@@ -104,7 +104,7 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 /// Refuses a picture path that cannot work, before any work is done: `-` where the picture
 /// has no terminal form, a name that is neither `.svg` nor `.png` (a `.jpg` would silently
-/// hold SVG), a folder that does not exist.
+/// hold SVG), a folder that does not exist, a name that holds a link or a folder.
 pub fn check_picture_path(
     flag: &str,
     path: &std::path::Path,
@@ -136,7 +136,8 @@ pub fn check_picture_path(
             dir.display()
         ));
     }
-    Ok(())
+    // A link, a folder or a socket at the name is refused before any work is done.
+    crate::outfile::check(path, true).map_err(|e| format!("{flag}: {e}"))
 }
 
 /// A curve cut where its x turns back, each piece drawn left to right: plotters' bitmap

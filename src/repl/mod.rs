@@ -132,11 +132,31 @@ fn open_store(no_save: bool) -> (Option<store::Store>, Progress) {
     (Some(s), progress)
 }
 
-/// Lines from a pipe: no prompt, no editing.
+/// Lines from a pipe: no prompt, no editing. A line that is not UTF-8 gets an error reply
+/// (`not-utf8`) and the session goes on.
 fn piped(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Result<()> {
-    for line in std::io::stdin().lock().lines() {
-        let line = line?;
-        let r = session.borrow_mut().handle(&line);
+    for bytes in std::io::stdin().lock().split(b'\n') {
+        let mut bytes = bytes?;
+        if bytes.last() == Some(&b'\r') {
+            bytes.pop();
+        }
+        let (line, r) = match String::from_utf8(bytes) {
+            Ok(line) => {
+                let r = session.borrow_mut().handle(&line);
+                (line, r)
+            }
+            Err(e) => {
+                let bad = e.utf8_error().valid_up_to();
+                let line = String::from_utf8_lossy(e.as_bytes()).into_owned();
+                let message = format!(
+                    "this line is not UTF-8 (byte {} is 0x{:02X}); it was not read",
+                    bad + 1,
+                    e.as_bytes()[bad]
+                );
+                let reply = Response::error("not-utf8", message, None);
+                (line, vec![reply])
+            }
+        };
         if out.emit(&line, &r, &session.borrow()) {
             break;
         }

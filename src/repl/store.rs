@@ -1,11 +1,15 @@
 //! Where the REPL keeps the student's progress and line history: `LAGRANGE_HOME` if set,
 //! else the platform data directory (`directories::ProjectDirs`). Progress is read at start
-//! and written after every change (to a temporary name, then renamed); a corrupt or
-//! unreadable file is moved aside as `progress.json.corrupt-N`, never lost, never a crash.
+//! and saved after every change through [`crate::outfile`] (a unique temporary name, then a
+//! rename, the folder locked), merged into what is on disk so that two REPLs open at once both
+//! keep their progress; a corrupt or unreadable file is moved aside as
+//! `progress.json.corrupt-N`, never lost, never a crash; a FIFO, a folder or a link at the
+//! name is an error said once, and the session goes on without saving.
 
 use std::path::{Path, PathBuf};
 
 use lagrange::tutor::Progress;
+use lagrange::tutor::progress::KEPT_ANSWERS;
 
 /// The data directory, or `None` when the platform has none.
 pub fn data_dir() -> Option<PathBuf> {
@@ -17,43 +21,104 @@ pub fn data_dir() -> Option<PathBuf> {
 
 /// The progress file in `dir`, read or started afresh.
 pub struct Store {
+    dir: PathBuf,
     path: PathBuf,
-    last: String,
+    /// The progress as last read or written: what this session has added since is the
+    /// difference between the session's progress and this.
+    base: Progress,
+    /// `false` when the path holds something that is not a file (nothing is ever saved).
+    enabled: bool,
 }
+
+/// The progress file's name in the data directory.
+const NAME: &str = "progress.json";
 
 impl Store {
     /// Opens `dir/progress.json`: its progress (a fresh one if it is absent), and any warning
-    /// to print (a corrupt file moved aside).
+    /// to print (a corrupt file moved aside; a FIFO, a folder or a link at the name, which is
+    /// never read — a FIFO would wait forever — nor written).
     pub fn open(dir: &Path) -> (Store, Progress, Option<String>) {
-        let path = dir.join("progress.json");
-        let (progress, warning) = match std::fs::read(&path) {
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => (Progress::new(), None),
-            Ok(bytes) => match std::str::from_utf8(&bytes).map(Progress::from_json) {
-                Ok(Ok(p)) => (p, None),
-                Ok(Err(e)) => (Progress::new(), Some(move_aside(&path, &e.to_string()))),
-                Err(e) => (Progress::new(), Some(move_aside(&path, &e.to_string()))),
-            },
-            Err(e) => (Progress::new(), Some(move_aside(&path, &e.to_string()))),
+        let path = dir.join(NAME);
+        let mut store = Store {
+            dir: dir.to_path_buf(),
+            path: path.clone(),
+            base: Progress::new(),
+            enabled: true,
         };
-        let last = progress.to_json();
-        (Store { path, last }, progress, warning)
+        if let Err(e) = crate::outfile::check(&path, false) {
+            store.enabled = false;
+            let warning = format!("error: {e}; progress will not be saved this session");
+            return (store, Progress::new(), Some(warning));
+        }
+        let (progress, warning) = match read(&path) {
+            Ok(p) => (p, None),
+            Err(why) => (Progress::new(), Some(move_aside(&path, &why))),
+        };
+        store.base = progress.clone();
+        (store, progress, warning)
     }
 
-    /// Writes `progress` if it changed since the last write.
+    /// Saves `progress` if it changed since the last save: with the data directory locked,
+    /// the file is read again and what this session added since is merged into it (another
+    /// REPL's progress is kept), then written under a unique temporary name and renamed.
     pub fn save(&mut self, progress: &Progress) -> std::io::Result<()> {
-        let json = progress.to_json();
-        if json == self.last {
+        if !self.enabled || *progress == self.base {
             return Ok(());
         }
-        if let Some(dir) = self.path.parent() {
-            std::fs::create_dir_all(dir)?;
-        }
-        let tmp = self.path.with_extension("json.tmp");
-        std::fs::write(&tmp, &json)?;
-        std::fs::rename(&tmp, &self.path)?;
-        self.last = json;
+        let fail = |e: String| std::io::Error::other(e);
+        let folder = crate::outfile::Folder::open(&self.dir, &[NAME]).map_err(fail)?;
+        crate::outfile::check(&self.path, false).map_err(fail)?;
+        // A file another session made unreadable meanwhile is not merged into (it is kept
+        // by `open`'s move-aside on the next start): this session's progress is written.
+        let disk = read(&self.path).unwrap_or_else(|_| self.base.clone());
+        let merged = merge(&disk, &self.base, progress);
+        let staged = folder
+            .stage(NAME, merged.to_json().as_bytes())
+            .map_err(fail)?;
+        crate::outfile::commit(vec![staged]).map_err(fail)?;
+        self.base = progress.clone();
         Ok(())
     }
+}
+
+/// The progress in `path` (absent: a fresh one), or why it cannot be read.
+fn read(path: &Path) -> Result<Progress, String> {
+    match std::fs::read(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Progress::new()),
+        Err(e) => Err(e.to_string()),
+        Ok(bytes) => match std::str::from_utf8(&bytes).map(Progress::from_json) {
+            Ok(Ok(p)) => Ok(p),
+            Ok(Err(e)) => Err(e.to_string()),
+            Err(e) => Err(e.to_string()),
+        },
+    }
+}
+
+/// `disk` plus what `mine` added to `base`: attempts and hints add up, solved and revealed
+/// stay true once true, the new answers follow the ones on disk (the latest kept).
+fn merge(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
+    let mut out = disk.clone();
+    for (problem, pp) in &mine.problems {
+        for (part, rec) in &pp.parts {
+            let before = base.part(problem, part).cloned().unwrap_or_default();
+            let new_attempts = rec.attempts.saturating_sub(before.attempts);
+            let new_hints = rec.hints_used.saturating_sub(before.hints_used);
+            let target = out.part_mut(problem, part);
+            target.attempts = target.attempts.saturating_add(new_attempts);
+            target.hints_used = target.hints_used.saturating_add(new_hints);
+            target.solved |= rec.solved;
+            target.revealed |= rec.revealed;
+            let fresh = (new_attempts as usize).min(rec.answers.len());
+            target
+                .answers
+                .extend(rec.answers[rec.answers.len() - fresh..].iter().cloned());
+            if target.answers.len() > KEPT_ANSWERS {
+                let extra = target.answers.len() - KEPT_ANSWERS;
+                target.answers.drain(..extra);
+            }
+        }
+    }
+    out
 }
 
 /// Moves a bad progress file to the first free `progress.json.corrupt-N`; the warning.
@@ -80,6 +145,62 @@ fn move_aside(path: &Path, why: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn two_sessions_saving_in_turn_both_keep_their_progress() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (mut a, mut pa, _) = Store::open(dir.path());
+        let (mut b, mut pb, _) = Store::open(dir.path());
+        pa.record_attempt("simple-pendulum", "kinetic", "x", true);
+        a.save(&pa).expect("a saves");
+        pb.record_attempt("simple-pendulum", "eom", "y", false);
+        pb.record_attempt("simple-pendulum", "kinetic", "z", false);
+        b.save(&pb).expect("b saves");
+        let (_, p, warning) = Store::open(dir.path());
+        assert!(warning.is_none());
+        assert!(
+            p.is_solved("simple-pendulum", "kinetic"),
+            "a's progress kept"
+        );
+        let kinetic = p
+            .part("simple-pendulum", "kinetic")
+            .cloned()
+            .unwrap_or_default();
+        assert_eq!((kinetic.attempts, kinetic.answers.len()), (2, 2));
+        assert_eq!(
+            p.part("simple-pendulum", "eom").map(|x| x.attempts),
+            Some(1)
+        );
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .expect("list")
+            .flatten()
+            .collect();
+        assert_eq!(names.len(), 1, "no temporary file left: {names:?}");
+    }
+
+    #[test]
+    fn a_folder_at_the_progress_path_is_an_error_and_never_saved_into() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        std::fs::create_dir(dir.path().join("progress.json")).expect("mkdir");
+        let (mut s, mut p, warning) = Store::open(dir.path());
+        assert!(warning.is_some_and(|w| w.contains("is a folder")));
+        p.record_attempt("simple-pendulum", "kinetic", "x", true);
+        assert!(s.save(&p).is_ok());
+        assert!(dir.path().join("progress.json").is_dir());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_at_the_progress_path_is_an_error_not_a_hang() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let fifo = dir.path().join("progress.json");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !made.is_ok_and(|s| s.success()) {
+            return;
+        }
+        let (_, _, warning) = Store::open(dir.path());
+        assert!(warning.is_some_and(|w| w.contains("FIFO") || w.contains("not a regular")));
+    }
 
     #[test]
     fn corrupt_file_is_moved_aside() {

@@ -254,3 +254,35 @@ fn a_tutor_session_per_bank_problem() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_line_that_is_not_utf8_is_an_error_reply_and_the_session_goes_on() {
+    let home = tempfile::tempdir().expect("temp dir");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(["repl", "simple-pendulum", "--json"])
+        .env("LAGRANGE_HOME", home.path())
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin piped")
+        .write_all(b"1/2 m l^2 theta'^2 \xff\n1/2 m l^2 theta'^2\n")
+        .expect("input written");
+    let out = child.wait_with_output().expect("the binary ends");
+    assert_eq!(out.status.code(), Some(0));
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object a line"))
+        .collect();
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert_eq!(lines[1]["code"], "not-utf8", "{}", lines[1]);
+    assert_eq!(
+        lines[2]["status"], "correct",
+        "the next line is answered: {}",
+        lines[2]
+    );
+}
