@@ -207,6 +207,9 @@ pub struct Problem {
     pub title: String,
     pub source: String,
     pub statement: String,
+    /// The Cartesian axes, origin, sense of rotation and phase of the bodies' positions, in
+    /// words (empty when the file does not say).
+    pub axes: String,
     pub system: System,
     pub dims: Dimensions,
     pub assumptions: Vec<Assumption>,

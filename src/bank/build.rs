@@ -93,6 +93,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         title: pf.title,
         source: pf.source,
         statement: pf.statement,
+        axes: pf.axes.trim().to_string(),
         system,
         dims,
         assumptions,

@@ -16,6 +16,10 @@ pub struct ProblemFile {
     pub source: String,
     #[serde(default)]
     pub statement: String,
+    /// The Cartesian axes, origin, sense of rotation and phase the bodies' positions use, in
+    /// words; the tutor states it in every position step.
+    #[serde(default)]
+    pub axes: String,
     pub coordinates: Vec<CoordinateSpec>,
     #[serde(default)]
     pub parameters: BTreeMap<String, ParameterSpec>,

@@ -37,6 +37,10 @@ fn cases() -> Vec<(String, String, String)> {
             if answer.trim().is_empty() {
                 continue;
             }
+            // `grade` runs on the built-in bank; curvilinear.txt's systems are files of their own.
+            if lagrange::bank::embedded::problem(problem).is_none() {
+                continue;
+            }
             let mut push = |a: String| out.push((problem.to_string(), part.to_string(), a));
             push(answer.to_string());
             if answer.contains("unstable") || answer.contains("stable") {

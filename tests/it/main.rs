@@ -4,6 +4,7 @@
 mod bank;
 mod chaos14;
 mod cli;
+mod conventions;
 mod corpus;
 mod diagnostics;
 mod dimensions;

@@ -106,7 +106,7 @@ fn a_wrong_answer_per_step_of_the_simple_pendulum_is_diagnosed() {
         (
             "position:1",
             "-l*cos(theta), l*sin(theta)",
-            Code::SwappedSymbols,
+            Code::Convention,
         ),
         ("speed-squared:1", "l*theta'^2", Code::Dimension),
         ("kinetic", "m*l^2*theta'^2", Code::ConstantFactor),

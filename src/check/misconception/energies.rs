@@ -150,10 +150,62 @@ pub fn angle_from_horizontal(p: &mut Prepared) -> Option<(Substitution, String)>
     ))
 }
 
-/// The part's quantity in another convention: angles from the horizontal, y pointing down.
+/// Ω → −Ω for every rate (a parameter of dimension T⁻¹) with which a body's position turns
+/// in time: the frame or the body turning the other way, which is the same as describing it in
+/// axes of the other handedness (x and y exchanged, or one axis reversed). One substitution
+/// per rate, with its `convention` sentence; none where no position depends on t.
+pub fn rotation_sense(p: &mut Prepared) -> Vec<(Substitution, String)> {
+    let time = p.system.pool.time();
+    let positions: Vec<Id> = p
+        .system
+        .bodies
+        .iter()
+        .flat_map(|b| match b {
+            Body::Point { position, .. } => position.clone(),
+            Body::Rigid(r) => r.position.clone(),
+            Body::Rotor { .. } => Vec::new(),
+        })
+        .collect();
+    let mut out = Vec::new();
+    let per_time = crate::expr::Dimension::parse("T^-1").ok();
+    let rates: Vec<Sym> = p
+        .system
+        .parameters
+        .iter()
+        .filter(|x| x.dimension.is_some() && x.dimension == per_time)
+        .map(|x| x.sym)
+        .collect();
+    for rate in rates {
+        let turns = positions.iter().any(|&x| {
+            let vars = p.system.pool.variables(x);
+            vars.iter().any(|v| v.0 == time) && vars.iter().any(|v| v.0 == rate)
+        });
+        if !turns {
+            continue;
+        }
+        let w = p.system.pool.var(rate, 0);
+        let mut map = FxHashMap::default();
+        map.insert((rate, 0), p.system.pool.neg(w));
+        let name = p.system.pool.unicode(w);
+        out.push((
+            map,
+            format!(
+                "convention: your answer is right for a rotation the other way ({name} → −{name}; the same as axes of the other handedness, x and y exchanged or one axis reversed); use the sense of rotation and the axes the problem's statement fixes"
+            ),
+        ));
+    }
+    out
+}
+
+/// The part's quantity in another convention: angles from the horizontal, a rotation the
+/// other way, y pointing down.
 fn convention(part: &Part, p: &mut Prepared, reference: Id) -> Vec<Candidate<Id>> {
     let mut out = Vec::new();
     if let Some((map, message)) = angle_from_horizontal(p) {
+        let c = p.system.pool.substitute(reference, &map);
+        out.push(Candidate::new(Code::Convention, message, c));
+    }
+    for (map, message) in rotation_sense(p) {
         let c = p.system.pool.substitute(reference, &map);
         out.push(Candidate::new(Code::Convention, message, c));
     }

@@ -51,6 +51,11 @@ fn report(v: &mut Verdict, found: Option<Diagnosis>) {
     if v.status == Status::Correct {
         return;
     }
+    if d.code == Code::Convention {
+        // The answer is exactly the reference in another convention: the term-level guesses
+        // (x and y swapped, a wrong factor) would misname it.
+        v.diagnoses.clear();
+    }
     v.diagnoses.retain(|x| x.code != Code::NotEqual);
     v.diagnoses.push(d);
 }

@@ -198,6 +198,11 @@ fn convention(p: &mut Prepared) -> Vec<Candidate<Vec<Id>>> {
             .collect();
         out.push(Candidate::new(Code::Convention, message, sys));
     }
+    for (map, message) in energies::rotation_sense(p) {
+        let l2 = p.system.pool.substitute(l, &map);
+        let sys = euler_lagrange(p, l2);
+        out.push(Candidate::new(Code::Convention, message, sys));
+    }
     if let Some((flipped, message)) = energies::gravity_flipped(p) {
         // L' = L + 2·V_gravity: the gravity term of V with the other sign.
         let two = p.system.pool.int(2);

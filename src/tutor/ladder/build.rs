@@ -227,13 +227,14 @@ impl Builder<'_> {
             return Ok(());
         };
         let with = conditions(freq);
+        let w = frequency_symbol(&self.sys);
         if super::velocity_terms::gyroscopic_at(self.problem, freq)? {
             // M q'' + K q = 0 and det(K − ω² M) would drop the Coriolis terms: ask for ω only.
             self.adopt(
                 freq,
                 "frequencies",
                 format!(
-                    "Give the angular frequencies ω of the small oscillations{with}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
+                    "Give the angular frequencies {w} of the small oscillations{with}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
                 ),
             );
             return Ok(());
@@ -257,13 +258,13 @@ impl Builder<'_> {
             &part,
             "characteristic",
             format!(
-                "Solve the characteristic equation det(K − ω² M) = 0{with}: give its roots ω²."
+                "Solve the characteristic equation det(K − {w}² M) = 0{with}: give its roots {w}²."
             ),
         );
         self.adopt(
             freq,
             "frequencies",
-            format!("Give the angular frequencies ω of the small oscillations{with}."),
+            format!("Give the angular frequencies {w} of the small oscillations{with}."),
         );
         Ok(())
     }
@@ -341,6 +342,23 @@ impl Builder<'_> {
         self.steps[last].against = Some(Box::new(sys));
         Ok(())
     }
+}
+
+/// The name the ladder gives the frequency of small oscillations: ω, unless the problem
+/// already uses ω for something else (the spin of a hoop or a wire), then Ω, else ω₀, else ν.
+/// A step never reuses a problem's symbol for another quantity.
+pub fn frequency_symbol(sys: &System) -> &'static str {
+    let names: Vec<String> = sys
+        .parameters
+        .iter()
+        .map(|p| p.sym)
+        .chain(sys.coordinates.iter().map(|c| c.sym))
+        .map(|s| sys.pool.var_name(s, 0, Style::Unicode))
+        .collect();
+    ["ω", "Ω", "ω₀", "ν"]
+        .into_iter()
+        .find(|w| !names.iter().any(|n| n == w))
+        .unwrap_or("ν")
 }
 
 /// q − q₀ (just q when q₀ is 0).

@@ -70,8 +70,12 @@ impl<'a> StepChecker<'a> {
         };
         let judged = own.as_ref().unwrap_or(problem);
         let mut v = check_prepared(judged, &step.part, prepared, input);
-        if step.id.starts_with("position:") && v.status == Status::Correct {
-            order_of_components(problem, step, input, &mut v)?;
+        if step.id.starts_with("position:") {
+            if v.status == Status::Correct {
+                order_of_components(problem, step, input, &mut v)?;
+            } else if other_axes(problem, step, input)? {
+                v.diagnoses = vec![Diagnosis::new(Code::Convention, axes_message(problem))];
+            }
         }
         Ok(v)
     }
@@ -96,10 +100,12 @@ fn order_of_components(
         if c.status != Status::Correct {
             v.status = Status::Incorrect;
             v.score = 0.0;
+            // The same point in axes named or ordered otherwise: a convention, not a slip.
             v.diagnoses.push(Diagnosis::new(
-                Code::SwappedSymbols,
+                Code::Convention,
                 format!(
-                    "these are the right components in the wrong order: component {} should be {}",
+                    "{} (the right components in another order: component {} should be {})",
+                    axes_message(problem),
                     i + 1,
                     answer
                 ),
@@ -108,6 +114,51 @@ fn order_of_components(
         }
     }
     Ok(())
+}
+
+/// The sentence of a position right in other axes: the axes the step uses.
+fn axes_message(problem: &Problem) -> String {
+    match problem.axes.as_str() {
+        "" => "convention: your position is right in other axes (rotated, reflected or reordered, or with another phase of the rotation); use the axes of the problem's statement".into(),
+        a => format!(
+            "convention: your position is right in other axes (rotated, reflected or reordered, or with another phase of the rotation); this step uses: {a}"
+        ),
+    }
+}
+
+/// Whether a wrong position is the reference in other axes about the same origin: the same
+/// distance from the origin and the same speed at every sample point (a constant rotation or
+/// reflection of the axes, their order, a phase of the rotation or its sense keep both), with
+/// as many components.
+fn other_axes(problem: &Problem, step: &Step, input: &str) -> Result<bool, CheckError> {
+    let items = split_top_level(input);
+    let answers = &step.part.answers;
+    if items.len() != answers.len() || items.iter().any(|x| x.is_empty()) {
+        return Ok(false);
+    }
+    let square = |xs: &[&str], rate: bool| -> String {
+        xs.iter()
+            .map(|x| {
+                if rate {
+                    format!("(d/dt({x}))^2")
+                } else {
+                    format!("({x})^2")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    let reference: Vec<&str> = answers.iter().map(String::as_str).collect();
+    for rate in [false, true] {
+        let mut part = step.part.clone();
+        part.kind = PartKind::Expression;
+        part.answers = vec![square(&reference, rate)];
+        let c = check::check(problem, &part, &square(&items, rate))?;
+        if c.status != Status::Correct {
+            return Ok(false);
+        }
+    }
+    Ok(true)
 }
 
 /// Splits `a, b, (c, d)` at the commas outside brackets (also `;`).

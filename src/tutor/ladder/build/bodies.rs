@@ -38,8 +38,14 @@ impl Builder<'_> {
         let axes = ["x", "y", "z"];
         let names = axes[..position.len().min(3)].join(", ");
         let answers = position.iter().map(|&x| self.plain(x)).collect();
+        // The axes, origin, sense and phase the reference uses: without them a right
+        // position in other axes could not be told from a wrong one.
+        let axes = match self.problem.axes.as_str() {
+            "" => " Use the axes of the problem's statement.".to_string(),
+            a => format!(" Axes: {}", sentence(a)),
+        };
         let prompt = format!(
-            "Write the Cartesian position of {of}body {n} (its {names} components, in that order) in terms of {}, separated by commas.",
+            "Write the Cartesian position of {of}body {n} (its {names} components, in that order) in terms of {}, separated by commas.{axes}",
             self.coordinate_list()
         );
         self.push(format!("position:{n}"), prompt, PartKind::Values, answers);
@@ -78,5 +84,15 @@ impl Builder<'_> {
             PartKind::Expression,
             vec![answer],
         );
+    }
+}
+
+/// `text` as a sentence: a full stop at its end unless it has one.
+fn sentence(text: &str) -> String {
+    let t = text.trim();
+    if t.ends_with('.') {
+        t.to_string()
+    } else {
+        format!("{t}.")
     }
 }
