@@ -477,6 +477,22 @@ fn short(v: f64) -> String {
     }
 }
 
+/// Where equilibria are searched: a periodic coordinate over its whole period (−π, π], whatever
+/// its sampling range (an equilibrium is a point of the configuration space, and an angle's
+/// range only says where states are drawn); any other coordinate over its range.
+fn search_ranges(coordinates: &[crate::mechanics::Coordinate]) -> Vec<(f64, f64)> {
+    coordinates
+        .iter()
+        .map(|c| {
+            if c.periodic {
+                (-std::f64::consts::PI, std::f64::consts::PI)
+            } else {
+                c.range
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -514,20 +530,4 @@ mod tests {
         let e = sys.check_equilibrium(&d, &[], &[2.0]).unwrap_err();
         assert_eq!(e.to_string(), "x = 2 is not an equilibrium: ∂V/∂x = 2");
     }
-}
-
-/// Where equilibria are searched: a periodic coordinate over its whole period (−π, π], whatever
-/// its sampling range (an equilibrium is a point of the configuration space, and an angle's
-/// range only says where states are drawn); any other coordinate over its range.
-fn search_ranges(coordinates: &[crate::mechanics::Coordinate]) -> Vec<(f64, f64)> {
-    coordinates
-        .iter()
-        .map(|c| {
-            if c.periodic {
-                (-std::f64::consts::PI, std::f64::consts::PI)
-            } else {
-                c.range
-            }
-        })
-        .collect()
 }
