@@ -35,24 +35,26 @@ pub(super) enum Det {
     Singular { deficient: bool },
 }
 
-/// Typical sizes at one set of parameter values: of M (or the reference row), of A, of det C
-/// and of the true equations.
+/// Typical sizes at one set of parameter values: of M (or the reference row), of A and of
+/// the true equations (det C's is [`DetC::typical_det`]).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Typical {
     m: f64,
     a: f64,
-    pub(super) det: f64,
     equations: f64,
 }
 
 /// det C at any point: the answer's acceleration coefficients A, the mass matrix M and the
 /// true equations, each compiled once and evaluated into reused buffers (this runs a few
 /// hundred times a check).
-pub(super) struct DetC {
+pub(super) struct DetC<'p> {
     a: Program,
     m: Option<Program>,
-    /// The true equations (all of them, or the one reference equation in projection mode).
-    equations: Program,
+    /// The true equations (all of them, or the one reference equation in projection mode),
+    /// compiled from the prepared system when the careful test first needs them.
+    prepared: &'p Prepared,
+    equation_ids: Vec<Id>,
+    equations: std::cell::OnceCell<Option<Program>>,
     n: usize,
     /// One equation of a system with several coordinates: `m` holds the reference
     /// equation's acceleration row r, and the factor is a·r / r·r (the answer must be the
@@ -64,12 +66,36 @@ pub(super) struct DetC {
     scratch: RefCell<Scratch>,
     /// Typical sizes by parameter values (a line scan in a parameter needs a few dozen).
     typical: RefCell<Vec<(Vec<f64>, Typical)>>,
+    /// det C's typical size by parameter values, computed on the fast path alone: the only
+    /// size a zero test needs, so a small but regular value is settled without the rest.
+    typical_det: RefCell<Vec<(Vec<f64>, f64)>>,
 }
 
 struct Scratch {
     a: Vec<f64>,
     m: Vec<f64>,
     e: Vec<f64>,
+}
+
+impl Scratch {
+    /// det A / det M (or a·r / r·r) from the programs' outputs in place, without copying
+    /// them out (this is the hot path of the search).
+    fn det_c(&self, c: &DetC<'_>) -> Option<f64> {
+        let n = c.n;
+        let a = |k: usize| c.a.output(k, &self.a);
+        let m = |k: usize| match &c.m {
+            Some(m) => m.output(k, &self.m),
+            None => f64::from(u8::from(k / n == k % n)),
+        };
+        let d = if c.projection {
+            let rr: f64 = (0..n).map(|k| m(k) * m(k)).sum();
+            let ar: f64 = (0..n).map(|k| a(k) * m(k)).sum();
+            ar / rr
+        } else {
+            det(n, |i, j| a(i * n + j)) / det(n, |i, j| m(i * n + j))
+        };
+        d.is_finite().then_some(d)
+    }
 }
 
 /// One evaluation: M (or r) and A as matrices, or why they are not there.
@@ -86,8 +112,8 @@ enum Raw {
     },
 }
 
-impl DetC {
-    pub(super) fn new(p: &mut Prepared, res: &[Id]) -> Option<DetC> {
+impl<'p> DetC<'p> {
+    pub(super) fn new(p: &'p mut Prepared, res: &[Id]) -> Option<DetC<'p>> {
         let coords = p.system.coordinate_syms();
         let n = coords.len();
         let mut roots: Vec<Id> = Vec::new();
@@ -104,13 +130,14 @@ impl DetC {
         } else {
             None
         };
-        let equations = p.system.compile(&p.derivation.equations()).ok()?;
+        let equations = p.derivation.equations();
+        let p: &'p Prepared = p;
         Some(Self::assemble(p, a, m, equations, n, false))
     }
 
     /// For one equation `r` of a system with several coordinates, against the reference
     /// equation `reference`.
-    pub(super) fn projection(p: &mut Prepared, r: Id, reference: Id) -> Option<DetC> {
+    pub(super) fn projection(p: &'p mut Prepared, r: Id, reference: Id) -> Option<DetC<'p>> {
         let coords = p.system.coordinate_syms();
         let row = |p: &mut Prepared, e: Id| -> Vec<Id> {
             coords
@@ -121,27 +148,36 @@ impl DetC {
         let (ra, rr) = (row(p, r), row(p, reference));
         let a = p.system.compile(&ra).ok()?;
         let m = p.system.compile(&rr).ok()?;
-        let equations = p.system.compile(&[reference]).ok()?;
-        Some(Self::assemble(p, a, Some(m), equations, coords.len(), true))
+        let p: &'p Prepared = p;
+        Some(Self::assemble(
+            p,
+            a,
+            Some(m),
+            vec![reference],
+            coords.len(),
+            true,
+        ))
     }
 
     fn assemble(
-        p: &Prepared,
+        p: &'p Prepared,
         a: Program,
         m: Option<Program>,
-        equations: Program,
+        equation_ids: Vec<Id>,
         n: usize,
         projection: bool,
-    ) -> DetC {
+    ) -> DetC<'p> {
         let scratch = Scratch {
             a: a.scratch(),
             m: m.as_ref().map_or_else(Vec::new, Program::scratch),
-            e: equations.scratch(),
+            e: Vec::new(),
         };
         DetC {
             a,
             m,
-            equations,
+            prepared: p,
+            equation_ids,
+            equations: std::cell::OnceCell::new(),
             n,
             projection,
             params_start: p.system.state_layout().params_start(),
@@ -154,7 +190,13 @@ impl DetC {
                 .collect(),
             scratch: RefCell::new(scratch),
             typical: RefCell::new(Vec::new()),
+            typical_det: RefCell::new(Vec::new()),
         }
+    }
+
+    /// The prepared part this search reads.
+    pub(super) fn prepared(&self) -> &'p Prepared {
+        self.prepared
     }
 
     /// M (or the reference row) and A at `x`, with the size of the true equations when
@@ -165,11 +207,20 @@ impl DetC {
         let rows = if self.projection { 1 } else { self.n };
         let mut equations = 0.0;
         if sized {
-            if self.equations.run(x, &mut s.e).is_err() {
+            let Some(program) = self
+                .equations
+                .get_or_init(|| self.prepared.system.compile(&self.equation_ids).ok())
+            else {
+                return Raw::Skip;
+            };
+            if s.e.len() < program.len() {
+                s.e = program.scratch();
+            }
+            if program.run(x, &mut s.e).is_err() {
                 return Raw::Skip;
             }
             equations = (0..rows)
-                .map(|i| self.equations.output(i, &s.e).abs())
+                .map(|i| program.output(i, &s.e).abs())
                 .fold(0.0, f64::max);
         }
         let m = match &self.m {
@@ -196,7 +247,7 @@ impl DetC {
         if let Some((_, t)) = self.typical.borrow().iter().find(|(p, _)| p == params) {
             return Some(*t);
         }
-        let (mut ms, mut as_, mut dets, mut es) = (vec![], vec![], vec![], vec![]);
+        let (mut ms, mut as_, mut es) = (vec![], vec![], vec![]);
         for state in &self.states {
             let mut y = state.clone();
             y[self.params_start..].copy_from_slice(params);
@@ -204,15 +255,11 @@ impl DetC {
                 ms.push(norm(&m));
                 as_.push(norm(&a));
                 es.push(equations);
-                if let Some(d) = self.det_c(&m, &a) {
-                    dets.push(d.abs());
-                }
             }
         }
         let t = Typical {
             m: median(ms)?,
             a: median(as_).unwrap_or(0.0),
-            det: median(dets).unwrap_or(0.0),
             equations: median(es).unwrap_or(0.0),
         };
         let mut cache = self.typical.borrow_mut();
@@ -238,14 +285,22 @@ impl DetC {
     /// [`careful`](Self::careful) verdict otherwise. A small value may still be a
     /// singularity of the physics: ask [`careful`](Self::careful) before calling it a zero.
     pub(super) fn at(&self, x: &[f64]) -> Det {
-        match self.raw(x, false) {
-            Raw::Skip => Det::Skip,
-            Raw::Both { m, a, .. } => match self.det_c(&m, &a) {
-                Some(d) if d != 0.0 => Det::Value(d),
-                _ => self.careful(x),
-            },
-            Raw::AnswerUndefined { .. } => self.careful(x),
+        {
+            let mut guard = self.scratch.borrow_mut();
+            let s = &mut *guard;
+            if let Some(m) = &self.m
+                && m.run(x, &mut s.m).is_err()
+            {
+                return Det::Skip;
+            }
+            if self.a.run(x, &mut s.a).is_ok()
+                && let Some(d) = s.det_c(self)
+                && d != 0.0
+            {
+                return Det::Value(d);
+            }
         }
+        self.careful(x)
     }
 
     /// det C at `x` against the typical sizes at its parameter values: [`Det::Skip`] where M
@@ -288,10 +343,37 @@ impl DetC {
     /// of `reference` (the point a search started from: a factor of the parameters alone,
     /// cos α, is as small at every state with α near π/2).
     pub(super) fn is_zero(&self, reference: &[f64], d: f64) -> bool {
-        d == 0.0
-            || self
-                .typical(reference)
-                .is_some_and(|t| d.abs() <= crate::check::tolerance::SAME * t.det)
+        d == 0.0 || d.abs() <= crate::check::tolerance::SAME * self.typical_det(reference)
+    }
+
+    /// The median |det C| over a few sample states given `x`'s parameter values, on the
+    /// fast path (no allocation, no true equations).
+    pub(super) fn typical_det(&self, x: &[f64]) -> f64 {
+        let params = &x[self.params_start..];
+        if let Some((_, t)) = self.typical_det.borrow().iter().find(|(p, _)| p == params) {
+            return *t;
+        }
+        let mut y = vec![0.0; x.len()];
+        let mut dets = Vec::with_capacity(self.states.len());
+        for state in &self.states {
+            y.copy_from_slice(state);
+            y[self.params_start..].copy_from_slice(params);
+            let mut guard = self.scratch.borrow_mut();
+            let s = &mut *guard;
+            let m_ok = self.m.as_ref().is_none_or(|m| m.run(&y, &mut s.m).is_ok());
+            if m_ok
+                && self.a.run(&y, &mut s.a).is_ok()
+                && let Some(d) = s.det_c(self)
+            {
+                dets.push(d.abs());
+            }
+        }
+        let t = median(dets).unwrap_or(0.0);
+        let mut cache = self.typical_det.borrow_mut();
+        if cache.len() < 256 {
+            cache.push((params.to_vec(), t));
+        }
+        t
     }
 
     /// The rows of the matrices compared: n, or 1 in projection mode.
@@ -342,7 +424,7 @@ pub(super) fn median(v: Vec<f64>) -> Option<f64> {
 
 /// The determinant of the n×n matrix with entries `e(i, j)`: by formula up to 3×3 (no
 /// allocation), by LU beyond.
-fn det(n: usize, e: impl Fn(usize, usize) -> f64) -> f64 {
+pub(super) fn det(n: usize, e: impl Fn(usize, usize) -> f64) -> f64 {
     match n {
         1 => e(0, 0),
         2 => e(0, 0) * e(1, 1) - e(0, 1) * e(1, 0),

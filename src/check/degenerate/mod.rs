@@ -41,16 +41,21 @@ pub(crate) fn degeneracy(
     reference: Option<Id>,
 ) -> Option<Degeneracy> {
     let n = p.system.n();
-    let det = match (res, reference) {
-        _ if res.len() == n => DetC::new(p, res)?,
-        ([r], Some(reference)) => DetC::projection(p, *r, reference)?,
-        ([r], None) => {
-            let e = multiple_of(p, *r)?;
-            DetC::projection(p, *r, e)?
-        }
+    let reference = match (res, reference) {
+        _ if res.len() == n => None,
+        ([_], Some(reference)) => Some(reference),
+        ([r], None) => Some(multiple_of(p, *r)?),
         _ => return None,
     };
-    let found = probe(p, &det)?;
+    let found = {
+        let det = match (res, reference) {
+            ([r], Some(reference)) => DetC::projection(p, *r, reference)?,
+            _ => DetC::new(p, res)?,
+        };
+        // `det` borrows the system; the search only reads it.
+        let shared: &Prepared = det.prepared();
+        probe(shared, &det)?
+    };
     Some(explain(p, res, found))
 }
 

@@ -38,7 +38,7 @@ pub(super) enum Found {
 
 /// Looks for a point of the domain where the answer stops determining the accelerations the
 /// physics determines.
-pub(super) fn probe(p: &Prepared, det: &DetC) -> Option<Found> {
+pub(super) fn probe(p: &Prepared, det: &DetC<'_>) -> Option<Found> {
     let filter = Filter::new(&p.system, &p.assumptions, &[]).ok()?;
     // Each candidate with the point its zero test is scaled by: itself, or the sample
     // point a special point was derived from.
@@ -103,9 +103,13 @@ enum Judged {
 
 /// Judges `value`, det C at `x`; a zero is judged against the typical size at the
 /// parameters of `reference`.
-fn judge(det: &DetC, x: &[f64], value: Det, typical: f64, reference: &[f64]) -> Judged {
+fn judge(det: &DetC<'_>, x: &[f64], value: Det, typical: f64, reference: &[f64]) -> Judged {
     let careful = match value {
-        Det::Value(d) if d.abs() > SCREEN * typical => return Judged::Sign(d),
+        // Far from zero against the typical size over all samples, or against the one at
+        // the reference's parameters: a regular value, without the careful test.
+        Det::Value(d) if d.abs() > SCREEN * typical || !det.is_zero(reference, d) => {
+            return Judged::Sign(d);
+        }
         Det::Value(_) => det.careful(x),
         other => other,
     };
@@ -130,7 +134,7 @@ fn judge(det: &DetC, x: &[f64], value: Det, typical: f64, reference: &[f64]) -> 
 /// Follows a sign change of det C from `x` to `y` along the segment between them: a zero
 /// where the physics is regular is a fault; a pole, a singularity of the physics or a step
 /// out of the domain is not.
-fn crossing(det: &DetC, filter: &Filter, x: &[f64], y: &[f64], typical: f64) -> Option<Found> {
+fn crossing(det: &DetC<'_>, filter: &Filter, x: &[f64], y: &[f64], typical: f64) -> Option<Found> {
     let along = |s: f64| -> Vec<f64> { x.iter().zip(y).map(|(a, b)| a + s * (b - a)).collect() };
     let sign = match det.at(x) {
         Det::Value(d) => d.signum(),
@@ -158,8 +162,9 @@ fn crossing(det: &DetC, filter: &Filter, x: &[f64], y: &[f64], typical: f64) -> 
     }
     // Bracketed to rounding: a zero leaves small values, a pole huge ones.
     let (a, b) = (along(lo), along(hi));
-    let small = |z: &[f64]| match (det.at(z), det.typical(x)) {
-        (Det::Value(d), Some(t)) => d.abs() <= CROSSING * t.det,
+    let scale = det.typical_det(x);
+    let small = |z: &[f64]| match det.at(z) {
+        Det::Value(d) => d.abs() <= CROSSING * scale,
         _ => false,
     };
     if !(small(&a) || small(&b)) {
@@ -213,7 +218,7 @@ fn special_points(p: &Prepared, base: &[f64]) -> Vec<Vec<f64>> {
 /// det C or a minimum of |det C| that reaches zero.
 fn scan_lines(
     p: &Prepared,
-    det: &DetC,
+    det: &DetC<'_>,
     filter: &Filter,
     base: &[f64],
     typical: f64,
@@ -246,7 +251,7 @@ fn scan_lines(
 
 /// One line: `base` with entry `k` running over an interval.
 struct Line<'a> {
-    det: &'a DetC,
+    det: &'a DetC<'a>,
     filter: &'a Filter,
     base: &'a [f64],
     k: usize,
