@@ -428,12 +428,23 @@ fn right(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, Strin
             eqs[0] = format!("({l})*{k} = ({rr})*{k}");
             (eqs.join("; "), format!("scaled: equation 0 times {k}"))
         }
-        (PartKind::Lagrangian, _) => (format!("{k}*({reference})"), format!("scaled: times {k}")),
+        // A constant multiple of L is not the Lagrangian asked (issue 19); the same L
+        // written as k·L − (k − 1)·L is.
+        (PartKind::Lagrangian, _) => (
+            format!("{k}*({reference}) - ({k} - 1)*({reference})"),
+            format!("rearranged: {k} L - ({k} - 1) L"),
+        ),
         (
             PartKind::Equilibria | PartKind::Frequencies | PartKind::Values | PartKind::Equations,
             _,
         ) => {
             let mut items = part.answers.clone();
+            // Stated stability travels with its point (a part may require it).
+            if part.kind == PartKind::Equilibria && part.stability.len() == items.len() {
+                for (item, s) in items.iter_mut().zip(&part.stability) {
+                    *item = format!("{item} ({s})");
+                }
+            }
             items.reverse();
             let sep = if part.kind == PartKind::Frequencies || part.kind == PartKind::Values {
                 ", "

@@ -42,7 +42,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     let mut dims = Dimensions::new();
     let mut coordinates = b.coordinates(&pf, &mut pool, &mut dims)?;
     let mut parameters = b.parameters(&pf, &mut pool, &mut dims)?;
-    super::build_domain::domains(&b, &pf, &mut pool, &mut coordinates, &mut parameters)?;
+    super::build_domain::domains(&b, &pf, &mut pool, &dims, &mut coordinates, &mut parameters)?;
     let reader = Reader {
         b: &b,
         ctx: system_context(&coordinates, &parameters),

@@ -2,7 +2,7 @@
 //! a half-angle in (0, π/2)), read from `domain = …` with the default that a parameter with a
 //! physical dimension is positive. A sampling range must lie inside its domain.
 
-use crate::expr::{Context, Dimension, Id, Pool, read_expr};
+use crate::expr::{Context, Dimension, Dimensions, Id, Pool, read_expr};
 use crate::mechanics::system::{Coordinate, Domain, Parameter};
 
 use super::build_reader::Builder;
@@ -14,6 +14,7 @@ pub(super) fn domains(
     b: &Builder<'_>,
     pf: &ProblemFile,
     pool: &mut Pool,
+    dims: &Dimensions,
     coordinates: &mut [Coordinate],
     parameters: &mut [Parameter],
 ) -> Result<(), Finding> {
@@ -21,8 +22,14 @@ pub(super) fn domains(
     let ctx = Context::new().with_parameters(parameters.iter().map(|p| p.name.as_str()));
     for (c, spec) in coordinates.iter_mut().zip(&pf.coordinates) {
         if let Some(d) = &spec.domain {
-            c.domain = read_domain(b, &ctx, pool, &c.name, d)?;
-            inside(b, pool, &c.name, c.range, c.domain, "coordinate")?;
+            let at = Place {
+                b,
+                name: &c.name,
+                line: line_naming(b, |l| l.contains(&format!("name = \"{}\"", spec.name))),
+                dimension: dims.get(&c.name),
+            };
+            c.domain = read_domain(&at, &ctx, pool, dims, d)?;
+            inside(&at, pool, c.range, c.domain, "coordinate")?;
         }
     }
     for p in parameters.iter_mut() {
@@ -31,35 +38,60 @@ pub(super) fn domains(
             .iter()
             .find(|(n, _)| crate::expr::names::normalize(n) == p.name)
             .and_then(|(_, s)| s.domain.as_ref());
+        let at = Place {
+            b,
+            name: &p.name,
+            line: line_naming(b, |l| {
+                let l = l.trim_start().trim_start_matches('"');
+                l.strip_prefix(p.name.as_str())
+                    .is_some_and(|rest| rest.trim_start_matches('"').trim_start().starts_with('='))
+            }),
+            dimension: p.dimension,
+        };
         p.domain = match spec {
-            Some(d) => read_domain(b, &ctx, pool, &p.name, d)?,
+            Some(d) => read_domain(&at, &ctx, pool, dims, d)?,
             None if p.dimension.is_some_and(|d| d != Dimension::NONE) => Domain {
                 lower: Some(pool.zero()),
                 upper: None,
             },
             None => Domain::ANY,
         };
-        inside(b, pool, &p.name, p.range, p.domain, "parameter")?;
+        inside(&at, pool, p.range, p.domain, "parameter")?;
     }
     Ok(())
 }
 
+/// What a domain belongs to: its name, the line to report, and its dimension.
+struct Place<'a> {
+    b: &'a Builder<'a>,
+    name: &'a str,
+    line: usize,
+    dimension: Option<Dimension>,
+}
+
+/// The first line of the file that `is_it` picks (the declaration of a coordinate or
+/// parameter), else the id's line.
+fn line_naming(b: &Builder<'_>, is_it: impl Fn(&str) -> bool) -> usize {
+    b.text.lines().position(is_it).map_or(b.id_line, |i| i + 1)
+}
+
 fn read_domain(
-    b: &Builder<'_>,
+    at: &Place<'_>,
     ctx: &Context,
     pool: &mut Pool,
-    name: &str,
+    dims: &Dimensions,
     spec: &DomainSpec,
 ) -> Result<Domain, Finding> {
+    let name = at.name;
     let bad = |why: String| {
-        b.fail(
-            b.id_line,
+        at.b.fail(
+            at.line,
             "bad-domain",
             format!("the domain of `{name}` {why}"),
         )
     };
     match spec {
-        DomainSpec::Word(w) => match w.trim() {
+        DomainSpec::Word(w) => match w.trim().to_lowercase().as_str() {
             "positive" => Ok(Domain {
                 lower: Some(pool.zero()),
                 upper: None,
@@ -86,12 +118,25 @@ fn read_domain(
                     BoundSpec::Number(v) => return Err(bad(format!("has the end {v}"))),
                     BoundSpec::Text(t) => t.clone(),
                 };
-                read_expr(&text, ctx, pool).map_err(|e| {
+                let end = read_expr(&text, ctx, pool).map_err(|e| {
                     bad(format!(
                         "has the end `{text}`: {e} ({}); an end is a number or an expression of the parameters",
                         e.help()
                     ))
-                })
+                })?;
+                // A number is 0 or a bound of any dimension; an expression must have the
+                // dimension of what it bounds (θ < l is a slip).
+                if let (Some(want), Ok(Some(got))) = (at.dimension, pool.dimension(end, dims))
+                    && pool.number_value(end).is_none()
+                    && got != want
+                {
+                    return Err(bad(format!(
+                        "has the end `{text}` of dimension {}, but `{name}` has dimension {}",
+                        got.plain(),
+                        want.plain()
+                    )));
+                }
+                Ok(end)
             };
             let (lower, upper) = (end(lo)?, end(hi)?);
             if let (Some(l), Some(h)) = (constant(pool, lower), constant(pool, upper))
@@ -116,13 +161,13 @@ fn constant(pool: &Pool, e: Id) -> Option<f64> {
 /// The sampling range must lie inside the domain where the domain's ends are numbers (ends
 /// with parameters are met by redrawing samples).
 fn inside(
-    b: &Builder<'_>,
+    at: &Place<'_>,
     pool: &Pool,
-    name: &str,
     range: (f64, f64),
     d: Domain,
     what: &str,
 ) -> Result<(), Finding> {
+    let name = at.name;
     let below = d
         .lower
         .and_then(|l| constant(pool, l))
@@ -132,8 +177,8 @@ fn inside(
         .and_then(|u| constant(pool, u))
         .is_some_and(|u| range.1 > u);
     if below || above {
-        return Err(b.fail(
-            b.id_line,
+        return Err(at.b.fail(
+            at.line,
             "bad-domain",
             format!(
                 "{what} `{name}` is sampled over [{}, {}], outside its domain; make the range lie inside it",

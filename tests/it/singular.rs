@@ -255,6 +255,7 @@ fn a_bad_domain_is_a_finding() {
         ("[\"0\", \"1\"]", "outside its domain"),
         ("[\"0\", \"q\"]", "an expression of the parameters"),
         ("\"negative\"", "outside its domain"),
+        ("[\"0\", \"k/m\"]", "of dimension"),
     ] {
         let file = text.replace("domain = \"positive\"", &format!("domain = {domain}"));
         let err = lagrange::bank::load_str("kepler.toml", &file)
@@ -263,6 +264,16 @@ fn a_bad_domain_is_a_finding() {
         let shown = err.to_string();
         assert!(
             shown.contains("bad-domain") && shown.contains(why),
+            "{domain}: {shown}"
+        );
+        // Reported at the coordinate's own line, not the id's.
+        let line = file
+            .lines()
+            .position(|l| l.contains("name = \"r\""))
+            .expect("r")
+            + 1;
+        assert!(
+            shown.contains(&format!("kepler.toml:{line}:")),
             "{domain}: {shown}"
         );
     }
