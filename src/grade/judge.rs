@@ -387,6 +387,20 @@ type FollowKey = (usize, Vec<usize>);
 /// share its outcome.
 fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, best: bool) {
     let finals = final_rows(rows, judged, best);
+    // An earlier answer follow-through can start from: a wrong one, or a Lagrangian accepted
+    // though it is not T − V (`accepts`). `follows_from_earlier` passes over every other one
+    // without looking further, so leaving them out of a question changes no answer, and
+    // makes far fewer distinct questions (most earlier answers are right).
+    let source: Vec<bool> = (judged.reps.iter())
+        .map(|r| match &r.verdict {
+            Ok(v) => match v.status {
+                Checked::Incorrect => true,
+                Checked::Correct => v.diagnoses.first().is_some_and(accepts),
+                Checked::Invalid => false,
+            },
+            Err(_) => false,
+        })
+        .collect();
     let mut keys: Vec<(FollowKey, u32)> = Vec::new();
     let mut index: FxHashMap<FollowKey, usize> = FxHashMap::default();
     let mut asks: Vec<(usize, usize)> = Vec::new();
@@ -399,6 +413,7 @@ fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, b
             .filter(|&o| o != q)
             .filter_map(|o| finals.get(&(row.student, p, o)))
             .filter_map(|&j| judged.outcome(j).rep)
+            .filter(|&r| source[r])
             .collect();
         if earlier.is_empty() {
             continue;
@@ -414,10 +429,28 @@ fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, b
         };
         asks.push((i, k));
     }
+    // `follows_from_earlier` takes the most recent earlier answer the wrong one follows from,
+    // judging each earlier answer on its own: so each (answer, earlier answer) pair is asked
+    // once, in parallel, and a question's answer is its first pair that follows, latest first.
     let reps = &judged.reps;
-    let answers: Vec<Option<Diagnosis>> = keys
+    let mut pairs: Vec<(usize, usize)> = keys
+        .iter()
+        .flat_map(|((rep, earlier), _)| earlier.iter().map(move |&e| (*rep, e)))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    let pair_answers: Vec<Option<Diagnosis>> = pairs
         .par_iter()
-        .map(|(k, _)| follows(k, reps, bank))
+        .map(|&(rep, e)| follows(&(rep, vec![e]), reps, bank))
+        .collect();
+    let pair_answer: FxHashMap<(usize, usize), &Diagnosis> = (pairs.iter().zip(&pair_answers))
+        .filter_map(|(&k, d)| Some((k, d.as_ref()?)))
+        .collect();
+    let answers: Vec<Option<Diagnosis>> = (keys.iter())
+        .map(|((rep, earlier), _)| {
+            let mut latest_first = earlier.iter().rev();
+            latest_first.find_map(|&e| pair_answer.get(&(*rep, e)).map(|&d| d.clone()))
+        })
         .collect();
     // The outcome each question gives (`None`: the answer does not follow; it keeps its own).
     let given: Vec<Option<u32>> = keys

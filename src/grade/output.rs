@@ -214,11 +214,19 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     header.extend(book.columns.iter().map(String::as_str));
     header.extend(["total", "max", "percent"]);
     let max = book.max();
+    // A class has few distinct scores and totals: each is formatted once.
+    let mut shown: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
+    let mut num = |x: f64| shown.entry(x.to_bits()).or_insert_with(|| num(x)).clone();
+    let mut percents: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
+    let mut percent = |t: f64| {
+        let p = percents.entry(t.to_bits());
+        p.or_insert_with(|| percent(t, max)).clone()
+    };
     let lines = book.students.iter().map(|(s, scores)| {
         let mut line = vec![quote_cell(s).into_owned()];
-        line.extend(scores.iter().map(|x| x.map_or(String::new(), num)));
+        line.extend(scores.iter().map(|x| x.map_or(String::new(), &mut num)));
         let t = total(scores);
-        line.extend([num(t), num(max), percent(t, max)]);
+        line.extend([num(t), num(max), percent(t)]);
         line
     });
     csv_bytes(&header, lines)
