@@ -170,6 +170,16 @@ impl Folder {
     /// Writes `bytes` whole into a new temporary file beside `name`, after checking `name`
     /// holds no link, device or folder. Nothing is replaced until [`commit`].
     pub fn stage(&self, name: &str, bytes: &[u8]) -> Result<Staged, String> {
+        self.stage_with(name, &mut |w| w.write_all(bytes))
+    }
+
+    /// As [`Folder::stage`], the contents streamed by `write` into the temporary file
+    /// (buffered), so a large output is never held whole in memory.
+    pub fn stage_with(
+        &self,
+        name: &str,
+        write: &mut dyn FnMut(&mut dyn std::io::Write) -> std::io::Result<()>,
+    ) -> Result<Staged, String> {
         let path = self.path(name);
         check(&path, false)?;
         let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
@@ -188,9 +198,10 @@ impl Folder {
             builder.permissions(std::fs::Permissions::from_mode(mode));
         }
         let mut tmp = builder.tempfile_in(&self.dir).map_err(fail)?;
-        tmp.write_all(bytes)
-            .and_then(|()| tmp.as_file().sync_all())
-            .map_err(fail)?;
+        let mut out = std::io::BufWriter::with_capacity(1 << 16, tmp.as_file_mut());
+        write(&mut out).and_then(|()| out.flush()).map_err(fail)?;
+        drop(out);
+        tmp.as_file().sync_all().map_err(fail)?;
         Ok(Staged { tmp, path })
     }
 }

@@ -5,6 +5,9 @@
 
 use std::borrow::Cow;
 
+use rustc_hash::FxHashMap;
+
+use super::intern::Interner;
 use super::output::unquote_cell;
 
 /// The two layouts a class file may have.
@@ -16,26 +19,29 @@ pub enum Format {
     Wide,
 }
 
-/// One answer of the class file (or one unusable line).
-#[derive(Clone, Debug, Default)]
+/// The index a row holds where it has nothing (no student, no error).
+pub const NONE: u32 = u32::MAX;
+
+/// One answer of the class file (or one unusable line), its text held as indices into the
+/// [`Table`]'s interned strings.
+#[derive(Clone, Copy, Debug)]
 pub struct Row {
     /// The input line number the record starts on (the header is line 1).
-    pub line: u64,
-    /// The student key (trimmed; a key differing only in case from an earlier one takes the
-    /// earlier spelling), as the LMS knows the student.
-    pub student: String,
-    /// The problem id (trimmed; in the wide format, from the column name).
-    pub problem: String,
-    /// The part id (trimmed; in the wide format, from the column name).
-    pub part: String,
-    /// The answer exactly as typed.
-    pub answer: String,
-    /// Why the row cannot be graded, already phrased for results.csv.
-    pub error: Option<String>,
+    pub line: u32,
+    /// The student ([`Table::students`]; [`NONE`]: no key).
+    pub student: u32,
+    /// The problem id as typed, trimmed ([`Table::names`]; in the wide format, the column's).
+    pub problem: u32,
+    /// The part id as typed, trimmed ([`Table::names`]).
+    pub part: u32,
+    /// The answer exactly as typed ([`Table::answers`]).
+    pub answer: u32,
+    /// Why the row cannot be graded, already phrased for results.csv ([`Table::errors`];
+    /// [`NONE`]: it can).
+    pub error: u32,
 }
 
-/// The rows of a class file and its layout.
-#[derive(Debug)]
+/// The rows of a class file, its layout and its interned text.
 pub struct Table {
     /// The layout the header chose.
     pub format: Format,
@@ -45,6 +51,104 @@ pub struct Table {
     pub columns: Vec<(String, String)>,
     /// Student keys read as one because they differ only in case: (kept, merged into it).
     pub merged: Vec<(String, String)>,
+    /// The distinct non-empty student keys (trimmed; a key differing only in case from an
+    /// earlier one takes the earlier spelling), in order of first appearance.
+    pub students: Vec<String>,
+    /// Problem and part ids as typed.
+    pub names: Interner,
+    /// Answers as typed.
+    pub answers: Interner,
+    /// The rows' error messages.
+    pub errors: Vec<String>,
+}
+
+impl Table {
+    /// A row's student key (empty: none).
+    pub fn student(&self, row: &Row) -> &str {
+        self.students
+            .get(row.student as usize)
+            .map_or("", String::as_str)
+    }
+
+    /// A row's problem id as typed.
+    pub fn problem(&self, row: &Row) -> &str {
+        self.names.get(row.problem)
+    }
+
+    /// A row's part id as typed.
+    pub fn part(&self, row: &Row) -> &str {
+        self.names.get(row.part)
+    }
+
+    /// A row's answer as typed.
+    pub fn answer(&self, row: &Row) -> &str {
+        self.answers.get(row.answer)
+    }
+
+    /// Why a row cannot be graded, if it cannot.
+    pub fn error(&self, row: &Row) -> Option<&str> {
+        self.errors.get(row.error as usize).map(String::as_str)
+    }
+}
+
+/// Builds a [`Table`]'s rows and text while the records are read.
+#[derive(Default)]
+struct Builder {
+    rows: Vec<Row>,
+    students: Vec<String>,
+    /// Student keys by exact spelling, then by lower case.
+    exact: FxHashMap<String, u32>,
+    folded: FxHashMap<String, u32>,
+    merged: Vec<(String, String)>,
+    names: Interner,
+    answers: Interner,
+    errors: Vec<String>,
+}
+
+impl Builder {
+    /// The index of a (trimmed) student key: keys that differ only in case are one student,
+    /// under the first spelling (the merge noted once per other spelling).
+    fn student(&mut self, key: &str) -> u32 {
+        if key.is_empty() {
+            return NONE;
+        }
+        if let Some(&i) = self.exact.get(key) {
+            return i;
+        }
+        let folded = key.to_lowercase();
+        let i = match self.folded.get(&folded) {
+            Some(&i) => {
+                self.merged
+                    .push((self.students[i as usize].clone(), key.to_string()));
+                i
+            }
+            None => {
+                let i = self.students.len() as u32;
+                self.students.push(key.to_string());
+                self.folded.insert(folded, i);
+                i
+            }
+        };
+        self.exact.insert(key.to_string(), i);
+        i
+    }
+
+    /// Adds a row; `error` is why it cannot be graded.
+    fn push(&mut self, line: u32, student: u32, ids: [&str; 3], error: Option<String>) {
+        let error = error.map_or(NONE, |e| {
+            self.errors.push(e);
+            self.errors.len() as u32 - 1
+        });
+        let row = Row {
+            line,
+            student,
+            problem: self.names.intern(ids[0]),
+            part: self.names.intern(ids[1]),
+            answer: self.answers.intern(ids[2]),
+            error,
+        };
+        self.rows.push(row);
+    }
 }
 
 /// Why a class file cannot be read at all (exit 2).
@@ -82,30 +186,30 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
         .flexible(true)
         .delimiter(decoded.delimiter)
         .from_reader(&*decoded.text);
-    let mut records = reader.byte_records();
-    let header = match records.next() {
-        Some(Ok(h)) => h,
-        Some(Err(e)) => return Err(BadFile(format!("cannot read the header: {e}"))),
-        None => return Err(BadFile(format!("the file is empty: {EXPECTED}"))),
+    let mut record = csv::ByteRecord::new();
+    let header = match reader.read_byte_record(&mut record) {
+        Ok(true) => record.clone(),
+        Ok(false) => return Err(BadFile(format!("the file is empty: {EXPECTED}"))),
+        Err(e) => return Err(BadFile(format!("cannot read the header: {e}"))),
     };
     let names: Vec<String> = header.iter().map(header_name).collect();
     let layout = layout(&names)?;
     let width = header.len();
-    let mut rows = Vec::new();
-    for record in records {
-        let record = match record {
-            Ok(r) => r,
+    let mut b = Builder::default();
+    loop {
+        match reader.read_byte_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
             // The csv reader only fails on I/O, impossible on a byte slice; stop rather than
             // loop, and keep what was read.
             Err(e) => return Err(BadFile(format!("cannot read the file: {e}"))),
-        };
+        }
         // The file's own line (the reader's count misses CR-only and CRLF endings).
         let line = record
             .position()
             .map_or(0, |p| decoded.record_line(p.byte() as usize));
-        push_rows(&layout, width, line, &record, &mut rows);
+        push_rows(&layout, width, line as u32, &record, &mut b);
     }
-    let merged = merge_students(&mut rows);
     let (format, columns) = match layout {
         Layout::Long { .. } => (Format::Long, Vec::new()),
         Layout::Wide { parts, .. } => (
@@ -115,31 +219,14 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
     };
     Ok(Table {
         format,
-        rows,
+        rows: b.rows,
         columns,
-        merged,
+        merged: b.merged,
+        students: b.students,
+        names: b.names,
+        answers: b.answers,
+        errors: b.errors,
     })
-}
-
-/// Student keys that differ only in case or surrounding spaces are one student: every row
-/// takes the first spelling of its key. The keys merged, as (first spelling, other spelling).
-fn merge_students(rows: &mut [Row]) -> Vec<(String, String)> {
-    let mut first: std::collections::HashMap<String, String> = std::collections::HashMap::new();
-    let mut merged = Vec::new();
-    for row in rows.iter_mut().filter(|r| !r.student.is_empty()) {
-        let key = row.student.to_lowercase();
-        let spelling = first.entry(key).or_insert_with(|| row.student.clone());
-        if *spelling != row.student {
-            let pair = (
-                spelling.clone(),
-                std::mem::replace(&mut row.student, spelling.clone()),
-            );
-            if !merged.contains(&pair) {
-                merged.push(pair);
-            }
-        }
-    }
-    merged
 }
 
 /// A header cell as compared: trimmed, lower-case, without a byte-order mark.
@@ -188,25 +275,19 @@ fn layout(names: &[String]) -> Result<Layout, BadFile> {
     Ok(Layout::Wide { student, parts })
 }
 
-/// A field decoded lossily, and whether it had to be.
-/// A cell lagrange neutralised for spreadsheets (`'=…`) reads as its text again.
-fn text(record: &csv::ByteRecord, i: usize) -> (String, bool) {
+/// A field's text, and whether it had to be decoded lossily. A cell lagrange neutralised for
+/// spreadsheets (`'=…`) reads as its text again.
+fn text(record: &csv::ByteRecord, i: usize) -> (Cow<'_, str>, bool) {
     match record.get(i).map(String::from_utf8_lossy) {
-        Some(Cow::Borrowed(s)) => (unquote_cell(s).to_string(), false),
-        Some(Cow::Owned(s)) => (unquote_cell(&s).to_string(), true),
-        None => (String::new(), false),
+        Some(Cow::Borrowed(s)) => (Cow::Borrowed(unquote_cell(s)), false),
+        Some(Cow::Owned(s)) => (Cow::Owned(unquote_cell(&s).to_string()), true),
+        None => (Cow::Borrowed(""), false),
     }
 }
 
 /// The rows of one record: one in the long format, one per non-empty part cell in the wide
 /// format (one error row when the record cannot be split into cells).
-fn push_rows(
-    layout: &Layout,
-    width: usize,
-    line: u64,
-    record: &csv::ByteRecord,
-    rows: &mut Vec<Row>,
-) {
+fn push_rows(layout: &Layout, width: usize, line: u32, record: &csv::ByteRecord, b: &mut Builder) {
     let count_error = (record.len() != width).then(|| {
         format!(
             "line {line}: {} fields, the header has {width}; the row is not graded",
@@ -223,29 +304,17 @@ fn push_rows(
             let fields = [*student, *problem, *part, *answer].map(|i| text(record, i));
             let lossy = fields.iter().any(|f| f.1);
             let [student, problem, part, answer] = fields.map(|f| f.0);
-            let mut row = Row {
-                line,
-                student: student.trim().to_string(),
-                problem: problem.trim().to_string(),
-                part: part.trim().to_string(),
-                answer,
-                error: count_error,
-            };
-            if row.error.is_none() {
-                row.error = row_error(&row, lossy);
-            }
-            rows.push(row);
+            let (student, problem, part) = (student.trim(), problem.trim(), part.trim());
+            let error =
+                count_error.or_else(|| row_error(line, [student, problem, part, &answer], lossy));
+            let id = b.student(student);
+            b.push(line, id, [problem, part, &answer], error);
         }
         Layout::Wide { student, parts } => {
             let (student, student_lossy) = text(record, *student);
-            let student = student.trim().to_string();
+            let id = b.student(student.trim());
             if let Some(error) = count_error {
-                rows.push(Row {
-                    line,
-                    student,
-                    error: Some(error),
-                    ..Row::default()
-                });
+                b.push(line, id, ["", "", ""], Some(error));
                 return;
             }
             for (i, problem, part) in parts {
@@ -253,37 +322,33 @@ fn push_rows(
                 if answer.trim().is_empty() {
                     continue;
                 }
-                let mut row = Row {
-                    line,
-                    student: student.clone(),
-                    problem: problem.clone(),
-                    part: part.clone(),
-                    answer,
-                    error: None,
-                };
-                row.error = row_error(&row, lossy || student_lossy);
-                rows.push(row);
+                let fields = [student.trim(), problem, part, &answer];
+                let error = row_error(line, fields, lossy || student_lossy);
+                b.push(line, id, [problem, part, &answer], error);
             }
         }
     }
 }
 
-/// What is wrong with a row before any problem is looked up.
-fn row_error(row: &Row, lossy: bool) -> Option<String> {
-    let line = row.line;
+/// What is wrong with a row (student, problem, part, answer) before any problem is looked up.
+fn row_error(
+    line: u32,
+    [student, problem, part, answer]: [&str; 4],
+    lossy: bool,
+) -> Option<String> {
     if lossy {
         return Some(format!(
             "line {line}: not valid UTF-8 (shown decoded lossily, with U+FFFD for the bad \
              bytes); save the file as UTF-8"
         ));
     }
-    if row.student.is_empty() {
+    if student.is_empty() {
         return Some(format!("line {line}: no student"));
     }
-    if row.problem.is_empty() || row.part.is_empty() {
+    if problem.is_empty() || part.is_empty() {
         return Some(format!("line {line}: no problem or part"));
     }
-    if row.answer.trim().is_empty() {
+    if answer.trim().is_empty() {
         return Some(format!("line {line}: empty answer"));
     }
     None
@@ -299,8 +364,8 @@ mod tests {
         let t = t.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Long);
         assert_eq!(t.rows[0].line, 2);
-        assert_eq!(t.rows[0].answer, "x");
-        assert!(t.rows[0].error.is_none());
+        assert_eq!(t.answer(&t.rows[0]), "x");
+        assert!(t.error(&t.rows[0]).is_none());
     }
 
     #[test]
@@ -308,10 +373,10 @@ mod tests {
         let t = parse(b"student,a/b,c/d\ns1,x,\ns2,,y\n").map_err(|e| e.0);
         let t = t.unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Wide);
-        let got: Vec<(u64, &str, &str)> = t
+        let got: Vec<(u32, &str, &str)> = t
             .rows
             .iter()
-            .map(|r| (r.line, r.student.as_str(), r.part.as_str()))
+            .map(|r| (r.line, t.student(r), t.part(r)))
             .collect();
         assert_eq!(got, [(2, "s1", "b"), (3, "s2", "d")]);
     }

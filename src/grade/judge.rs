@@ -5,7 +5,7 @@
 //! passes run in parallel (rayon), one `Checker` per worker and problem. Which answer
 //! represents a form never depends on the thread count, so neither does any output.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use indicatif::ProgressBar;
 use rayon::prelude::*;
@@ -17,7 +17,7 @@ use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::tutor::command::did_you_mean;
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
-use super::input::Row;
+use super::input::{Row, Table};
 
 /// The status column of results.csv.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -65,9 +65,10 @@ pub struct Rep {
     pub fingerprint: Option<String>,
 }
 
-/// The outcome of one row of the input.
+/// What a row is given: shared by every row with the same representative (and the same
+/// follow-through question), or a row's own (an error, an answer too long to read).
 #[derive(Clone, Debug)]
-pub struct Graded {
+pub struct Outcome {
     /// The status column.
     pub status: Status,
     /// The verdict's score times the part's points (follow-through credit included).
@@ -78,56 +79,100 @@ pub struct Graded {
     pub message: String,
     /// `(problem, part)` indices into the bank, for rows that name a real part.
     pub target: Option<(usize, usize)>,
-    /// The representative whose verdict this row shares.
+    /// The representative whose verdict this is.
     pub rep: Option<usize>,
+}
+
+/// The outcome of one row of the input.
+#[derive(Clone, Copy, Debug)]
+pub struct Graded {
+    /// Its outcome in [`Judged::outcomes`].
+    pub outcome: u32,
     /// Whether this row is the student's answer that counts for the part.
     pub counts: bool,
 }
 
 /// Every row's outcome (same order as the input) and the representatives checked.
 pub struct Judged {
-    /// One outcome per input row, in input order.
+    /// One entry per input row, in input order.
     pub rows: Vec<Graded>,
+    /// The outcomes rows point to.
+    pub outcomes: Vec<Outcome>,
     /// The answers actually checked.
     pub reps: Vec<Rep>,
+}
+
+impl Judged {
+    /// Row `i`'s outcome.
+    pub fn outcome(&self, i: usize) -> &Outcome {
+        &self.outcomes[self.rows[i].outcome as usize]
+    }
+
+    /// Adds an outcome; its index.
+    fn add(&mut self, o: Outcome) -> u32 {
+        self.outcomes.push(o);
+        self.outcomes.len() as u32 - 1
+    }
 }
 
 /// The most answers one checker reads (see [`par_map`]).
 const CHUNK: usize = 1024;
 
-/// What a row resolves to before anything is checked.
-enum Target {
-    Error(String),
-    /// A real part, but an answer too long to read.
-    TooLong(usize, usize, String),
-    Answer(usize, usize),
-}
+/// A problem and part id pair as typed: the bank part it names, or why it names none (the
+/// message without its line).
+type Resolved = Result<(usize, usize), String>;
 
 /// Grades every row. `progress` makes the bar (given the number of distinct answers): it
 /// ticks once per answer read, then once per canonical form checked.
 pub fn judge(
-    rows: &[Row],
+    table: &Table,
     bank: &Bank,
     settings: Settings,
     progress: &dyn Fn(usize) -> ProgressBar,
 ) -> Judged {
-    let targets: Vec<Target> = rows.iter().map(|r| resolve(r, bank)).collect();
+    let rows = &table.rows;
+    let mut judged = Judged {
+        rows: Vec::with_capacity(rows.len()),
+        outcomes: Vec::new(),
+        reps: Vec::new(),
+    };
+    let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
     let mut distinct: Vec<(usize, usize, &str)> = Vec::new();
-    let mut by_text: HashMap<(usize, usize, &str), usize> = HashMap::new();
-    let row_distinct: Vec<Option<usize>> = targets
-        .iter()
-        .zip(rows)
-        .map(|(t, r)| match t {
-            Target::Answer(p, q) => {
-                Some(*by_text.entry((*p, *q, &r.answer)).or_insert_with(|| {
-                    distinct.push((*p, *q, &r.answer));
-                    distinct.len() - 1
-                }))
+    let mut by_text: FxHashMap<(usize, usize, u32), u32> = FxHashMap::default();
+    // Per row: its own outcome (Err) or its distinct answer (Ok).
+    let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
+    for row in rows {
+        let own = |o: Outcome, judged: &mut Judged| Err(judged.add(o));
+        let target = resolved
+            .entry((row.problem, row.part))
+            .or_insert_with(|| resolve(table.problem(row), table.part(row), bank));
+        let slot = if let Some(e) = table.error(row) {
+            own(unread(Status::Error, e.to_string(), None), &mut judged)
+        } else {
+            match target {
+                Err(rest) => {
+                    let message = format!("line {}: {rest}", row.line);
+                    own(unread(Status::Error, message, None), &mut judged)
+                }
+                Ok((p, q)) if table.answer(row).len() > MAX_INPUT_BYTES => {
+                    let (line, n) = (row.line, table.answer(row).len());
+                    let message = format!(
+                        "line {line}: the answer is {n} bytes, over the checker's limit of {MAX_INPUT_BYTES}; not read"
+                    );
+                    own(
+                        unread(Status::Invalid, message, Some((*p, *q))),
+                        &mut judged,
+                    )
+                }
+                Ok((p, q)) => Ok(*by_text.entry((*p, *q, row.answer)).or_insert_with(|| {
+                    distinct.push((*p, *q, table.answers.get(row.answer)));
+                    distinct.len() as u32 - 1
+                })),
             }
-            Target::Error(..) | Target::TooLong(..) => None,
-        })
-        .collect();
+        };
+        row_distinct.push(slot);
+    }
     let bar = progress(distinct.len());
     bar.set_message("reading");
     let canon = par_map(bank, &distinct, |c, part, text| {
@@ -152,7 +197,7 @@ pub fn judge(
         (verdict, fingerprint)
     });
     bar.finish_and_clear();
-    let reps: Vec<Rep> = rep_inputs
+    judged.reps = rep_inputs
         .iter()
         .zip(checked)
         .map(|(&(problem, part, answer), (verdict, fingerprint))| Rep {
@@ -163,16 +208,40 @@ pub fn judge(
             fingerprint,
         })
         .collect();
-    let mut graded: Vec<Graded> = targets
-        .iter()
-        .zip(&row_distinct)
-        .map(|(t, d)| outcome(t, d.map(|d| reps_of[d]), &reps, bank))
+    let rep_outcomes: Vec<u32> = (0..judged.reps.len())
+        .map(|r| {
+            let o = outcome(r, &judged.reps[r], bank);
+            judged.add(o)
+        })
         .collect();
+    judged.rows = row_distinct
+        .iter()
+        .map(|d| Graded {
+            outcome: match d {
+                Ok(d) => rep_outcomes[reps_of[*d as usize]],
+                Err(own) => *own,
+            },
+            counts: false,
+        })
+        .collect();
+    drop(row_distinct);
     if let Some(credit) = settings.follow_through {
-        follow_through(rows, &mut graded, &reps, bank, credit, settings.best);
+        follow_through(rows, &mut judged, bank, credit, settings.best);
     }
-    mark_counted(rows, &mut graded, settings.best);
-    Judged { rows: graded, reps }
+    mark_counted(rows, &mut judged, settings.best);
+    judged
+}
+
+/// The outcome of a row that is not checked.
+fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Outcome {
+    Outcome {
+        status,
+        score: 0.0,
+        codes: Vec::new(),
+        message,
+        target,
+        rep: None,
+    }
 }
 
 /// Whether a part's answer is a list (equilibria, frequencies, values).
@@ -216,7 +285,7 @@ fn representatives<'r>(
     canon: Vec<Option<String>>,
 ) -> (Vec<usize>, Vec<(usize, usize, &'r str)>) {
     let mut reps: Vec<(usize, usize, &str)> = Vec::new();
-    let mut by_form: HashMap<(usize, usize, String), usize> = HashMap::new();
+    let mut by_form: FxHashMap<(usize, usize, String), usize> = FxHashMap::default();
     let mut of = Vec::with_capacity(distinct.len());
     for (&(p, q, text), form) in distinct.iter().zip(canon) {
         // A leading NUL cannot start a canonical form, so raw text never collides with one.
@@ -230,66 +299,36 @@ fn representatives<'r>(
     (of, reps)
 }
 
-/// Resolves a row to a bank part, or to the error it gets (with did-you-mean).
-fn resolve(row: &Row, bank: &Bank) -> Target {
-    let line = row.line;
-    if let Some(e) = &row.error {
-        return Target::Error(e.clone());
-    }
-    let Some(p) = bank.problems.iter().position(|p| p.id == row.problem) else {
+/// Resolves a problem and part id pair to a bank part, or to the error its rows get (with
+/// did-you-mean; the message without its line).
+fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
+    let Some(p) = bank.problems.iter().position(|p| p.id == problem_id) else {
         let ids = bank.problems.iter().map(|p| p.id.as_str());
-        let hint = did_you_mean(&row.problem, ids)
+        let hint = did_you_mean(problem_id, ids)
             .map_or(String::new(), |s| format!("; did you mean `{s}`?"));
-        return Target::Error(format!(
-            "line {line}: no problem `{}`{hint}",
-            visible(&row.problem)
-        ));
+        return Err(format!("no problem `{}`{hint}", visible(problem_id)));
     };
     let problem: &Problem = &bank.problems[p];
-    let Some(q) = problem.parts.iter().position(|x| x.id == row.part) else {
+    let Some(q) = problem.parts.iter().position(|x| x.id == part_id) else {
         let ids: Vec<&str> = problem.parts.iter().map(|x| x.id.as_str()).collect();
-        let hint = did_you_mean(&row.part, ids.iter().copied())
+        let hint = did_you_mean(part_id, ids.iter().copied())
             .map_or(String::new(), |s| format!("did you mean `{s}`? "));
-        return Target::Error(format!(
-            "line {line}: `{}` has no part `{}`; {hint}the parts are {}",
+        return Err(format!(
+            "`{}` has no part `{}`; {hint}the parts are {}",
             problem.id,
-            visible(&row.part),
+            visible(part_id),
             ids.join(", ")
         ));
     };
-    if row.answer.len() > MAX_INPUT_BYTES {
-        let n = row.answer.len();
-        return Target::TooLong(
-            p,
-            q,
-            format!(
-                "line {line}: the answer is {n} bytes, over the checker's limit of {MAX_INPUT_BYTES}; not read"
-            ),
-        );
-    }
-    Target::Answer(p, q)
+    Ok((p, q))
 }
 
-/// A row's outcome from its target and representative.
-fn outcome(t: &Target, rep: Option<usize>, reps: &[Rep], bank: &Bank) -> Graded {
-    let unread = |status, message: &String, target| Graded {
-        status,
-        score: 0.0,
-        codes: Vec::new(),
-        message: message.clone(),
-        target,
-        rep: None,
-        counts: false,
-    };
-    let (p, q) = match t {
-        Target::Error(message) => return unread(Status::Error, message, None),
-        Target::TooLong(p, q, message) => return unread(Status::Invalid, message, Some((*p, *q))),
-        Target::Answer(p, q) => (*p, *q),
-    };
+/// The outcome of representative `r`.
+fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
+    let (p, q) = (rep.problem, rep.part);
     let points = bank.problems[p].parts[q].points;
-    let r = rep.and_then(|r| reps.get(r).map(|x| (r, x)));
-    let (status, score, codes, message) = match r.map(|(_, x)| &x.verdict) {
-        Some(Ok(v)) => (
+    let (status, score, codes, message) = match &rep.verdict {
+        Ok(v) => (
             match v.status {
                 Checked::Correct => Status::Correct,
                 Checked::Incorrect => Status::Incorrect,
@@ -302,34 +341,29 @@ fn outcome(t: &Target, rep: Option<usize>, reps: &[Rep], bank: &Bank) -> Graded 
                 .map(|d| d.message.clone())
                 .unwrap_or_default(),
         ),
-        Some(Err(e)) => (Status::Error, 0.0, Vec::new(), e.clone()),
-        None => (Status::Error, 0.0, Vec::new(), String::new()),
+        Err(e) => (Status::Error, 0.0, Vec::new(), e.clone()),
     };
-    Graded {
+    Outcome {
         status,
         score,
         codes,
         message,
         target: Some((p, q)),
-        rep: r.map(|(i, _)| i),
-        counts: false,
+        rep: Some(r),
     }
 }
 
 /// The row that counts for each (student, problem, part): the last graded attempt, or with
 /// `best` the highest-scoring one (the later of equals). Error rows never count.
-fn final_rows(
-    rows: &[Row],
-    graded: &[Graded],
-    best: bool,
-) -> HashMap<(String, usize, usize), usize> {
-    let mut chosen: HashMap<(String, usize, usize), usize> = HashMap::new();
-    for (i, (row, g)) in rows.iter().zip(graded).enumerate() {
+fn final_rows(rows: &[Row], judged: &Judged, best: bool) -> FxHashMap<(u32, usize, usize), usize> {
+    let mut chosen: FxHashMap<(u32, usize, usize), usize> = FxHashMap::default();
+    for (i, row) in rows.iter().enumerate() {
+        let g = judged.outcome(i);
         let (Some((p, q)), false) = (g.target, g.status == Status::Error) else {
             continue;
         };
-        let slot = chosen.entry((row.student.clone(), p, q)).or_insert(i);
-        if !best || graded[*slot].score <= g.score {
+        let slot = chosen.entry((row.student, p, q)).or_insert(i);
+        if !best || judged.outcome(*slot).score <= g.score {
             *slot = i;
         }
     }
@@ -337,10 +371,10 @@ fn final_rows(
 }
 
 /// Sets `counts` on the rows that count.
-fn mark_counted(rows: &[Row], graded: &mut [Graded], best: bool) {
-    let chosen = final_rows(rows, graded, best);
+fn mark_counted(rows: &[Row], judged: &mut Judged, best: bool) {
+    let chosen = final_rows(rows, judged, best);
     for i in chosen.into_values() {
-        graded[i].counts = true;
+        judged.rows[i].counts = true;
     }
 }
 
@@ -349,55 +383,101 @@ fn mark_counted(rows: &[Row], graded: &mut [Graded], best: bool) {
 type FollowKey = (usize, Vec<usize>);
 
 /// Gives credit to incorrect answers that follow from the same student's own wrong answers to
-/// the other parts. Each distinct question is asked once, in parallel.
-fn follow_through(
-    rows: &[Row],
-    graded: &mut [Graded],
-    reps: &[Rep],
-    bank: &Bank,
-    credit: f64,
-    best: bool,
-) {
-    let finals = final_rows(rows, graded, best);
-    let mut keys: Vec<FollowKey> = Vec::new();
-    let mut index: HashMap<FollowKey, usize> = HashMap::new();
+/// the other parts. Each distinct question is asked once, in parallel; the rows asking one
+/// share its outcome.
+fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, best: bool) {
+    let finals = final_rows(rows, judged, best);
+    // An earlier answer follow-through can start from: a wrong one, or a Lagrangian accepted
+    // though it is not T − V (`accepts`). `follows_from_earlier` passes over every other one
+    // without looking further, so leaving them out of a question changes no answer, and
+    // makes far fewer distinct questions (most earlier answers are right).
+    let source: Vec<bool> = (judged.reps.iter())
+        .map(|r| match &r.verdict {
+            Ok(v) => match v.status {
+                Checked::Incorrect => true,
+                Checked::Correct => v.diagnoses.first().is_some_and(accepts),
+                Checked::Invalid => false,
+            },
+            Err(_) => false,
+        })
+        .collect();
+    let mut keys: Vec<(FollowKey, u32)> = Vec::new();
+    let mut index: FxHashMap<FollowKey, usize> = FxHashMap::default();
     let mut asks: Vec<(usize, usize)> = Vec::new();
-    for (i, (row, g)) in rows.iter().zip(graded.iter()).enumerate() {
+    for (i, row) in rows.iter().enumerate() {
+        let g = judged.outcome(i);
         let (Status::Incorrect, Some((p, q)), Some(rep)) = (g.status, g.target, g.rep) else {
             continue;
         };
         let earlier: Vec<usize> = (0..bank.problems[p].parts.len())
             .filter(|&o| o != q)
-            .filter_map(|o| finals.get(&(row.student.clone(), p, o)))
-            .filter_map(|&j| graded[j].rep)
+            .filter_map(|o| finals.get(&(row.student, p, o)))
+            .filter_map(|&j| judged.outcome(j).rep)
+            .filter(|&r| source[r])
             .collect();
         if earlier.is_empty() {
             continue;
         }
         let key = (rep, earlier);
-        let k = *index.entry(key.clone()).or_insert_with(|| {
-            keys.push(key);
-            keys.len() - 1
-        });
+        let k = match index.get(&key) {
+            Some(&k) => k,
+            None => {
+                index.insert(key.clone(), keys.len());
+                keys.push((key, judged.rows[i].outcome));
+                keys.len() - 1
+            }
+        };
         asks.push((i, k));
     }
-    let answers: Vec<Option<Diagnosis>> = keys.par_iter().map(|k| follows(k, reps, bank)).collect();
-    for (i, k) in asks {
-        if let Some(d) = &answers[k] {
-            let g = &mut graded[i];
+    // `follows_from_earlier` takes the most recent earlier answer the wrong one follows from,
+    // judging each earlier answer on its own: so each (answer, earlier answer) pair is asked
+    // once, in parallel, and a question's answer is its first pair that follows, latest first.
+    let reps = &judged.reps;
+    let mut pairs: Vec<(usize, usize)> = keys
+        .iter()
+        .flat_map(|((rep, earlier), _)| earlier.iter().map(move |&e| (*rep, e)))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    let pair_answers: Vec<Option<Diagnosis>> = pairs
+        .par_iter()
+        .map(|&(rep, e)| follows(&(rep, vec![e]), reps, bank))
+        .collect();
+    let pair_answer: FxHashMap<(usize, usize), &Diagnosis> = (pairs.iter().zip(&pair_answers))
+        .filter_map(|(&k, d)| Some((k, d.as_ref()?)))
+        .collect();
+    let answers: Vec<Option<Diagnosis>> = (keys.iter())
+        .map(|((rep, earlier), _)| {
+            let mut latest_first = earlier.iter().rev();
+            latest_first.find_map(|&e| pair_answer.get(&(*rep, e)).map(|&d| d.clone()))
+        })
+        .collect();
+    // The outcome each question gives (`None`: the answer does not follow; it keeps its own).
+    let given: Vec<Option<u32>> = keys
+        .iter()
+        .zip(&answers)
+        .map(|((_, own), d)| {
+            let d = d.as_ref()?;
+            let mut g = judged.outcomes[*own as usize].clone();
             let (p, q) = g.target.unwrap_or_default();
+            let points = bank.problems[p].parts[q].points;
             // Right for the student's own accepted L (a total derivative added): full marks.
             if accepts(d) {
                 g.status = Status::Correct;
-                g.score = bank.problems[p].parts[q].points;
+                g.score = points;
                 g.codes = vec![d.code.to_string()];
-                g.message = d.message.clone();
-                continue;
+            } else {
+                // A list already partly right keeps the larger of its own score and the credit.
+                g.score = g.score.max(credit * points);
+                g.codes.insert(0, d.code.to_string());
             }
-            // A list already partly right keeps the larger of its own score and the credit.
-            g.score = g.score.max(credit * bank.problems[p].parts[q].points);
-            g.codes.insert(0, d.code.to_string());
             g.message = d.message.clone();
+            Some(judged.add(g))
+        })
+        .collect();
+    for (i, k) in asks {
+        if let Some(o) = given[k] {
+            judged.rows[i].outcome = o;
         }
     }
 }

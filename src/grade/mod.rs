@@ -9,6 +9,7 @@
 
 mod decode;
 mod input;
+mod intern;
 mod judge;
 mod output;
 mod summary;
@@ -85,7 +86,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
     };
     if opts.lms == Some(Lms::Moodle)
-        && let Err(message) = output::moodle_keys(&summary::students(&table.rows))
+        && let Err(message) = output::moodle_keys(&summary::students(&table))
     {
         eprintln!("error: {message}");
         return Ok(ExitCode::from(2));
@@ -104,21 +105,19 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         follow_through: opts.follow_through,
         best: opts.best,
     };
-    let judged = judge::judge(&table.rows, &bank, settings, &progress_bar);
-    let mut summary = summary::summarise(&table.rows, &judged, &bank);
+    let judged = judge::judge(&table, &bank, settings, &progress_bar);
+    let mut summary = summary::summarise(&table, &judged, &bank);
     summary.run = run.clone();
-    let book = output::gradebook(&table.rows, &judged, &bank, columns.as_deref());
-    let mut files: Vec<(&str, Vec<u8>)> = vec![
-        ("results.csv", output::results(&table.rows, &judged, &run)?),
-        ("gradebook.csv", output::gradebook_csv(&book)?),
-    ];
+    let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
+    let results = |w: &mut dyn std::io::Write| output::results(w, &table, &judged, &run);
+    let mut files: Vec<(&str, Vec<u8>)> = vec![("gradebook.csv", output::gradebook_csv(&book)?)];
     if let Some(lms) = opts.lms {
         let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
         files.push((lms_name(lms), bytes));
     }
     files.push(("summary.md", summary::markdown(&summary).into_bytes()));
     files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
-    let written = match write_outputs(&dir, &names, files) {
+    let written = match write_outputs(&dir, &names, results, files) {
         Ok(w) => w,
         Err(message) => {
             eprintln!("error: {message}");
@@ -262,18 +261,20 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     }
 }
 
-/// Writes every output whole under a temporary name, then renames them all into place (the
-/// folder locked meanwhile; stale temporary files of a killed run removed): the paths written.
+/// Writes every output whole under a temporary name — results.csv streamed by `results`,
+/// then `files` — and renames them all into place (the folder locked meanwhile; stale
+/// temporary files of a killed run removed): the paths written.
 fn write_outputs(
     dir: &Path,
     names: &[&str],
+    mut results: impl FnMut(&mut dyn std::io::Write) -> std::io::Result<()>,
     files: Vec<(&str, Vec<u8>)>,
 ) -> Result<Vec<PathBuf>, String> {
     let folder = crate::outfile::Folder::open(dir, names)?;
-    let staged = files
-        .iter()
-        .map(|(name, bytes)| folder.stage(name, bytes))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut staged = vec![folder.stage_with("results.csv", &mut results)?];
+    for (name, bytes) in &files {
+        staged.push(folder.stage(name, bytes)?);
+    }
     crate::outfile::commit(staged)
 }
 

@@ -2,9 +2,14 @@
 //! row per student), summary.md / summary.json, and an LMS import file, as bytes (written by
 //! [`crate::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
 
+use std::borrow::Cow;
+use std::io::Write;
+
+use rayon::prelude::*;
+
 use lagrange::bank::Bank;
 
-use super::input::Row;
+use super::input::{Row, Table};
 use super::judge::Judged;
 use super::summary::{Summary, num, students};
 
@@ -31,11 +36,11 @@ fn needs_quote(s: &str) -> bool {
 /// A text cell a spreadsheet will show rather than run: a leading `'` before `=`, `+`, `-`,
 /// `@`, a tab or a carriage return (`=HYPERLINK(…)` → `'=HYPERLINK(…)`). [`unquote_cell`]
 /// gives the text back.
-pub fn quote_cell(s: &str) -> String {
+pub fn quote_cell(s: &str) -> Cow<'_, str> {
     if needs_quote(s) {
-        format!("'{s}")
+        Cow::Owned(format!("'{s}"))
     } else {
-        s.to_string()
+        Cow::Borrowed(s)
     }
 }
 
@@ -61,27 +66,70 @@ fn csv_bytes(
     w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))
 }
 
-/// results.csv: every input answer, in input order, each row with the run's id. Text cells
-/// are neutralised ([`quote_cell`]).
-pub fn results(rows: &[Row], judged: &Judged, run: &str) -> anyhow::Result<Vec<u8>> {
+/// The rows formatted at once (in parallel), then written in order: memory stays bounded by
+/// a batch, whatever the number of rows.
+const BATCH: usize = 16 * 1024;
+
+/// results.csv, streamed into `out`: every input answer, in input order, each row with the
+/// run's id. Text cells are neutralised ([`quote_cell`]). Rows are formatted in parallel
+/// batches; the bytes do not depend on the thread count.
+pub fn results(
+    out: &mut dyn Write,
+    table: &Table,
+    judged: &Judged,
+    run: &str,
+) -> std::io::Result<()> {
     let header = [
         "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
     ];
-    let lines = rows.iter().zip(&judged.rows).map(|(r, g)| {
-        vec![
-            r.line.to_string(),
-            quote_cell(&r.student),
-            quote_cell(&r.problem),
-            quote_cell(&r.part),
-            quote_cell(&r.answer),
-            g.status.name().to_string(),
-            num(g.score),
-            g.codes.join(";"),
-            quote_cell(&g.message),
-            run.to_string(),
-        ]
-    });
-    csv_bytes(&header, lines)
+    out.write_all(&csv_bytes(&header, std::iter::empty()).map_err(std::io::Error::other)?)?;
+    // What an outcome writes, formatted once: score, codes, message.
+    let shown: Vec<[String; 3]> = judged
+        .outcomes
+        .iter()
+        .map(|o| {
+            [
+                num(o.score),
+                o.codes.join(";"),
+                quote_cell(&o.message).into_owned(),
+            ]
+        })
+        .collect();
+    let rows: Vec<(usize, &Row)> = table.rows.iter().enumerate().collect();
+    for batch in rows.chunks(BATCH * rayon::current_num_threads().max(1)) {
+        let parts: Vec<std::io::Result<Vec<u8>>> = batch
+            .par_chunks(BATCH)
+            .map(|chunk| {
+                let mut w = csv::WriterBuilder::new()
+                    .has_headers(false)
+                    .from_writer(Vec::with_capacity(chunk.len() * 128));
+                for &(i, r) in chunk {
+                    let g = judged.rows[i];
+                    let o = &judged.outcomes[g.outcome as usize];
+                    let [score, codes, message] = &shown[g.outcome as usize];
+                    let line = r.line.to_string();
+                    w.write_record([
+                        line.as_str(),
+                        &quote_cell(table.student(r)),
+                        &quote_cell(table.problem(r)),
+                        &quote_cell(table.part(r)),
+                        &quote_cell(table.answer(r)),
+                        o.status.name(),
+                        score,
+                        codes,
+                        message,
+                        run,
+                    ])?;
+                }
+                w.into_inner()
+                    .map_err(|e| std::io::Error::other(e.to_string()))
+            })
+            .collect();
+        for part in parts {
+            out.write_all(&part?)?;
+        }
+    }
+    Ok(())
 }
 
 /// The gradebook: students in order of first appearance, one column per part answered by
@@ -106,7 +154,7 @@ impl Gradebook {
 /// wide format's part columns) when given, else every part some row names, in bank order;
 /// every student's maximum is the sum of all columns, answered or not.
 pub fn gradebook(
-    rows: &[Row],
+    table: &Table,
     judged: &Judged,
     bank: &Bank,
     parts: Option<&[(usize, usize)]>,
@@ -114,7 +162,8 @@ pub fn gradebook(
     let targets: Vec<(usize, usize)> = match parts {
         Some(p) => p.to_vec(),
         None => {
-            let mut t: Vec<(usize, usize)> = judged.rows.iter().filter_map(|g| g.target).collect();
+            let mut t: Vec<(usize, usize)> =
+                (judged.outcomes.iter()).filter_map(|o| o.target).collect();
             t.sort_unstable();
             t.dedup();
             t
@@ -122,15 +171,14 @@ pub fn gradebook(
     };
     let column: std::collections::HashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-    let names = students(rows);
-    let index: std::collections::HashMap<&str, usize> =
-        names.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let names = students(table);
     let mut scores = vec![vec![None; targets.len()]; names.len()];
-    for (r, g) in rows.iter().zip(&judged.rows) {
-        if let (true, Some(t), Some(&s)) = (g.counts, g.target, index.get(r.student.as_str()))
+    for (i, (r, g)) in table.rows.iter().zip(&judged.rows).enumerate() {
+        let o = judged.outcome(i);
+        if let (true, Some(t), Some(s)) = (g.counts, o.target, scores.get_mut(r.student as usize))
             && let Some(&c) = column.get(&t)
         {
-            scores[s][c] = Some(g.score);
+            s[c] = Some(o.score);
         }
     }
     Gradebook {
@@ -166,11 +214,19 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     header.extend(book.columns.iter().map(String::as_str));
     header.extend(["total", "max", "percent"]);
     let max = book.max();
+    // A class has few distinct scores and totals: each is formatted once.
+    let mut shown: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
+    let mut num = |x: f64| shown.entry(x.to_bits()).or_insert_with(|| num(x)).clone();
+    let mut percents: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
+    let mut percent = |t: f64| {
+        let p = percents.entry(t.to_bits());
+        p.or_insert_with(|| percent(t, max)).clone()
+    };
     let lines = book.students.iter().map(|(s, scores)| {
-        let mut line = vec![quote_cell(s)];
-        line.extend(scores.iter().map(|x| x.map_or(String::new(), num)));
+        let mut line = vec![quote_cell(s).into_owned()];
+        line.extend(scores.iter().map(|x| x.map_or(String::new(), &mut num)));
         let t = total(scores);
-        line.extend([num(t), num(max), percent(t, max)]);
+        line.extend([num(t), num(max), percent(t)]);
         line
     });
     csv_bytes(&header, lines)
@@ -214,7 +270,7 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
     let totals = book
         .students
         .iter()
-        .map(|(s, scores)| (quote_cell(s), num(total(scores))));
+        .map(|(s, scores)| (quote_cell(s).into_owned(), num(total(scores))));
     let bytes = match lms {
         // Canvas matches a student on SIS Login ID (among its ID columns) and reads the
         // optional "Points Possible" row right under the header.

@@ -3,14 +3,16 @@
 //! at the sample points). Built from counts only, in `BTreeMap`s, with ties broken by text, so
 //! nothing in it depends on row order or thread count. Rendered as Markdown and JSON.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::fmt::Write as _;
 
 use serde::Serialize;
 
 use lagrange::bank::Bank;
 
-use super::input::Row;
+use super::input::Table;
 use super::judge::{Judged, Status};
 
 /// How many wrong-answer groups are listed per part.
@@ -90,58 +92,80 @@ pub struct Group {
 
 /// A group being counted: rows per representative and per spelling.
 #[derive(Default)]
-struct Tally<'a> {
+struct Tally {
     count: usize,
-    students: std::collections::HashSet<&'a str>,
-    by_rep: HashMap<usize, usize>,
-    by_text: HashMap<&'a str, usize>,
+    students: FxHashSet<u32>,
+    by_rep: FxHashMap<usize, usize>,
+    /// Rows per answer as typed (an interned index).
+    by_answer: FxHashMap<u32, usize>,
 }
 
-/// The summary of a judged class.
-pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
-    let mut status = BTreeMap::new();
-    let mut codes = BTreeMap::new();
-    let mut parts: BTreeMap<String, PartSummary> = BTreeMap::new();
-    let mut sums: BTreeMap<String, f64> = BTreeMap::new();
-    let mut tallies: HashMap<(String, Status, String), Tally> = HashMap::new();
-    for (row, g) in rows.iter().zip(&judged.rows) {
-        *status.entry(g.status.name().to_string()).or_insert(0) += 1;
-        for c in &g.codes {
-            *codes.entry(c.clone()).or_insert(0) += 1;
-        }
-        let Some((p, q)) = g.target else { continue };
-        let problem = &bank.problems[p];
-        let key = format!("{}/{}", problem.id, problem.parts[q].id);
-        let s = parts
-            .entry(key.clone())
-            .or_insert_with(|| empty(problem.parts[q].points));
-        s.answers += 1;
-        match g.status {
-            Status::Correct => s.correct += 1,
-            Status::Incorrect => s.incorrect += 1,
-            Status::Invalid => s.invalid += 1,
-            Status::Error => s.error += 1,
-        }
+/// The summary of a judged class: counted per outcome and per group, never per row's text.
+pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
+    let rows = &table.rows;
+    // Rows per outcome, then everything an outcome decides is counted once per outcome.
+    let mut per_outcome = vec![0usize; judged.outcomes.len()];
+    let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
+    let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
+    // The meaning of each representative, interned: a group is (part, status, meaning).
+    let mut meanings: FxHashMap<String, usize> = FxHashMap::default();
+    let meaning: Vec<usize> = judged
+        .reps
+        .iter()
+        .map(|r| {
+            let m = r
+                .fingerprint
+                .clone()
+                .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
+            let n = meanings.len();
+            *meanings.entry(m).or_insert(n)
+        })
+        .collect();
+    let mut tallies: FxHashMap<((usize, usize), Status, usize), Tally> = FxHashMap::default();
+    for (i, (row, g)) in rows.iter().zip(&judged.rows).enumerate() {
+        per_outcome[g.outcome as usize] += 1;
+        let o = judged.outcome(i);
+        let Some((p, q)) = o.target else { continue };
         if g.counts {
-            s.students += 1;
-            *sums.entry(key.clone()).or_insert(0.0) += g.score;
+            parts
+                .entry((p, q))
+                .or_insert_with(|| empty(bank.problems[p].parts[q].points))
+                .students += 1;
+            *sums.entry((p, q)).or_insert(0.0) += o.score;
         }
-        let (Some(rep), Status::Incorrect | Status::Invalid) = (g.rep, g.status) else {
+        let (Some(rep), Status::Incorrect | Status::Invalid) = (o.rep, o.status) else {
             continue;
         };
-        let r = &judged.reps[rep];
-        let meaning = r
-            .fingerprint
-            .clone()
-            .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
-        let t = tallies.entry((key, g.status, meaning)).or_default();
+        let t = tallies.entry(((p, q), o.status, meaning[rep])).or_default();
         t.count += 1;
-        t.students.insert(row.student.as_str());
+        t.students.insert(row.student);
         *t.by_rep.entry(rep).or_insert(0) += 1;
-        *t.by_text.entry(row.answer.trim()).or_insert(0) += 1;
+        *t.by_answer.entry(row.answer).or_insert(0) += 1;
     }
-    for (key, s) in parts.iter_mut() {
-        let sum = sums.get(key).copied().unwrap_or(0.0);
+    let mut status = BTreeMap::new();
+    let mut codes = BTreeMap::new();
+    for (o, &n) in judged.outcomes.iter().zip(&per_outcome) {
+        if n == 0 {
+            continue;
+        }
+        *status.entry(o.status.name().to_string()).or_insert(0) += n;
+        for c in &o.codes {
+            *codes.entry(c.clone()).or_insert(0) += n;
+        }
+        let Some((p, q)) = o.target else { continue };
+        let s = parts
+            .entry((p, q))
+            .or_insert_with(|| empty(bank.problems[p].parts[q].points));
+        s.answers += n;
+        match o.status {
+            Status::Correct => s.correct += n,
+            Status::Incorrect => s.incorrect += n,
+            Status::Invalid => s.invalid += n,
+            Status::Error => s.error += n,
+        }
+    }
+    for (t, s) in parts.iter_mut() {
+        let sum = sums.get(t).copied().unwrap_or(0.0);
         // `+ 0.0` turns a −0.0 into 0.0.
         s.mean_score = if s.students == 0 {
             0.0
@@ -149,11 +173,21 @@ pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
             sum / s.students as f64 + 0.0
         };
     }
-    add_groups(&mut parts, tallies, judged);
+    let key = |(p, q): (usize, usize)| {
+        let problem = &bank.problems[p];
+        format!("{}/{}", problem.id, problem.parts[q].id)
+    };
+    let mut parts: BTreeMap<String, PartSummary> =
+        parts.into_iter().map(|(t, s)| (key(t), s)).collect();
+    let tallies = tallies
+        .into_iter()
+        .map(|((t, status, m), tally)| ((key(t), status, m), tally))
+        .collect();
+    add_groups(&mut parts, tallies, table, judged);
     Summary {
         run: String::new(),
         rows: rows.len(),
-        students: students(rows).len(),
+        students: table.students.len(),
         status,
         parts,
         codes,
@@ -161,12 +195,8 @@ pub fn summarise(rows: &[Row], judged: &Judged, bank: &Bank) -> Summary {
 }
 
 /// The distinct non-empty students, in order of first appearance.
-pub fn students(rows: &[Row]) -> Vec<&str> {
-    let mut seen = std::collections::HashSet::new();
-    rows.iter()
-        .map(|r| r.student.as_str())
-        .filter(|s| !s.is_empty() && seen.insert(*s))
-        .collect()
+pub fn students(table: &Table) -> Vec<&str> {
+    table.students.iter().map(String::as_str).collect()
 }
 
 fn empty(points: f64) -> PartSummary {
@@ -189,7 +219,8 @@ fn empty(points: f64) -> PartSummary {
 /// Turns the tallies into each part's sorted, truncated group list.
 fn add_groups(
     parts: &mut BTreeMap<String, PartSummary>,
-    tallies: HashMap<(String, Status, String), Tally>,
+    tallies: Vec<((String, Status, usize), Tally)>,
+    table: &Table,
     judged: &Judged,
 ) {
     let mut per_part: BTreeMap<String, Vec<Group>> = BTreeMap::new();
@@ -197,7 +228,7 @@ fn add_groups(
         per_part
             .entry(key)
             .or_default()
-            .push(group(status, &t, judged));
+            .push(group(status, &t, table, judged));
     }
     for (key, mut groups) in per_part {
         groups.sort_by(|a, b| {
@@ -223,7 +254,7 @@ fn add_groups(
 }
 
 /// One group: shown as its most common reading (ties: the smaller text).
-fn group(status: Status, t: &Tally, judged: &Judged) -> Group {
+fn group(status: Status, t: &Tally, table: &Table, judged: &Judged) -> Group {
     let shown_of = |rep: usize| {
         let r = &judged.reps[rep];
         match &r.verdict {
@@ -242,7 +273,11 @@ fn group(status: Status, t: &Tally, judged: &Judged) -> Group {
         .map(|(_, s, r)| (s.clone(), Some(*r)))
         .unwrap_or_default();
     let verdict = rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
-    let mut texts: Vec<(&str, usize)> = t.by_text.iter().map(|(&s, &n)| (s, n)).collect();
+    let mut by_text: FxHashMap<&str, usize> = FxHashMap::default();
+    for (&a, &n) in &t.by_answer {
+        *by_text.entry(table.answers.get(a).trim()).or_insert(0) += n;
+    }
+    let mut texts: Vec<(&str, usize)> = by_text.into_iter().collect();
     texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
     Group {
         students: t.students.len(),
