@@ -74,7 +74,8 @@ pub(super) fn undefined_everywhere() -> Diagnosis {
 }
 
 /// Any point as text, with velocities, in Unicode: `θ = 0.3, θ̇ = 0, m = 1.2`. With `only`,
-/// just those variables (what a factor depends on).
+/// just those variables (what a factor depends on), accelerations and time included when
+/// they are among them: a point never omits a variable the expression uses.
 pub(super) fn state_text(p: &Prepared, x: &[f64], only: Option<&[(Sym, u8)]>) -> String {
     let at = p.system.state_layout();
     let shown = |s: Sym, order: u8| only.is_none_or(|o| o.contains(&(s, order)));
@@ -82,6 +83,14 @@ pub(super) fn state_text(p: &Prepared, x: &[f64], only: Option<&[(Sym, u8)]>) ->
     for (i, c) in p.system.coordinates.iter().enumerate() {
         slots.push((c.sym, 0, at.q(i)));
         slots.push((c.sym, 1, at.qdot(i)));
+        // An acceleration is shown where the expression uses one (never in a full state).
+        if only.is_some_and(|o| o.contains(&(c.sym, 2))) {
+            slots.push((c.sym, 2, at.qddot(i)));
+        }
+    }
+    let t = p.system.pool.time();
+    if only.is_some_and(|o| o.contains(&(t, 0))) {
+        slots.push((t, 0, at.time()));
     }
     for (j, q) in p.system.parameters.iter().enumerate() {
         slots.push((q.sym, 0, at.param(j)));

@@ -128,9 +128,29 @@ impl Highlighter for ReplHelper {
 }
 
 impl Validator for ReplHelper {
+    /// A line with an unclosed bracket stays open, and says so (a bare new line would look
+    /// hung): how to finish it and how to cancel.
     fn validate(&self, ctx: &mut ValidationContext) -> rustyline::Result<ValidationResult> {
-        self.validator.validate(ctx)
+        match self.validator.validate(ctx)? {
+            ValidationResult::Incomplete => {
+                Ok(ValidationResult::Invalid(Some(continuation(ctx.input()))))
+            }
+            other => Ok(other),
+        }
     }
+}
+
+/// What a line with unclosed brackets shows under it.
+pub fn continuation(input: &str) -> String {
+    let open = input.chars().filter(|c| matches!(c, '(' | '[')).count();
+    let closed = input.chars().filter(|c| matches!(c, ')' | ']')).count();
+    let n = open.saturating_sub(closed).max(1);
+    let what = if n == 1 {
+        "a bracket is still open".to_string()
+    } else {
+        format!("{n} brackets are still open")
+    };
+    format!("\n  … {what}: close it with `)` and press Enter, or Ctrl-C to cancel the line")
 }
 
 impl Helper for ReplHelper {}

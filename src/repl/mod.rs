@@ -7,6 +7,7 @@
 mod editor;
 mod render;
 mod store;
+mod wrap;
 
 use std::cell::RefCell;
 use std::io::{BufRead, IsTerminal, Write};
@@ -37,6 +38,8 @@ pub struct Options {
 struct Output {
     json: bool,
     color: bool,
+    /// The terminal's width in columns, when the text is wrapped to it (interactive only).
+    width: Option<usize>,
     store: Option<store::Store>,
 }
 
@@ -51,7 +54,10 @@ impl Output {
                 .iter()
                 .map(|r| render::response(r, line, paint, self.color))
                 .collect();
-            texts.concat()
+            match self.width {
+                Some(w) => wrap::wrap(&texts.concat(), w),
+                None => texts.concat(),
+            }
         };
         let mut out = std::io::stdout().lock();
         // A closed pipe (`… | head`) just ends the output; anything else is worth a word.
@@ -98,6 +104,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     let mut out = Output {
         json: opts.json,
         color: opts.color && terminal && !opts.json,
+        width: None,
         store,
     };
     if terminal && !out.json {
@@ -187,6 +194,8 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
         };
         match rl.readline(&prompt) {
             Ok(line) => {
+                // The width now (the window may have been resized since the last line).
+                out.width = rl.dimensions().map(|(cols, _)| usize::from(cols));
                 // A history entry that cannot be added (a duplicate, an empty line) is no error.
                 rl.add_history_entry(line.as_str()).ok();
                 let r = session.borrow_mut().handle(&line);

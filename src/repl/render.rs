@@ -200,9 +200,10 @@ fn hint(o: &mut String, h: &HintReply, paint: &dyn Paint) -> std::fmt::Result {
         ),
         None => writeln!(
             o,
-            "{} all {} hints given; `:solution` shows the answer",
+            "{} all {} hints given; `{}` shows the answer",
             paint.heading("hint:"),
-            h.number
+            h.number,
+            h.reveal
         ),
     }
 }

@@ -108,6 +108,9 @@ pub struct HintReply {
     pub number: usize,
     /// Hints still to come.
     pub remaining: usize,
+    /// The command that reveals the answer once the hints run out: `:solution` for a part,
+    /// `:show` for a tutor step.
+    pub reveal: &'static str,
 }
 
 /// A part's reference answer.

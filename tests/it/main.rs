@@ -48,4 +48,5 @@ mod steady13;
 mod symbolic;
 mod sympy13;
 mod syntax;
+mod tutor_corpus;
 mod tutor_session;

@@ -158,15 +158,18 @@ fn back_hint_and_commands_in_the_tutor() {
     assert!(matches!(one(&mut s, ":show"), Response::Error(e) if e.code == "not-in-tutor"));
     s.handle(":tutor");
     s.handle(":show");
-    // A hint reveals nothing: the step again, with a pointer.
+    // Every step has hints from its physics (issue 21 §1), then points to `:show`.
     let h = one(&mut s, ":hint");
-    assert_eq!(step(&h).step, "speed-squared:1");
-    assert!(
-        step(&h)
-            .note
-            .as_deref()
-            .is_some_and(|n| n.contains(":show"))
-    );
+    let Response::Hint(h) = h else {
+        panic!("expected a hint, got {h:?}");
+    };
+    assert_eq!(h.part, "speed-squared:1");
+    assert!(h.hint.as_deref().is_some_and(|t| t.contains("chain rule")));
+    s.handle(":hint");
+    let Response::Hint(last) = one(&mut s, ":hint") else {
+        panic!("expected a hint");
+    };
+    assert!(last.hint.is_none() && last.reveal == ":show");
     assert!(matches!(one(&mut s, ":solution"), Response::Error(e) if e.code == "in-tutor"));
     // `:back` asks the current part again; answers go to the parts.
     let b = one(&mut s, ":back");

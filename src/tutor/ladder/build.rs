@@ -10,6 +10,7 @@ use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
 mod bodies;
+mod teach;
 
 /// The ladder of `problem`, in the order a student climbs it.
 pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
@@ -21,6 +22,7 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
     b.energies();
     b.coordinates()?;
     b.statics()?;
+    b.hints();
     Ok(b.steps)
 }
 
@@ -66,9 +68,16 @@ impl Builder<'_> {
             prompt,
             part,
             against: None,
+            pitfalls: Vec::new(),
         });
         let last = self.steps.len() - 1;
         &mut self.steps[last].part
+    }
+
+    /// The step pushed last.
+    fn last_mut(&mut self) -> &mut Step {
+        let last = self.steps.len().saturating_sub(1);
+        &mut self.steps[last]
     }
 
     fn plain(&self, e: Id) -> String {
@@ -160,6 +169,8 @@ impl Builder<'_> {
                 PartKind::Expression,
                 vec![answer],
             );
+            let pitfalls = self.rate_pitfalls(i, s);
+            self.last_mut().pitfalls = pitfalls;
             let answer = self.plain(s.force);
             self.push(
                 format!("generalized-force:{q}"),
@@ -181,6 +192,8 @@ impl Builder<'_> {
                 format!("Put them together: write the equation of motion for {u}.")
             };
             self.push(format!("eom:{q}"), prompt, PartKind::Equation, vec![answer]);
+            let pitfalls = self.eom_pitfalls(i, &d.steps);
+            self.last_mut().pitfalls = pitfalls;
             if !self.sys.constraints.is_empty() {
                 let mut free = self.sys.clone();
                 free.constraints.clear();
@@ -282,6 +295,7 @@ impl Builder<'_> {
             prompt,
             part,
             against: None,
+            pitfalls: Vec::new(),
         });
     }
 
@@ -292,7 +306,13 @@ impl Builder<'_> {
         let mut sys = self.problem.system.clone();
         sys.substitute_parameters(&freq.substitute)?;
         let point = point_of(&mut sys, freq)?;
+        let pitfalls = self.linear_pitfalls(&sys, &point);
         let (m, k) = mass_and_stiffness(&mut sys, &point);
+        // A coordinate no force restores (a cyclic x) is free, not stable.
+        let free: Vec<String> = (0..k.len())
+            .filter(|&i| k[i].iter().all(|&x| sys.is_zero(x)))
+            .map(|i| self.name(i, 0))
+            .collect();
         let coords = sys.coordinate_syms();
         let n = coords.len();
         let half = sys.pool.ratio(1, 2);
@@ -326,9 +346,17 @@ impl Builder<'_> {
         } else {
             PartKind::Equations
         };
+        let at = at_text(&sys, &point);
+        let which = if free.is_empty() {
+            format!("the stable equilibrium {at}")
+        } else {
+            format!(
+                "the equilibrium {at} ({} moves freely: no force restores it)",
+                free.join(", ")
+            )
+        };
         let prompt = format!(
-            "Linearize about the stable equilibrium {}{}: write M q'' + K (q − q₀) = 0 for {}{}.",
-            at_text(&sys, &point),
+            "Linearize about {which}{}: write M q'' + K (q − q₀) = 0 for {}{}.",
             conditions(freq),
             self.coordinate_list(),
             if n > 1 {
@@ -338,8 +366,9 @@ impl Builder<'_> {
             }
         );
         self.push("linearized".into(), prompt, kind, equations);
-        let last = self.steps.len() - 1;
-        self.steps[last].against = Some(Box::new(sys));
+        let last = self.last_mut();
+        last.against = Some(Box::new(sys));
+        last.pitfalls = pitfalls;
         Ok(())
     }
 }

@@ -7,6 +7,7 @@ use std::collections::hash_map::Entry;
 
 use rustc_hash::FxHashMap;
 
+use super::reasons;
 use super::step::Step;
 use crate::check::answer::check_prepared;
 use crate::check::prepare::{Prepared, prepare};
@@ -70,15 +71,56 @@ impl<'a> StepChecker<'a> {
         };
         let judged = own.as_ref().unwrap_or(problem);
         let mut v = check_prepared(judged, &step.part, prepared, input);
+        if reasons::asks_to_differentiate(step) && reasons::uses_dt(input) {
+            reasons::refuse_dt(&mut v);
+            return Ok(v);
+        }
+        // Another coordinate's equation holds for the motion too, but is not this step's.
+        let judged_wrong =
+            |f: &&super::Pitfall| v.status == Status::Incorrect || f.code == Code::WrongEquation;
+        if v.status != Status::Invalid
+            && let Some(f) = reasons::pitfall(prepared, step, input).filter(judged_wrong)
+        {
+            v.status = Status::Incorrect;
+            v.score = 0.0;
+            v.diagnoses = vec![Diagnosis::new(f.code, f.message.clone())];
+        }
         if step.id.starts_with("position:") {
             if v.status == Status::Correct {
                 order_of_components(problem, step, input, &mut v)?;
-            } else if other_axes(problem, step, input)? {
-                v.diagnoses = vec![Diagnosis::new(Code::Convention, axes_message(problem))];
+            } else if v.status == Status::Incorrect
+                && let Some(each) = components(problem, step, input)?
+            {
+                // A vector in a stated order: each component is judged in its place.
+                reasons::by_component(&mut v, &each);
+                if other_axes(problem, step, input)? {
+                    v.diagnoses = vec![Diagnosis::new(Code::Convention, axes_message(problem))];
+                }
             }
         }
         Ok(v)
     }
+}
+
+/// Each component of a position checked against the step's component in the same place
+/// (`None` when the answer has another number of components).
+fn components(
+    problem: &Problem,
+    step: &Step,
+    input: &str,
+) -> Result<Option<Vec<Verdict>>, CheckError> {
+    let items = split_top_level(input);
+    if items.len() != step.part.answers.len() {
+        return Ok(None);
+    }
+    let mut out = Vec::new();
+    for (item, answer) in items.iter().zip(&step.part.answers) {
+        let mut part = step.part.clone();
+        part.kind = PartKind::Expression;
+        part.answers = vec![answer.clone()];
+        out.push(check::check(problem, &part, item)?);
+    }
+    Ok(Some(out))
 }
 
 /// Turns a correct but reordered position into an incorrect one.

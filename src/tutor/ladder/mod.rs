@@ -33,12 +33,13 @@
 
 pub mod build;
 pub mod checker;
+mod reasons;
 pub mod step;
 mod velocity_terms;
 
 pub use build::ladder;
 pub use checker::{StepChecker, check_step};
-pub use step::{LadderError, Step};
+pub use step::{LadderError, Pitfall, Step};
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,7 @@
 //! What a rung of the derivation ladder is: a [`Step`] (its question, the part that checks it,
 //! and the system it is judged against), and why a ladder cannot be built ([`LadderError`]).
 
+use crate::check::Code;
 use crate::mechanics::{MechError, System};
 use crate::problem::Part;
 
@@ -18,6 +19,22 @@ pub struct Step {
     /// `linearized`, the system without its constraints for the `eom:Q` steps of a
     /// constrained problem (whose Euler–Lagrange equations lack the constraint forces).
     pub against: Option<Box<System>>,
+    /// Common wrong answers to this step, generated from its physics, each with the reason a
+    /// teacher gives for it (checked in order when the answer is wrong).
+    pub pitfalls: Vec<Pitfall>,
+}
+
+/// A known wrong answer to a step and its reason: an answer equal to `answers` (an
+/// expression; for an equation step, equations up to a constant factor each) gets
+/// `code` and `message` in place of the generic diagnoses.
+#[derive(Clone, Debug)]
+pub struct Pitfall {
+    /// The wrong answer, one plain-syntax expression or equation per item.
+    pub answers: Vec<String>,
+    /// The diagnosis code it gets.
+    pub code: Code,
+    /// The sentence that names the mistake.
+    pub message: String,
 }
 
 impl Step {

@@ -139,6 +139,7 @@ impl Session {
                 None => 0,
             },
             hint,
+            reveal: ":solution",
         };
         vec![Response::Hint(reply)]
     }

@@ -5,7 +5,9 @@ use super::replies::{no_problem, not_in_tutor};
 use super::{Session, Tutor};
 use crate::check::Status;
 use crate::tutor::ladder::{StepChecker, ladder};
-use crate::tutor::response::{Response, StepPrompt, StepSolutionReply, StepVerdictReply};
+use crate::tutor::response::{
+    HintReply, Response, StepPrompt, StepSolutionReply, StepVerdictReply,
+};
 
 /// The tutor: `:tutor`, answers to steps, `:show`, `:back` and `:hint` there.
 impl Session {
@@ -37,6 +39,7 @@ impl Session {
                 Ok(steps) if !steps.is_empty() => {
                     o.tutor = Some(Tutor {
                         attempts: vec![0; steps.len()],
+                        hints: vec![0; steps.len()],
                         steps,
                         checker: StepChecker::owned(problem.clone()),
                         current: 0,
@@ -153,20 +156,45 @@ impl Session {
         then(self)
     }
 
-    /// `:hint` in the tutor reveals nothing: it asks the current step again, with a pointer to
-    /// `:show` (which reveals the step) and `:back`. The ladder's steps are already the small
-    /// steps a hint would suggest.
-    pub(super) fn step_hint(&self) -> Vec<Response> {
-        let Some(t) = self.tutor_ref().filter(|t| t.active) else {
+    /// `:hint` in the tutor: the current step's next hint (generated from the step's
+    /// physics); once none remain, `hint` is null and `:show` reveals the step.
+    pub(super) fn step_hint(&mut self) -> Vec<Response> {
+        let pid = self.current_problem().unwrap_or_default().to_string();
+        let Some(t) = self
+            .open
+            .as_mut()
+            .and_then(|o| o.tutor.as_mut())
+            .filter(|t| t.active)
+        else {
             return vec![not_in_tutor()];
         };
-        let note = "the tutor gives no hints beyond the step itself: `:show` reveals this \
-                    step's answer and moves on, `:back` returns to the parts";
-        let pid = self.current_problem().unwrap_or_default();
-        step_prompt(pid, t, t.current, Some(note.to_string()))
-            .map(Response::Step)
-            .into_iter()
-            .collect()
+        let Some(step) = t.steps.get(t.current) else {
+            return vec![not_in_tutor()];
+        };
+        let total = step.part.hints.len();
+        let given = t.hints.get(t.current).copied().unwrap_or(0);
+        let hint = step.part.hints.get(given).cloned();
+        if hint.is_some()
+            && let Some(h) = t.hints.get_mut(t.current)
+        {
+            *h += 1;
+        }
+        vec![Response::Hint(HintReply {
+            problem: pid,
+            part: step.id.clone(),
+            number: if hint.is_some() {
+                given + 1
+            } else {
+                given.min(total)
+            },
+            remaining: if hint.is_some() {
+                total.saturating_sub(given + 1)
+            } else {
+                0
+            },
+            hint,
+            reveal: ":show",
+        })]
     }
 }
 

@@ -64,6 +64,8 @@ struct Tutor {
     current: usize,
     /// Checked attempts per step, this session.
     attempts: Vec<u32>,
+    /// Hints given per step, this session.
+    hints: Vec<usize>,
     /// Whether answers go to the tutor (between `:tutor` and `:back` or the last step).
     active: bool,
 }
@@ -244,6 +246,13 @@ impl Session {
             .collect();
         found.sort();
         found.dedup();
+        // A unique command is completed with the space its argument follows, as shells do.
+        if head.is_empty()
+            && word.starts_with(':')
+            && let [only] = found.as_mut_slice()
+        {
+            only.push(' ');
+        }
         (start, found)
     }
 
@@ -449,7 +458,7 @@ mod tests {
     #[test]
     fn completion_by_position() {
         let mut s = pendulum();
-        assert_eq!(s.complete(":op"), (0, vec![":open".to_string()]));
+        assert_eq!(s.complete(":op"), (0, vec![":open ".to_string()]));
         assert_eq!(
             s.complete(":open simple"),
             (6, vec!["simple-pendulum".to_string()])

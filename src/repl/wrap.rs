@@ -1,0 +1,86 @@
+//! Wrapping the REPL's text at the terminal's width, by words: a line longer than the width
+//! breaks at spaces (never inside a word), continued under its own indentation plus two
+//! columns. Colour codes and combining accents (θ̇) take no column.
+
+/// `text` wrapped at `width` columns (lines already short enough are kept as they are).
+pub fn wrap(text: &str, width: usize) -> String {
+    let width = width.max(20);
+    let mut out = String::with_capacity(text.len() + 16);
+    for (i, line) in text.split('\n').enumerate() {
+        if i > 0 {
+            out.push('\n');
+        }
+        wrap_line(line, width, &mut out);
+    }
+    out
+}
+
+/// One line wrapped into `out`.
+fn wrap_line(line: &str, width: usize, out: &mut String) {
+    if columns(line) <= width {
+        out.push_str(line);
+        return;
+    }
+    let indent = line.len() - line.trim_start().len();
+    let lead = &line[..indent];
+    let more = format!("{lead}  ");
+    let mut used = 0;
+    let mut first = true;
+    for word in line.trim_start().split(' ').filter(|w| !w.is_empty()) {
+        let w = columns(word);
+        if first {
+            out.push_str(lead);
+            out.push_str(word);
+            used = indent + w;
+            first = false;
+        } else if used + 1 + w > width {
+            out.push('\n');
+            out.push_str(&more);
+            out.push_str(word);
+            used = more.len() + w;
+        } else {
+            out.push(' ');
+            out.push_str(word);
+            used += 1 + w;
+        }
+    }
+}
+
+/// The columns `s` takes on a terminal: escape sequences and combining marks take none.
+pub fn columns(s: &str) -> usize {
+    let mut n = 0;
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\x1b' {
+            // CSI … final byte (a letter).
+            for d in chars.by_ref() {
+                if d.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else if !('\u{300}'..='\u{36f}').contains(&c) {
+            n += 1;
+        }
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wraps_by_words_under_the_indent() {
+        let t = "  the frequencies of the small oscillations about the stable equilibrium";
+        let w = wrap(t, 30);
+        assert!(w.lines().all(|l| columns(l) <= 30), "{w}");
+        assert!(w.contains("frequencies"), "{w}");
+        assert!(w.lines().skip(1).all(|l| l.starts_with("    ")), "{w}");
+        assert_eq!(wrap("short", 80), "short");
+    }
+
+    #[test]
+    fn colour_and_accents_take_no_column() {
+        assert_eq!(columns("\x1b[1mθ̇\x1b[0m"), 1);
+    }
+}
