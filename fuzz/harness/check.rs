@@ -131,9 +131,16 @@ fn grammar(r: &mut Rng, v: &Vocab, part: &Part) -> String {
 /// and (with `params`) a difference of two parameters of one dimension.
 fn vanishing(p: &Problem, params: bool) -> Vec<String> {
     let mut f = Vec::new();
+    // Factors that vanish at regular states (issue 19: a factor vanishing only where the
+    // physics is singular, r at r = 0 under a force k/r², is right).
     for c in &p.system.coordinates {
         let q = &c.name;
-        f.extend([format!("{q}'"), q.clone(), format!("sin({q})")]);
+        let mid = 0.5 * (c.range.0 + c.range.1) + 0.1234;
+        f.extend([
+            format!("{q}'"),
+            format!("({q} - {mid})"),
+            format!("sin({q} - 0.3)"),
+        ]);
     }
     if params {
         let ps = &p.system.parameters;

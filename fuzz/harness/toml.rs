@@ -186,7 +186,8 @@ fn refused(r: &mut Rng, base: &str) -> Option<(String, String)> {
     })
 }
 
-/// The first equation of motion's reference multiplied by a velocity (the energy law).
+/// The first equation of motion's reference multiplied by a velocity (the energy law) or a
+/// factor vanishing at a regular state.
 fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
     let part = base.find("kind = \"equation\"")?;
     let at = part + base[part..].find("\nanswer = \"")? + "\nanswer = \"".len();
@@ -196,7 +197,9 @@ fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
         return None;
     }
     let coord = base.split("name = \"").nth(1)?.split('"').next()?;
-    let f = pick(r, &[format!("{coord}'"), coord.to_string()]).clone();
+    // A velocity, or a factor vanishing at a regular state (issue 19: `r` alone vanishes
+    // only where a central force's k/r² is not finite, and is right there).
+    let f = pick(r, &[format!("{coord}'"), format!("({coord} - 0.7321)")]).clone();
     let eq = format!("({lhs})*{f} = ({rhs})*{f}");
     Some((
         format!("{}{eq}{}", &base[..at], &base[end..]),
