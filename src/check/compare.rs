@@ -47,6 +47,24 @@ pub fn values(
 
 /// How `a` relates to `b` (the reference) over `pts`. Points where `b` is undefined are
 /// skipped.
+/// The least tolerance at which `a` and `b` are [`Relation::Equal`] by [`relate`]'s first test
+/// (each point against the size of its own terms); `None` where `a` is undefined and `b` is
+/// not. One evaluation, for a caller that would otherwise call [`relate`] at many tolerances.
+pub fn agreement(sys: &System, a: Id, b: Id, pts: &PointSet) -> Result<Option<f64>, CheckError> {
+    let vals = values(sys, &[b], pts)?;
+    let avals = values(sys, &[a], pts)?;
+    let sizes = term_sizes(sys, a, b, pts)?;
+    let mut worst: Option<f64> = None;
+    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
+        let Some(vb) = vb else { continue };
+        let Some(va) = va else { return Ok(None) };
+        let (x, y, (sa, sb)) = (va[0], vb[0], sizes[k]);
+        let e = (x - y).abs() / (sa + sb + x.abs().max(y.abs()) + tolerance::TINY);
+        worst = Some(worst.map_or(e, |w: f64| w.max(e)));
+    }
+    Ok(worst)
+}
+
 pub fn relate(
     sys: &System,
     a: Id,
