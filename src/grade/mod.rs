@@ -14,18 +14,14 @@ mod judge;
 mod output;
 mod summary;
 
-use std::io::{IsTerminal, Read};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 pub use output::Lms;
 
 /// The largest class file read (a larger one is refused with exit 2).
 pub const MAX_FILE_BYTES: u64 = 512 * 1024 * 1024;
-/// Fewer distinct answers than this are checked without a progress bar (it would flash).
-const PROGRESS_FROM: usize = 2_000;
 
 /// How `lagrange grade` was asked to run.
 pub struct Options {
@@ -105,7 +101,10 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         follow_through: opts.follow_through,
         best: opts.best,
     };
-    let judged = judge::judge(&table, &bank, settings, &progress_bar);
+    let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
+    let judged = judge::judge(&table, &bank, settings, &mut bar);
+    bar.finish();
+    let judged = judged?;
     let mut summary = summary::summarise(&table, &judged, &bank);
     summary.run = run.clone();
     let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
@@ -385,20 +384,6 @@ fn assignment(input: &Path) -> String {
         Some(s) if input != Path::new("-") => format!("lagrange {s}"),
         _ => "lagrange".to_string(),
     }
-}
-
-/// A bar on stderr for a long job on a terminal; hidden otherwise (pipes and tests never see
-/// it).
-fn progress_bar(distinct: usize) -> ProgressBar {
-    if distinct < PROGRESS_FROM || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(distinct as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{msg:9} {bar:40} {pos}/{len} distinct answers")
-    {
-        bar.set_style(style);
-    }
-    bar
 }
 
 /// The short table printed on stdout.
