@@ -65,7 +65,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let table = match input::parse(&bytes) {
+    // The file's hash (one serial pass) beside the parallel reading.
+    let (table, hash) = rayon::join(|| input::parse(&bytes), || file_hash(&bytes));
+    let table = match table {
         Ok(t) => t,
         Err(input::BadFile(message)) => {
             eprintln!("error: {}: {message}", shown(&opts.input));
@@ -95,7 +97,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             lagrange::expr::error::visible(kept),
         );
     }
-    let run = run_id(&bytes, opts, &bank);
+    let run = run_id(hash, opts, &bank);
     drop(bytes);
     let settings = judge::Settings {
         follow_through: opts.follow_through,
@@ -281,11 +283,16 @@ fn write_outputs(
 /// file's bytes, the options, the bank's parts, lagrange's version). Files of one run carry
 /// the same id; two runs with equal ids wrote equal files, so outputs stay byte-identical
 /// from run to run.
-fn run_id(bytes: &[u8], opts: &Options, bank: &lagrange::bank::Bank) -> String {
+/// The class file's share of it ([`run_id`] goes on from it), taken while the file is read.
+fn file_hash(bytes: &[u8]) -> Fnv {
     let mut h = Fnv::default();
     h.add(env!("CARGO_PKG_VERSION").as_bytes());
     h.add(&(bytes.len() as u64).to_le_bytes());
     h.add(bytes);
+    h
+}
+
+fn run_id(mut h: Fnv, opts: &Options, bank: &lagrange::bank::Bank) -> String {
     let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
     h.add(settings.as_bytes());
     for p in &bank.problems {
