@@ -454,6 +454,44 @@ mod tests {
         assert_eq!(got, [(2, "s1", "b"), (3, "s2", "d")]);
     }
 
+    /// A file of several pieces (CRLF endings, quoted answers over two lines) reads as one
+    /// pass would: every record once, on its own line, text numbered in order of first
+    /// appearance, keys differing in case merged once.
+    #[test]
+    fn a_file_read_in_pieces_reads_as_one_pass() {
+        let mut csv = String::from("student,problem,part,answer\r\n");
+        let (mut line, mut want) = (2u32, Vec::new());
+        for i in 0..40_000 {
+            let student = if i == 30_000 {
+                "S7".to_string()
+            } else {
+                format!("s{}", i % 97)
+            };
+            if i % 100 == 0 {
+                csv.push_str(&format!("{student},p,q,\"x +\r\n{}\"\r\n", i % 13));
+                want.push(line);
+                line += 2;
+            } else {
+                csv.push_str(&format!("{student},p,q,answer number {}\r\n", i % 31));
+                want.push(line);
+                line += 1;
+            }
+        }
+        assert!(csv.len() > 2 * super::super::decode::CUT_BYTES);
+        let t = parse(csv.as_bytes()).map_err(|e| e.0);
+        let t = t.unwrap_or_else(|e| panic!("{e}"));
+        let lines: Vec<u32> = t.rows.iter().map(|r| r.line).collect();
+        assert_eq!(lines, want);
+        let mut seen = 0;
+        for r in &t.rows {
+            assert!(r.answer <= seen, "first appearance order");
+            seen = seen.max(r.answer + 1);
+        }
+        assert_eq!(t.students.len(), 97);
+        assert_eq!(t.merged, [("s7".to_string(), "S7".to_string())]);
+        assert!(t.rows.iter().all(|r| t.error(r).is_none()));
+    }
+
     #[test]
     fn a_header_of_neither_format_names_the_expected_columns() {
         let e = parse(b"name,score\n")
