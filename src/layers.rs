@@ -158,8 +158,9 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
                 ));
             }
         } else if path.extension().is_some_and(|e| e == "rs")
-            // `outfile.rs` belongs to the binary (the faces' file writing), like main.rs.
-            && !["lib", "main", "layers", "outfile"].contains(&name.as_str())
+            // `outfile.rs` and `bar.rs` belong to the binary (the faces' file writing and
+            // progress bar), like main.rs.
+            && !["lib", "main", "layers", "outfile", "bar"].contains(&name.as_str())
         {
             let text = std::fs::read_to_string(&path).unwrap_or_default();
             out.push((

@@ -12,7 +12,8 @@
 //! - [`report`]: what each command shows, as data built here and rendered once, for every
 //!   face;
 //! - [`tutor`]: practice sessions — the derivation ladder, follow-through, progress;
-//! - [`diagnostic`]: rendering of positioned errors, shared by every face.
+//! - [`diagnostic`]: rendering of positioned errors, shared by every face;
+//! - [`progress`]: the one cancellable progress callback that long calls take.
 //!
 //! `src/main.rs` is a thin command-line face over this library.
 
@@ -21,6 +22,7 @@
 /// the sources). The faces (`src/main.rs`, `src/cli/`) sit above all of them.
 #[cfg_attr(not(test), allow(dead_code))]
 const LAYERS: &[&str] = &[
+    "progress",
     "expr",
     "diagnostic",
     "mechanics",
@@ -41,6 +43,7 @@ pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;
 pub mod problem;
+pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod tutor;

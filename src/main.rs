@@ -4,6 +4,7 @@
 //! Exit codes: 0 success, 1 "no" (the input could not be read or is inconsistent),
 //! 2 usage or other error.
 
+mod bar;
 mod cli;
 mod grade;
 mod outfile;

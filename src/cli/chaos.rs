@@ -90,7 +90,10 @@ pub fn run(
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
-    let mut r = match lagrange::report::chaos::chaos(&mut sys, &opts) {
+    let mut bar = crate::bar::Bar::percent(!args.json);
+    let run = lagrange::report::chaos::chaos_with(&mut sys, &opts, &mut bar);
+    bar.finish();
+    let mut r = match run {
         Ok(r) => r,
         Err(ChaosError::Simulation(e)) => return Ok(super::simulate::failure(&e)),
         Err(e) => return Ok(refuse(&e)),

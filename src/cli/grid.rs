@@ -4,11 +4,15 @@
 //! as a picture (--plot), a CSV (--out), JSON (--json) or a summary. Batches of cells run on
 //! every core (rayon); a progress bar shows on a terminal.
 
-use std::io::IsTerminal;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::ops::ControlFlow;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::bar::Bar;
+use lagrange::progress::Progress;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -20,7 +24,7 @@ use lagrange::report::SimulationOptions;
 use lagrange::report::simulation::{initial_state, state_names};
 use lagrange::report::units::AxisUnits;
 use lagrange::simulate::{
-    DEFAULT_FLIP_DT, FlipRun, FlipSettings, Outcome, Rhs, SimError, flip_times,
+    DEFAULT_FLIP_DT, FlipRun, FlipSettings, Outcome, Rhs, SimError, flip_times_with,
 };
 
 /// The most cells a grid may have.
@@ -153,7 +157,7 @@ pub fn run(
         Err(e) => return Ok(report(&e, color)),
     };
     let clock = Instant::now();
-    let run = integrate(&plan);
+    let run = integrate(&plan, args.json);
     let wall = clock.elapsed().as_secs_f64();
     let summary = summarize(&plan, &run);
     if let Err(e) = write_files(args, &plan, &run, units) {
@@ -337,9 +341,11 @@ fn limits(args: &SimulateArgs, t_end: f64, axes: &[Axis]) -> Result<(usize, f64)
     Ok((cells, dt))
 }
 
-/// Every cell's outcome, batches of cells on every core.
-fn integrate(plan: &Plan) -> FlipRun {
-    let bar = progress_bar(plan.cells);
+/// Every cell's outcome, batches of cells on every core; the batches' progress callbacks
+/// add up into one bar (none with `--json`).
+fn integrate(plan: &Plan, json: bool) -> FlipRun {
+    let bar = Mutex::new(Bar::new("{bar:40} {pos}/{len} cells, {eta} left", !json));
+    let done = AtomicU64::new(0);
     let dim = plan.base.len();
     let chunks: Vec<FlipRun> = (0..plan.cells.div_ceil(CHUNK))
         .into_par_iter()
@@ -351,15 +357,26 @@ fn integrate(plan: &Plan) -> FlipRun {
             }
             // The settings were checked above, so a refusal here cannot happen; if it did,
             // the cells are marked as not followed rather than invented.
-            let run = flip_times(&plan.rhs, &starts, &plan.settings).unwrap_or_else(|_| FlipRun {
+            let mut last = 0;
+            let mut tell = |finished: u64, _: u64| {
+                let new = finished.saturating_sub(last);
+                let all = done.fetch_add(new, Ordering::Relaxed) + new;
+                last = last.max(finished);
+                match bar.try_lock() {
+                    Ok(mut b) => b.report(all, plan.cells as u64),
+                    Err(_) => ControlFlow::Continue(()),
+                }
+            };
+            let run = flip_times_with(&plan.rhs, &starts, &plan.settings, &mut tell);
+            run.unwrap_or_else(|_| FlipRun {
                 outcomes: vec![Outcome::Diverged { t: 0.0 }; cells.len()],
                 steps: 0,
-            });
-            bar.inc(cells.len() as u64);
-            run
+            })
         })
         .collect();
-    bar.finish_and_clear();
+    if let Ok(b) = bar.lock() {
+        b.finish();
+    }
     chunks.into_iter().fold(
         FlipRun {
             outcomes: Vec::with_capacity(plan.cells),
@@ -371,17 +388,6 @@ fn integrate(plan: &Plan) -> FlipRun {
             all
         },
     )
-}
-
-fn progress_bar(cells: usize) -> ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(cells as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {eta} left") {
-        bar.set_style(style);
-    }
-    bar
 }
 
 fn summarize(plan: &Plan, run: &FlipRun) -> Summary {

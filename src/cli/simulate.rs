@@ -117,7 +117,10 @@ pub fn run(
         let message = "--until-flip goes with --grid (the flip-time map)".into();
         return Ok(report(&CliError::Usage(message), color));
     }
-    let mut report_ = match lagrange::report::simulation(&mut sys, &opts) {
+    let mut bar = crate::bar::Bar::percent(!args.json);
+    let run = lagrange::report::simulation_with(&mut sys, &opts, &mut bar);
+    bar.finish();
+    let mut report_ = match run {
         Ok(r) => r,
         Err(e) => return Ok(failure(&e)),
     };

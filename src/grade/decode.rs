@@ -20,7 +20,13 @@ pub struct Decoded<'a> {
     pub delimiter: u8,
     /// The byte offset where each line starts (line 1 at offset 0).
     line_starts: Vec<usize>,
+    /// Offsets where a record starts (a line begins outside any quoted field), about
+    /// [`CUT_BYTES`] apart: the file can be read in pieces from there, in parallel.
+    pub cuts: Vec<usize>,
 }
+
+/// The size of the pieces a class file is read in.
+pub const CUT_BYTES: usize = 1 << 20;
 
 impl Decoded<'_> {
     /// The 1-based line of a byte offset.
@@ -61,12 +67,13 @@ pub fn decode(bytes: &[u8]) -> Result<Decoded<'_>, String> {
         ));
     }
     let delimiter = delimiter(&text);
-    let decoded = Decoded {
+    let mut decoded = Decoded {
         text,
         delimiter,
         line_starts,
+        cuts: Vec::new(),
     };
-    check_quotes(&decoded)?;
+    decoded.cuts = check_quotes(&decoded)?;
     Ok(decoded)
 }
 
@@ -118,9 +125,12 @@ fn delimiter(text: &[u8]) -> u8 {
 /// Refuses a quoted field that never closes or holds more than [`MAX_FIELD_LINES`] line
 /// breaks or [`MAX_FIELD_BYTES`] bytes, naming the line it starts on. A quote opens a field
 /// only at its start (elsewhere it is an ordinary character, as the CSV reader takes it).
-fn check_quotes(d: &Decoded) -> Result<(), String> {
+/// Returns the record starts found on the way, about [`CUT_BYTES`] apart.
+fn check_quotes(d: &Decoded) -> Result<Vec<usize>, String> {
     let text = &d.text;
     let mut at_start = true;
+    let mut cuts = Vec::new();
+    let mut next_cut = CUT_BYTES;
     let mut i = 0;
     while i < text.len() {
         let b = text[i];
@@ -159,10 +169,16 @@ fn check_quotes(d: &Decoded) -> Result<(), String> {
             at_start = false;
         } else {
             at_start = b == d.delimiter || b == b'\n' || b == b'\r';
+            // A line break outside quotes (the `\n` of a CRLF) ends a record.
+            let ends_line = b == b'\n' || (b == b'\r' && text.get(i + 1) != Some(&b'\n'));
+            if ends_line && i + 1 >= next_cut {
+                cuts.push(i + 1);
+                next_cut = i + 1 + CUT_BYTES;
+            }
         }
         i += 1;
     }
-    Ok(())
+    Ok(cuts)
 }
 
 #[cfg(test)]

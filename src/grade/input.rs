@@ -5,8 +5,10 @@
 
 use std::borrow::Cow;
 
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
+use super::decode::Decoded;
 use super::intern::Interner;
 use super::output::unquote_cell;
 
@@ -91,9 +93,12 @@ impl Table {
     }
 }
 
-/// Builds a [`Table`]'s rows and text while the records are read.
+/// Builds a [`Table`]'s rows and text while the records are read: the whole table, or one
+/// piece of the file read on its own (`piece`: student keys only by exact spelling, in order
+/// of first appearance; [`Builder::absorb`] folds them into the table in order).
 #[derive(Default)]
 struct Builder {
+    piece: bool,
     rows: Vec<Row>,
     students: Vec<String>,
     /// Student keys by exact spelling, then by lower case.
@@ -115,6 +120,12 @@ impl Builder {
         if let Some(&i) = self.exact.get(key) {
             return i;
         }
+        if self.piece {
+            let i = self.students.len() as u32;
+            self.students.push(key.to_string());
+            self.exact.insert(key.to_string(), i);
+            return i;
+        }
         let folded = key.to_lowercase();
         let i = match self.folded.get(&folded) {
             Some(&i) => {
@@ -131,6 +142,33 @@ impl Builder {
         };
         self.exact.insert(key.to_string(), i);
         i
+    }
+
+    /// Appends a piece read after everything so far: its text interned here in its order of
+    /// first appearance, so the indices are those a single pass would have given.
+    fn absorb(&mut self, p: Builder) {
+        let students: Vec<u32> = p.students.iter().map(|s| self.student(s)).collect();
+        let names: Vec<u32> = (0..p.names.len() as u32)
+            .map(|i| self.names.intern(p.names.get(i)))
+            .collect();
+        let answers: Vec<u32> = (0..p.answers.len() as u32)
+            .map(|i| self.answers.intern(p.answers.get(i)))
+            .collect();
+        let first_error = self.errors.len() as u32;
+        self.errors.extend(p.errors);
+        let shift = |i: u32, to: &[u32]| to.get(i as usize).copied().unwrap_or(NONE);
+        self.rows.extend(p.rows.iter().map(|r| Row {
+            line: r.line,
+            student: shift(r.student, &students),
+            problem: shift(r.problem, &names),
+            part: shift(r.part, &names),
+            answer: shift(r.answer, &answers),
+            error: if r.error == NONE {
+                NONE
+            } else {
+                first_error + r.error
+            },
+        }));
     }
 
     /// Adds a row; `error` is why it cannot be graded.
@@ -195,20 +233,20 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
     let names: Vec<String> = header.iter().map(header_name).collect();
     let layout = layout(&names)?;
     let width = header.len();
+    // The body in pieces that start at record starts (found by the quote check), read in
+    // parallel, then joined in file order.
+    let body = reader.position().byte() as usize;
+    let mut bounds = vec![body];
+    bounds.extend(decoded.cuts.iter().copied().filter(|&c| c > body));
+    bounds.push(decoded.text.len().max(body));
+    let pieces = bounds
+        .par_windows(2)
+        .map(|w| read_piece(&decoded, (w[0], w[1]), &layout, width))
+        .collect::<Result<Vec<Builder>, BadFile>>()?;
     let mut b = Builder::default();
-    loop {
-        match reader.read_byte_record(&mut record) {
-            Ok(true) => {}
-            Ok(false) => break,
-            // The csv reader only fails on I/O, impossible on a byte slice; stop rather than
-            // loop, and keep what was read.
-            Err(e) => return Err(BadFile(format!("cannot read the file: {e}"))),
-        }
-        // The file's own line (the reader's count misses CR-only and CRLF endings).
-        let line = record
-            .position()
-            .map_or(0, |p| decoded.record_line(p.byte() as usize));
-        push_rows(&layout, width, line as u32, &record, &mut b);
+    b.rows.reserve(pieces.iter().map(|p| p.rows.len()).sum());
+    for p in pieces {
+        b.absorb(p);
     }
     let (format, columns) = match layout {
         Layout::Long { .. } => (Format::Long, Vec::new()),
@@ -227,6 +265,41 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
         answers: b.answers,
         errors: b.errors,
     })
+}
+
+/// The rows of the records in `text[start..end]` (which starts at a record), with their
+/// lines in the whole file.
+fn read_piece(
+    decoded: &Decoded,
+    (start, end): (usize, usize),
+    layout: &Layout,
+    width: usize,
+) -> Result<Builder, BadFile> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(decoded.delimiter)
+        .from_reader(&decoded.text[start..end]);
+    let mut record = csv::ByteRecord::new();
+    let mut b = Builder {
+        piece: true,
+        ..Builder::default()
+    };
+    loop {
+        match reader.read_byte_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            // The csv reader only fails on I/O, impossible on a byte slice; stop rather than
+            // loop, and keep what was read.
+            Err(e) => return Err(BadFile(format!("cannot read the file: {e}"))),
+        }
+        // The file's own line (the reader's count misses CR-only and CRLF endings).
+        let line = record
+            .position()
+            .map_or(0, |p| decoded.record_line(start + p.byte() as usize));
+        push_rows(layout, width, line as u32, &record, &mut b);
+    }
+    Ok(b)
 }
 
 /// A header cell as compared: trimmed, lower-case, without a byte-order mark.
@@ -379,6 +452,44 @@ mod tests {
             .map(|r| (r.line, t.student(r), t.part(r)))
             .collect();
         assert_eq!(got, [(2, "s1", "b"), (3, "s2", "d")]);
+    }
+
+    /// A file of several pieces (CRLF endings, quoted answers over two lines) reads as one
+    /// pass would: every record once, on its own line, text numbered in order of first
+    /// appearance, keys differing in case merged once.
+    #[test]
+    fn a_file_read_in_pieces_reads_as_one_pass() {
+        let mut csv = String::from("student,problem,part,answer\r\n");
+        let (mut line, mut want) = (2u32, Vec::new());
+        for i in 0..100_000 {
+            let student = if i == 30_000 {
+                "S7".to_string()
+            } else {
+                format!("s{}", i % 97)
+            };
+            if i % 100 == 0 {
+                csv.push_str(&format!("{student},p,q,\"x +\r\n{}\"\r\n", i % 13));
+                want.push(line);
+                line += 2;
+            } else {
+                csv.push_str(&format!("{student},p,q,answer number {}\r\n", i % 31));
+                want.push(line);
+                line += 1;
+            }
+        }
+        assert!(csv.len() > 2 * super::super::decode::CUT_BYTES);
+        let t = parse(csv.as_bytes()).map_err(|e| e.0);
+        let t = t.unwrap_or_else(|e| panic!("{e}"));
+        let lines: Vec<u32> = t.rows.iter().map(|r| r.line).collect();
+        assert_eq!(lines, want);
+        let mut seen = 0;
+        for r in &t.rows {
+            assert!(r.answer <= seen, "first appearance order");
+            seen = seen.max(r.answer + 1);
+        }
+        assert_eq!(t.students.len(), 97);
+        assert_eq!(t.merged, [("s7".to_string(), "S7".to_string())]);
+        assert!(t.rows.iter().all(|r| t.error(r).is_none()));
     }
 
     #[test]

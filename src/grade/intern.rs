@@ -42,6 +42,11 @@ impl Interner {
         i
     }
 
+    /// The number of distinct strings.
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
     /// The string of index `i` (empty for an index never given).
     pub fn get(&self, i: u32) -> &str {
         self.spans

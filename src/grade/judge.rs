@@ -7,17 +7,18 @@
 
 use rustc_hash::FxHashMap;
 
-use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
 use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
+use lagrange::progress::{Interrupted, Progress};
 use lagrange::tutor::command::did_you_mean;
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::input::{Row, Table};
+use crate::bar::Shared;
 
 /// The status column of results.csv.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -122,14 +123,14 @@ const CHUNK: usize = 1024;
 /// message without its line).
 type Resolved = Result<(usize, usize), String>;
 
-/// Grades every row. `progress` makes the bar (given the number of distinct answers): it
-/// ticks once per answer read, then once per canonical form checked.
+/// Grades every row. `progress` hears the distinct answers read (out of all), then the
+/// canonical forms checked (out of all); a `Break` ends the run with [`Interrupted`].
 pub fn judge(
     table: &Table,
     bank: &Bank,
     settings: Settings,
-    progress: &dyn Fn(usize) -> ProgressBar,
-) -> Judged {
+    progress: &mut (dyn Progress + Send),
+) -> Result<Judged, Interrupted> {
     let rows = &table.rows;
     let mut judged = Judged {
         rows: Vec::with_capacity(rows.len()),
@@ -173,30 +174,37 @@ pub fn judge(
         };
         row_distinct.push(slot);
     }
-    let bar = progress(distinct.len());
-    bar.set_message("reading");
+    let bar = Shared::new(progress);
+    bar.start(distinct.len() as u64);
     let canon = par_map(bank, &distinct, |c, part, text| {
-        bar.inc(1);
+        if !bar.tick() {
+            return None;
+        }
         // A list's verdict depends on what its canonical form leaves out (the stated
         // stability of each equilibrium, labels, the items' order that messages name), so
         // lists share a verdict only with the same text.
         (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
-    bar.set_message("checking");
-    bar.set_length(rep_inputs.len() as u64);
-    bar.set_position(0);
+    if bar.stopped() {
+        return Err(Interrupted);
+    }
+    bar.start(rep_inputs.len() as u64);
     let checked = par_map(bank, &rep_inputs, |c, part, text| {
+        if !bar.tick() {
+            return (Err(Interrupted.to_string()), None);
+        }
         let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.
         let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
             .flatten();
-        bar.inc(1);
         (verdict, fingerprint)
     });
-    bar.finish_and_clear();
+    if bar.stopped() {
+        return Err(Interrupted);
+    }
     judged.reps = rep_inputs
         .iter()
         .zip(checked)
@@ -229,7 +237,7 @@ pub fn judge(
         follow_through(rows, &mut judged, bank, credit, settings.best);
     }
     mark_counted(rows, &mut judged, settings.best);
-    judged
+    Ok(judged)
 }
 
 /// The outcome of a row that is not checked.

@@ -14,18 +14,14 @@ mod judge;
 mod output;
 mod summary;
 
-use std::io::{IsTerminal, Read};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 pub use output::Lms;
 
 /// The largest class file read (a larger one is refused with exit 2).
 pub const MAX_FILE_BYTES: u64 = 512 * 1024 * 1024;
-/// Fewer distinct answers than this are checked without a progress bar (it would flash).
-const PROGRESS_FROM: usize = 2_000;
 
 /// How `lagrange grade` was asked to run.
 pub struct Options {
@@ -69,7 +65,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let table = match input::parse(&bytes) {
+    // The file's hash (one serial pass) beside the parallel reading.
+    let (table, hash) = rayon::join(|| input::parse(&bytes), || file_hash(&bytes));
+    let table = match table {
         Ok(t) => t,
         Err(input::BadFile(message)) => {
             eprintln!("error: {}: {message}", shown(&opts.input));
@@ -99,13 +97,16 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             lagrange::expr::error::visible(kept),
         );
     }
-    let run = run_id(&bytes, opts, &bank);
+    let run = run_id(hash, opts, &bank);
     drop(bytes);
     let settings = judge::Settings {
         follow_through: opts.follow_through,
         best: opts.best,
     };
-    let judged = judge::judge(&table, &bank, settings, &progress_bar);
+    let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
+    let judged = judge::judge(&table, &bank, settings, &mut bar);
+    bar.finish();
+    let judged = judged?;
     let mut summary = summary::summarise(&table, &judged, &bank);
     summary.run = run.clone();
     let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
@@ -282,11 +283,16 @@ fn write_outputs(
 /// file's bytes, the options, the bank's parts, lagrange's version). Files of one run carry
 /// the same id; two runs with equal ids wrote equal files, so outputs stay byte-identical
 /// from run to run.
-fn run_id(bytes: &[u8], opts: &Options, bank: &lagrange::bank::Bank) -> String {
+/// The class file's share of it ([`run_id`] goes on from it), taken while the file is read.
+fn file_hash(bytes: &[u8]) -> Fnv {
     let mut h = Fnv::default();
     h.add(env!("CARGO_PKG_VERSION").as_bytes());
     h.add(&(bytes.len() as u64).to_le_bytes());
     h.add(bytes);
+    h
+}
+
+fn run_id(mut h: Fnv, opts: &Options, bank: &lagrange::bank::Bank) -> String {
     let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
     h.add(settings.as_bytes());
     for p in &bank.problems {
@@ -385,20 +391,6 @@ fn assignment(input: &Path) -> String {
         Some(s) if input != Path::new("-") => format!("lagrange {s}"),
         _ => "lagrange".to_string(),
     }
-}
-
-/// A bar on stderr for a long job on a terminal; hidden otherwise (pipes and tests never see
-/// it).
-fn progress_bar(distinct: usize) -> ProgressBar {
-    if distinct < PROGRESS_FROM || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(distinct as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{msg:9} {bar:40} {pos}/{len} distinct answers")
-    {
-        bar.set_style(style);
-    }
-    bar
 }
 
 /// The short table printed on stdout.

@@ -14,6 +14,8 @@ use std::io::{BufRead, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::rc::Rc;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use lagrange::report::{Paint, Plain};
 use lagrange::tutor::{Progress, Response, Session};
@@ -198,7 +200,7 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
                 out.width = rl.dimensions().map(|(cols, _)| usize::from(cols));
                 // A history entry that cannot be added (a duplicate, an empty line) is no error.
                 rl.add_history_entry(line.as_str()).ok();
-                let r = session.borrow_mut().handle(&line);
+                let r = interruptible(!out.json, || session.borrow_mut().handle(&line));
                 if out.emit(&line, &r, &session.borrow()) {
                     break;
                 }
@@ -222,6 +224,21 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
         }
     }
     Ok(())
+}
+
+/// Runs `f` (one command) with Ctrl-C stopping the long library call inside it, such as the
+/// integration of `:simulate`, which then answers "interrupted" while the REPL and its
+/// history go on. The SIGINT handler is installed only for the call: it sets a flag that the
+/// call's progress callback polls (with a bar on stderr for a long call, without `--json`).
+fn interruptible<R>(bar: bool, f: impl FnOnce() -> R) -> R {
+    let flag = Arc::new(AtomicBool::new(false));
+    let id = signal_hook::flag::register(signal_hook::consts::SIGINT, flag.clone()).ok();
+    let bar = crate::bar::Bar::percent(bar).stopped_by(flag);
+    let r = lagrange::progress::with_ambient(Box::new(bar), f);
+    if let Some(id) = id {
+        signal_hook::low_level::unregister(id);
+    }
+    r
 }
 
 #[cfg(test)]

@@ -8,7 +8,9 @@ use serde::Serialize;
 use super::simulation::{initial_state, motion_parameters, state_names};
 use super::{Paint, SimulationError, text};
 use crate::mechanics::System;
-use crate::simulate::chaos::{LyapunovOptions, SectionOptions, energy_state, lyapunov, section};
+use crate::progress::{Progress, Silent, Stage};
+use crate::simulate::chaos::{LyapunovOptions, SectionOptions, energy_state, lyapunov_with};
+use crate::simulate::chaos::{section_with, separation};
 use crate::simulate::{Rhs, SimError, Tolerances};
 
 mod render;
@@ -92,6 +94,16 @@ pub enum ChaosError {
     /// The shared setup errors (coordinates, parameters) and the numerics.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
+}
+
+impl ChaosError {
+    /// Whether the progress callback stopped the run.
+    pub fn interrupted(&self) -> bool {
+        matches!(
+            self,
+            ChaosError::Simulation(SimulationError::Sim(SimError::Interrupted))
+        )
+    }
 }
 
 impl From<SimError> for ChaosError {
@@ -236,6 +248,17 @@ fn check_section(s: &SectionSpec) -> Result<(), ChaosError> {
 
 /// The exponent, its convergence, the separation and the asked section of `sys`.
 pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, ChaosError> {
+    chaos_with(sys, opts, &mut Silent)
+}
+
+/// [`chaos`] that reports its work to `progress` (the exponent, the separation, then each
+/// orbit of the section, as equal stages); a `Break` ends it with the interrupted error
+/// ([`ChaosError::interrupted`]).
+pub fn chaos_with(
+    sys: &mut System,
+    opts: &ChaosOptions,
+    progress: &mut dyn Progress,
+) -> Result<ChaosReport, ChaosError> {
     check(opts)?;
     if !sys.constraints.is_empty() {
         return Err(ChaosError::Constraints(sys.constraints.len()));
@@ -251,12 +274,22 @@ pub fn chaos(sys: &mut System, opts: &ChaosOptions) -> Result<ChaosReport, Chaos
         tau: opts.tau,
         tol,
     };
-    let l = lyapunov(&mut rhs, &y0, &l_opts)?;
+    let stages = 2 + opts.section.as_ref().map_or(0, |s| s.orbits as u64);
+    let l = lyapunov_with(&mut rhs, &y0, &l_opts, &mut Stage::new(progress, 0, stages))?;
     let sep_end = opts.separation_t_end.min(opts.t_end);
-    let (separation, sep_stats) =
-        crate::simulate::chaos::separation(&mut rhs, &y0, opts.delta, sep_end, &tol, opts.samples)?;
+    let (separation, sep_stats) = separation(
+        &mut rhs,
+        &y0,
+        (opts.delta, sep_end),
+        &tol,
+        opts.samples,
+        &mut Stage::new(progress, 1, stages),
+    )?;
     let section = match &opts.section {
-        Some(spec) => Some(poincare(&mut rhs, &y0, spec, tol, &names)?),
+        Some(spec) => {
+            let along = (progress, stages);
+            Some(poincare(&mut rhs, (&y0, spec, tol), &names, along)?)
+        }
         None => None,
     };
     let (checkpoints, last_third, ratio_to_a_third) = convergence(&l.running, opts.t_end);
@@ -324,10 +357,9 @@ fn convergence(running: &[(f64, f64)], t_end: f64) -> Convergence {
 /// The section's family at the initial energy, and each orbit's crossings.
 fn poincare(
     rhs: &mut Rhs,
-    y0: &[f64],
-    spec: &SectionSpec,
-    tol: Tolerances,
+    (y0, spec, tol): (&[f64], &SectionSpec, Tolerances),
     names: &[String],
+    (progress, stages): (&mut dyn Progress, u64),
 ) -> Result<SectionReport, ChaosError> {
     let n = rhs.layout().coordinates();
     if n < 2 {
@@ -350,7 +382,8 @@ fn poincare(
         match energy_state(rhs, y0, s, energy) {
             Err(reason) => refused.push((s, reason)),
             Ok(start) => {
-                let o = section(rhs, &start, &opts)?;
+                let mut stage = Stage::new(progress, 2 + k as u64, stages);
+                let o = section_with(rhs, &start, &opts, &mut stage)?;
                 let points = o.points.iter().map(|y| (y[q2], y[q2dot])).collect();
                 orbits.push(SectionOrbitReport {
                     q2_start: s,

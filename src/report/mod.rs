@@ -41,7 +41,9 @@ pub use problems::{
     verification,
 };
 pub use read::{ReadOptions, Reading, reading};
-pub use simulation::{SimulationError, SimulationOptions, SimulationReport, simulation};
+pub use simulation::{
+    SimulationError, SimulationOptions, SimulationReport, simulation, simulation_with,
+};
 
 /// Runs a renderer that writes into a `String`, and returns the text: the one place where a
 /// renderer's [`std::fmt::Result`] is turned into text. Writing into a `String` never fails, and

@@ -12,8 +12,12 @@ use serde::ser::SerializeMap;
 use super::units::AxisUnits;
 use super::{Paint, text};
 use crate::mechanics::System;
-use crate::simulate::portrait::PortraitError;
-use crate::simulate::{Method, Rhs, SimError, Tolerances, Trajectory, dop853, gauss, rk4};
+
+mod error;
+use crate::progress::{Ambient, Progress};
+use crate::simulate::{Method, Rhs, SimError, Tolerances, Trajectory};
+use crate::simulate::{dop853_with, gauss_with, rk4_with};
+pub use error::SimulationError;
 
 /// The most grid samples a run may ask for (`--samples`).
 pub const MAX_SAMPLES: usize = 1_000_000;
@@ -44,134 +48,6 @@ pub struct SimulationOptions {
     pub report_at: Vec<f64>,
     /// Points of the even grid (energy error and CSV rows).
     pub samples: usize,
-}
-
-/// Why a simulation could not be set up (input) or could not be finished (numerics).
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SimulationError {
-    /// An initial value names no coordinate or velocity.
-    #[error("`{name}` in --init is not a coordinate or velocity of the system{}", suggestion.as_ref().map_or(String::new(), |s| format!(" (did you mean `{s}`?)")))]
-    UnknownCoordinate {
-        name: String,
-        suggestion: Option<String>,
-    },
-    /// The same value given twice.
-    #[error("`{name}` is given twice in --init")]
-    Repeated { name: String },
-    /// The end time is not positive.
-    #[error("--t-end must be a positive number of seconds, not {0}")]
-    TEnd(f64),
-    /// A fixed-step method without its step.
-    #[error("--method {0} is a fixed-step method: give its step with --dt")]
-    MissingDt(&'static str),
-    /// Too many samples or report times.
-    #[error("{what} asks for {got} points, over the limit of {max}")]
-    TooMany {
-        what: &'static str,
-        got: usize,
-        max: usize,
-    },
-    /// A report time outside (0, t_end].
-    #[error("--report-at {t} is outside the simulated interval [0, {t_end}]")]
-    ReportTime { t: f64, t_end: f64 },
-    /// The initial state is off a constraint.
-    #[error(
-        "the initial state is off constraint {index} ({text} = 0): its {level} miss it by {residual:.3e}; give initial values on it"
-    )]
-    OffConstraint {
-        index: usize,
-        text: String,
-        level: &'static str,
-        residual: f64,
-    },
-    /// A setting that cannot give a meaningful run.
-    #[error("{0}")]
-    Invalid(String),
-    /// M became singular along the motion.
-    #[error("the mass matrix became singular at t = {t}, where {state}")]
-    Singular { t: f64, state: String },
-    /// The library's error (setup or along the motion).
-    #[error(transparent)]
-    Sim(#[from] SimError),
-    /// A phase-portrait family that cannot be drawn.
-    #[error(transparent)]
-    Portrait(#[from] PortraitError),
-}
-
-impl SimulationError {
-    /// A short stable code for the diagnostic.
-    pub fn code(&self) -> &'static str {
-        match self {
-            SimulationError::Singular { .. } => "singular",
-            SimulationError::OffConstraint { .. } => "off-constraint",
-            _ if self.along_the_way() => "numerics",
-            _ => "usage",
-        }
-    }
-
-    /// What to do about it, in one line (no flag of any face: the faces add theirs).
-    pub fn help(&self) -> String {
-        match self {
-            SimulationError::Sim(SimError::MissingParameters { names }) => format!(
-                "give {} a value",
-                names
-                    .iter()
-                    .map(|n| format!("`{n}=<value>`"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            SimulationError::UnknownCoordinate { .. } | SimulationError::Repeated { .. } => {
-                "name each coordinate (q) or velocity (q') once".into()
-            }
-            SimulationError::OffConstraint { .. } => {
-                "choose positions and velocities that satisfy every constraint".into()
-            }
-            SimulationError::Singular { .. } => {
-                "the coordinates degenerate there; choose other coordinates or start elsewhere"
-                    .into()
-            }
-            SimulationError::Sim(SimError::StepUnderflow { .. }) => {
-                "if the motion really blows up there, end the run before that time".into()
-            }
-            _ if self.along_the_way() => {
-                "shorten the time, or tighten the step (smaller tolerances or step)".into()
-            }
-            SimulationError::Sim(SimError::UnknownParameter { .. }) => {
-                "give values only to the system's parameters".into()
-            }
-            SimulationError::Sim(SimError::Mechanics(m)) => m.help(),
-            SimulationError::TEnd(_) => "give a positive end time".into(),
-            SimulationError::MissingDt(_) => "give the step, or use the adaptive dop853".into(),
-            SimulationError::TooMany { .. } => "ask for fewer points".into(),
-            SimulationError::ReportTime { .. } => {
-                "report times lie between 0 and the end time".into()
-            }
-            SimulationError::Invalid(_) => "change the setting named above".into(),
-            _ => "check the values given".into(),
-        }
-    }
-
-    /// Whether the input was fine but the motion could not be followed (singular M,
-    /// divergence, step underflow): a "no" rather than a usage error.
-    pub fn along_the_way(&self) -> bool {
-        matches!(
-            self,
-            SimulationError::Singular { .. }
-                | SimulationError::Sim(
-                    SimError::Singular { .. }
-                        | SimError::Diverges { .. }
-                        | SimError::StepUnderflow { .. }
-                        | SimError::TooManySteps { .. }
-                        | SimError::NoConvergence { .. }
-                )
-                | SimulationError::Portrait(PortraitError::Sim(
-                    SimError::Singular { .. }
-                        | SimError::Diverges { .. }
-                        | SimError::StepUnderflow { .. }
-                        | SimError::TooManySteps { .. }
-                ))
-        )
-    }
 }
 
 /// A state as a map from names (`theta1`, `theta1'`) to values, in the order of y.
@@ -255,10 +131,21 @@ pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
     Ok(out)
 }
 
-/// Simulates `sys` from rest-or-given initial values to `opts.t_end`.
+/// Simulates `sys` from rest-or-given initial values to `opts.t_end`. Reports to the
+/// callback a face set with [`with_ambient`](crate::progress::with_ambient), if any.
 pub fn simulation(
     sys: &mut System,
     opts: &SimulationOptions,
+) -> Result<SimulationReport, SimulationError> {
+    simulation_with(sys, opts, &mut Ambient)
+}
+
+/// [`simulation`] that reports the integration's progress to `progress` (millionths of the
+/// interval, or fixed steps); a `Break` ends it with `SimulationError::Sim(SimError::Interrupted)`.
+pub fn simulation_with(
+    sys: &mut System,
+    opts: &SimulationOptions,
+    progress: &mut dyn Progress,
 ) -> Result<SimulationReport, SimulationError> {
     check_options(opts)?;
     let params = motion_parameters(sys, &opts.params);
@@ -277,7 +164,7 @@ pub fn simulation(
         });
     }
     let mut watch = ConstraintWatch::new(sys, &values).map_err(mech)?;
-    let traj = integrate(&mut rhs, &y0, opts).map_err(|e| match e {
+    let traj = integrate(&mut rhs, &y0, opts, progress).map_err(|e| match e {
         SimError::Singular { t, y } => SimulationError::Singular {
             t,
             state: line(&state(&names, &y)),
@@ -435,14 +322,20 @@ pub(super) fn check_options(opts: &SimulationOptions) -> Result<(), SimulationEr
 }
 
 /// Runs the chosen integrator from t = 0.
-fn integrate(rhs: &mut Rhs, y0: &[f64], opts: &SimulationOptions) -> Result<Trajectory, SimError> {
+fn integrate(
+    rhs: &mut Rhs,
+    y0: &[f64],
+    opts: &SimulationOptions,
+    progress: &mut dyn Progress,
+) -> Result<Trajectory, SimError> {
+    let span = (0.0, y0, opts.t_end);
     match (opts.method, opts.dt) {
         (Method::Dop853, _) => {
             let tol = Tolerances::new(opts.rtol, opts.atol);
-            dop853(rhs, 0.0, y0, opts.t_end, &tol)
+            dop853_with(rhs, span, &tol, progress)
         }
-        (Method::Rk4, Some(dt)) => rk4(rhs, 0.0, y0, opts.t_end, dt),
-        (Method::Gauss, Some(dt)) => gauss(rhs, 0.0, y0, opts.t_end, dt),
+        (Method::Rk4, Some(dt)) => rk4_with(rhs, span, dt, progress),
+        (Method::Gauss, Some(dt)) => gauss_with(rhs, span, dt, progress),
         (_, None) => Err(SimError::Invalid("a fixed-step method needs a step".into())),
     }
 }

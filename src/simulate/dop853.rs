@@ -9,6 +9,7 @@
 use super::dop853_tableau::*;
 use super::trajectory::{Dense, Method, Trajectory};
 use super::{Ode, SimError, Tolerances, check_start};
+use crate::progress::{PARTS, Progress, Silent, fraction, tick};
 
 /// Safety factor, bounds of the step ratio (hnew/h ∈ [FAC1, FAC2]) and error exponent.
 const SAFE: f64 = 0.9;
@@ -295,6 +296,17 @@ pub fn dop853(
     t_end: f64,
     tol: &Tolerances,
 ) -> Result<Trajectory, SimError> {
+    dop853_with(ode, (t0, y0, t_end), tol, &mut Silent)
+}
+
+/// [`dop853`] that reports after every accepted step how far t is through the interval (in
+/// [`PARTS`](crate::progress::PARTS)); a `Break` ends it with [`SimError::Interrupted`].
+pub fn dop853_with(
+    ode: &mut dyn Ode,
+    (t0, y0, t_end): (f64, &[f64], f64),
+    tol: &Tolerances,
+    progress: &mut dyn Progress,
+) -> Result<Trajectory, SimError> {
     check_start(ode, t0, y0, t_end)?;
     let mut traj = Trajectory::new(Method::Dop853, dense_kind(tol)?, t0, y0);
     let mut w = Work::new(y0.len());
@@ -344,6 +356,7 @@ pub fn dop853(
         y.copy_from_slice(&w.ynew);
         w.k.swap(1, 13);
         t = t_new;
+        tick(progress, fraction(t, t0, t_end), PARTS)?;
         if last {
             break;
         }

@@ -6,6 +6,10 @@
 
 use super::trajectory::{Dense, Method, Trajectory};
 use super::{Ode, SimError, check_start};
+use crate::progress::{Progress, Silent, tick};
+
+/// Steps between two progress reports of a fixed-step run.
+const REPORT_EVERY: usize = 256;
 
 /// Stage equations of the Gauss method are solved when the stage increments change by less
 /// than this, relative to the size of the state.
@@ -122,7 +126,7 @@ fn integrate(
     ode: &mut dyn Ode,
     (t0, y0, t_end): (f64, &[f64], f64),
     dt: f64,
-    method: Method,
+    (method, progress): (Method, &mut dyn Progress),
 ) -> Result<Trajectory, SimError> {
     check_start(ode, t0, y0, t_end)?;
     let span = t_end - t0;
@@ -165,6 +169,9 @@ fn integrate(
         traj.push_step(t, t_next - t, coef, &w.ynew);
         y.copy_from_slice(&w.ynew);
         std::mem::swap(&mut w.f0, &mut w.f1);
+        if (s + 1) % REPORT_EVERY == 0 || s + 1 == steps {
+            tick(progress, (s + 1) as u64, steps as u64)?;
+        }
     }
     traj.stats.accepted = steps;
     traj.stats.rhs_evals = w.evals;
@@ -181,7 +188,18 @@ pub fn rk4(
     t_end: f64,
     dt: f64,
 ) -> Result<Trajectory, SimError> {
-    integrate(ode, (t0, y0, t_end), dt, Method::Rk4)
+    integrate(ode, (t0, y0, t_end), dt, (Method::Rk4, &mut Silent))
+}
+
+/// [`rk4`] that reports the steps done out of all; a `Break` ends it with
+/// [`SimError::Interrupted`].
+pub fn rk4_with(
+    ode: &mut dyn Ode,
+    (t0, y0, t_end): (f64, &[f64], f64),
+    dt: f64,
+    progress: &mut dyn Progress,
+) -> Result<Trajectory, SimError> {
+    integrate(ode, (t0, y0, t_end), dt, (Method::Rk4, progress))
 }
 
 /// Integrates y' = F(t, y) from (t0, y0) to t_end with the 2-stage Gauss–Legendre method,
@@ -193,5 +211,16 @@ pub fn gauss(
     t_end: f64,
     dt: f64,
 ) -> Result<Trajectory, SimError> {
-    integrate(ode, (t0, y0, t_end), dt, Method::Gauss)
+    integrate(ode, (t0, y0, t_end), dt, (Method::Gauss, &mut Silent))
+}
+
+/// [`gauss`] that reports the steps done out of all; a `Break` ends it with
+/// [`SimError::Interrupted`].
+pub fn gauss_with(
+    ode: &mut dyn Ode,
+    (t0, y0, t_end): (f64, &[f64], f64),
+    dt: f64,
+    progress: &mut dyn Progress,
+) -> Result<Trajectory, SimError> {
+    integrate(ode, (t0, y0, t_end), dt, (Method::Gauss, progress))
 }

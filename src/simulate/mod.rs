@@ -25,13 +25,22 @@ pub mod portrait;
 mod rhs;
 mod trajectory;
 
-pub use batch::{DEFAULT_FLIP_DT, FlipRun, FlipSettings, LANE_WIDTHS, Outcome, flip_times};
-pub use dop853::dop853;
-pub use fixed::{gauss, rk4};
+pub use batch::{
+    DEFAULT_FLIP_DT, FlipRun, FlipSettings, LANE_WIDTHS, Outcome, flip_times, flip_times_with,
+};
+pub use dop853::{dop853, dop853_with};
+pub use fixed::{gauss, gauss_with, rk4, rk4_with};
 pub use rhs::{Rhs, parameter_values};
 pub use trajectory::{Method, Stats, Trajectory};
 
 use crate::mechanics::MechError;
+use crate::progress::Interrupted;
+
+impl From<Interrupted> for SimError {
+    fn from(_: Interrupted) -> Self {
+        SimError::Interrupted
+    }
+}
 
 /// What can go wrong setting up or running a simulation.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -65,6 +74,9 @@ pub enum SimError {
     /// The implicit stage equations did not converge.
     #[error("the implicit Gauss step did not converge at t = {t} (try a smaller step)")]
     NoConvergence { t: f64 },
+    /// The progress callback asked the run to stop.
+    #[error("interrupted")]
+    Interrupted,
     /// Building the equations failed.
     #[error(transparent)]
     Mechanics(#[from] MechError),
@@ -168,3 +180,6 @@ fn check_start(ode: &dyn Ode, t0: f64, y0: &[f64], t_end: f64) -> Result<(), Sim
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod progress_tests;

@@ -36,3 +36,43 @@ fn a_student_types_in_a_terminal() {
     p.exp_eof().expect("Ctrl-D ends the session");
     std::fs::remove_dir_all(&home).ok();
 }
+
+/// Ctrl-C during a long `:simulate` stops the simulation, not the REPL: it answers
+/// "interrupted", the next command still answers and the line history is intact. The motion
+/// is a fast spin (θ₁' = 45), about a second of DOP853 in release; the test waits for the
+/// progress bar (drawn once a run has lasted 0.3 s) before pressing Ctrl-C.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_interrupts_a_long_simulation_and_the_repl_goes_on() {
+    use rexpect::session::spawn_command;
+    let home = std::env::temp_dir().join(format!("lagrange-pty-int-{}", std::process::id()));
+    std::fs::create_dir_all(&home).unwrap();
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lagrange"));
+    cmd.args(["repl", "double-pendulum", "--no-save"])
+        .env("LAGRANGE_HOME", &home)
+        .env("NO_COLOR", "1")
+        .env("TERM", "xterm");
+    let mut p = spawn_command(cmd, Some(20_000)).expect("the REPL starts in a pty");
+    p.exp_string("kinetic>").expect("the first part is current");
+    p.send_line(":simulate --t-end 1000 --init theta1=2.5, theta2=2.5, theta1'=45")
+        .unwrap();
+    p.exp_string("left)")
+        .expect("the progress bar of a long run");
+    p.send_control('c').unwrap();
+    p.exp_string("interrupted").expect("the simulation stops");
+    p.exp_string("kinetic>").expect("the REPL goes on");
+    // The history still holds the interrupted line: Up recalls it.
+    p.send("\x1b[A").unwrap();
+    p.flush().unwrap();
+    p.exp_string("theta1'=45")
+        .expect("the line history is intact");
+    // Ctrl-C at the prompt drops the recalled line; the next prompt comes.
+    p.send_control('c').unwrap();
+    p.exp_string("kinetic>").expect("a fresh prompt");
+    p.send_line("1/2 m l^2 x").unwrap();
+    p.exp_string("not counted as an attempt")
+        .expect("another command still answers");
+    p.send_control('d').unwrap();
+    p.exp_eof().expect("Ctrl-D ends the session");
+    std::fs::remove_dir_all(&home).ok();
+}

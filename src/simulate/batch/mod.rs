@@ -21,6 +21,7 @@ use std::f64::consts::PI;
 use super::rhs::solve_in_place;
 use super::{Ode, Rhs, SimError};
 use crate::mechanics::Layout;
+use crate::progress::{Interrupted, Progress, Silent, tick};
 
 /// The step used for flip maps when none is given: RK4's error at 1e-3 is far below the
 /// resolution of a map, and the double pendulum's chaos makes any finer step no more true.
@@ -31,6 +32,8 @@ pub const LANE_WIDTHS: [usize; 5] = [1, 4, 8, 16, 32];
 
 /// Most steps one trajectory may take.
 const MAX_STEPS: f64 = 1e9;
+/// Lockstep steps between two progress reports of the lanes.
+const REPORT_EVERY: usize = 1024;
 
 /// What happened to one start.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -85,6 +88,17 @@ pub struct FlipRun {
 /// `settings.dt` until a watched angle flips or t_end. Errors only for settings that cannot
 /// work; what happens to each trajectory is its [`Outcome`].
 pub fn flip_times(rhs: &Rhs, starts: &[f64], settings: &FlipSettings) -> Result<FlipRun, SimError> {
+    flip_times_with(rhs, starts, settings, &mut Silent)
+}
+
+/// [`flip_times`] that reports the trajectories finished out of all; a `Break` ends it with
+/// [`SimError::Interrupted`].
+pub fn flip_times_with(
+    rhs: &Rhs,
+    starts: &[f64],
+    settings: &FlipSettings,
+    progress: &mut dyn Progress,
+) -> Result<FlipRun, SimError> {
     let layout = rhs.layout();
     let dim = layout.phase_len();
     let steps = step_count(settings)?;
@@ -115,11 +129,11 @@ pub fn flip_times(rhs: &Rhs, starts: &[f64], settings: &FlipSettings) -> Result<
         settings.lanes
     };
     Ok(match lanes {
-        1 => scalar(rhs, &job),
-        4 => Lanes::<4>::new(rhs, &job).run(),
-        8 => Lanes::<8>::new(rhs, &job).run(),
-        16 => Lanes::<16>::new(rhs, &job).run(),
-        32 => Lanes::<32>::new(rhs, &job).run(),
+        1 => scalar(rhs, &job, progress)?,
+        4 => Lanes::<4>::new(rhs, &job).run(progress)?,
+        8 => Lanes::<8>::new(rhs, &job).run(progress)?,
+        16 => Lanes::<16>::new(rhs, &job).run(progress)?,
+        32 => Lanes::<32>::new(rhs, &job).run(progress)?,
         k => {
             return Err(SimError::Invalid(format!(
                 "{k} lanes; the lane widths are {LANE_WIDTHS:?}"
@@ -194,7 +208,7 @@ impl Job<'_> {
 }
 
 /// One trajectory at a time through the scalar right-hand side (the reference path).
-fn scalar(rhs: &Rhs, job: &Job) -> FlipRun {
+fn scalar(rhs: &Rhs, job: &Job, progress: &mut dyn Progress) -> Result<FlipRun, Interrupted> {
     let mut ode = rhs.clone();
     let dim = job.dim;
     let mut k = [
@@ -214,8 +228,9 @@ fn scalar(rhs: &Rhs, job: &Job) -> FlipRun {
             scalar_one(&mut ode, job, (&mut y, &mut tmp, &mut k), &mut run.steps)
         });
         run.outcomes.push(outcome);
+        tick(progress, (c + 1) as u64, job.count() as u64)?;
     }
-    run
+    Ok(run)
 }
 
 type Buffers<'a> = (&'a mut Vec<f64>, &'a mut Vec<f64>, &'a mut [Vec<f64>; 4]);
@@ -318,14 +333,23 @@ impl<'a, const K: usize> Lanes<'a, K> {
     }
 
     /// Steps every busy lane until the starts run out and every lane is idle.
-    fn run(mut self) -> FlipRun {
+    fn run(mut self, progress: &mut dyn Progress) -> Result<FlipRun, Interrupted> {
         for l in 0..K {
             self.refill(l);
         }
+        let total = self.job.count() as u64;
+        let mut since = 0;
         while self.cell.iter().any(Option::is_some) {
             self.step();
+            since += 1;
+            if since == REPORT_EVERY {
+                since = 0;
+                let busy = self.cell.iter().filter(|c| c.is_some()).count();
+                tick(progress, (self.next - busy) as u64, total)?;
+            }
         }
-        self.run
+        tick(progress, total, total)?;
+        Ok(self.run)
     }
 
     /// Gives lane `l` the next start that can begin (recording those that cannot), or

@@ -23,9 +23,10 @@
 
 mod section;
 
-pub use section::{SectionOptions, SectionOrbit, energy_state, section};
+pub use section::{SectionOptions, SectionOrbit, energy_state, section, section_with};
 
-use super::{Ode, SimError, Stats, Tolerances, dop853};
+use super::{Ode, SimError, Stats, Tolerances, dop853, dop853_with};
+use crate::progress::{Progress, Silent, tick};
 
 /// The most renormalisation segments of one run (t_end / τ).
 pub const MAX_SEGMENTS: usize = 1_000_000;
@@ -132,6 +133,17 @@ pub fn lyapunov(
     y0: &[f64],
     opts: &LyapunovOptions,
 ) -> Result<Lyapunov, SimError> {
+    lyapunov_with(ode, y0, opts, &mut Silent)
+}
+
+/// [`lyapunov`] that reports the renormalisation segments done out of all; a `Break` ends
+/// it with [`SimError::Interrupted`].
+pub fn lyapunov_with(
+    ode: &mut dyn Ode,
+    y0: &[f64],
+    opts: &LyapunovOptions,
+    progress: &mut dyn Progress,
+) -> Result<Lyapunov, SimError> {
     let segments = check(opts)?;
     if y0.len() != ode.dim() {
         return Err(SimError::StateLength {
@@ -178,6 +190,7 @@ pub fn lyapunov(
             y[n + i] = y[i] + scale * (y[n + i] - y[i]);
         }
         running.push((t_b, sum / t_b));
+        tick(progress, (k + 1) as u64, segments as u64)?;
     }
     Ok(Lyapunov {
         exponent: running.last().map_or(0.0, |r| r.1),
@@ -188,18 +201,20 @@ pub fn lyapunov(
 }
 
 /// The separation |y_δ(t) − y(t)| of the two trajectories started δ apart (never
-/// renormalised) at `samples` even times from 0 to `t_end`, with the work done.
+/// renormalised) at `samples` even times from 0 to `t_end`, with the work done. Reports to
+/// `progress` as [`dop853_with`] does.
 pub fn separation(
     ode: &mut dyn Ode,
     y0: &[f64],
-    delta: f64,
-    t_end: f64,
+    (delta, t_end): (f64, f64),
     tol: &Tolerances,
     samples: usize,
+    progress: &mut dyn Progress,
 ) -> Result<(Vec<(f64, f64)>, Stats), SimError> {
     let n = y0.len();
     let mut pair = Pair::new(ode);
-    let traj = dop853(&mut pair, 0.0, &start_pair(y0, delta), t_end, tol)?;
+    let start = start_pair(y0, delta);
+    let traj = dop853_with(&mut pair, (0.0, &start, t_end), tol, progress)?;
     let points = traj
         .sample_even(samples)
         .into_iter()

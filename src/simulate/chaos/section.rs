@@ -9,6 +9,7 @@
 //! q₁ = 0 is taken literally (not modulo 2π): a motion whose q₁ rotates away leaves only the
 //! crossings it made before.
 
+use crate::progress::{PARTS, Progress, Silent, fraction, tick};
 use crate::simulate::events::{Direction, crossings};
 use crate::simulate::{Rhs, SimError, Stats, Tolerances, dop853};
 
@@ -81,6 +82,17 @@ pub struct SectionOrbit {
 /// Follows the motion from `y0` in chunks until `opts.crossings` crossings of q₁ = 0 upwards
 /// or `opts.t_max`, collecting the states there.
 pub fn section(rhs: &mut Rhs, y0: &[f64], opts: &SectionOptions) -> Result<SectionOrbit, SimError> {
+    section_with(rhs, y0, opts, &mut Silent)
+}
+
+/// [`section`] that reports how far the time followed is through `opts.t_max` after each
+/// chunk; a `Break` ends it with [`SimError::Interrupted`].
+pub fn section_with(
+    rhs: &mut Rhs,
+    y0: &[f64],
+    opts: &SectionOptions,
+    progress: &mut dyn Progress,
+) -> Result<SectionOrbit, SimError> {
     if !(opts.t_max.is_finite() && opts.t_max > 0.0) {
         return Err(SimError::Invalid(format!(
             "t_max = {} must be positive",
@@ -106,6 +118,7 @@ pub fn section(rhs: &mut Rhs, y0: &[f64], opts: &SectionOptions) -> Result<Secti
         orbit.stats += traj.stats;
         y.copy_from_slice(&traj.y_final);
         orbit.t = t_b;
+        tick(progress, fraction(orbit.t, 0.0, opts.t_max), PARTS)?;
     }
     Ok(orbit)
 }
