@@ -104,3 +104,58 @@ fn a_run_that_ends_at_infinity_says_so_in_words() {
     assert_eq!(code, 1, "{err}");
     assert!(!err.contains("inf") && err.len() < 400, "{err}");
 }
+
+#[test]
+fn a_huge_problem_file_is_refused_by_name_and_costs_no_other_command() {
+    use lagrange::bank::load::MAX_FILE_BYTES;
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("problems/simple-pendulum.toml"),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("simple-pendulum.toml"), &src).unwrap();
+    // 600 kB: the problem with its parts repeated under new ids, and mentioning the id
+    // `simple-pendulum` throughout (so a substring search cannot skip it).
+    let (head, parts) = src.split_once("[[parts]]").unwrap();
+    let mut huge = head.replace("id = \"simple-pendulum\"", "id = \"huge\"");
+    let mut k = 0;
+    while huge.len() < 600_000 {
+        huge.push_str("# like simple-pendulum\n[[parts]]");
+        huge.push_str(&parts.replace("id = \"", &format!("id = \"p{k}-")));
+        k += 1;
+    }
+    let huge_path = dir.path().join("huge.toml");
+    std::fs::write(&huge_path, &huge).unwrap();
+    let d = dir.path().to_str().unwrap();
+    let start = std::time::Instant::now();
+    let (code, out, err) = crate::helpers::lagrange(&[
+        "--problems",
+        d,
+        "check",
+        "simple-pendulum",
+        "kinetic",
+        "1/2 m l^2 theta'^2",
+    ]);
+    let took = start.elapsed();
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("correct"), "{out}");
+    assert!(took.as_secs_f64() < 5.0, "check took {took:?}");
+    // Asking for the huge problem names the file, its size and the limit.
+    let (code, _, err) = crate::helpers::lagrange(&["--problems", d, "check", "huge", "eom", "0"]);
+    assert_eq!(code, 2, "{err}");
+    for want in [
+        huge_path.to_str().unwrap(),
+        &huge.len().to_string(),
+        &MAX_FILE_BYTES.to_string(),
+        "too-large",
+    ] {
+        assert!(err.contains(want), "{want} missing from: {err}");
+    }
+    // The listing names it as a finding and lists the rest.
+    let (code, out, _) = crate::helpers::lagrange(&["--problems", d, "problems", "list"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("simple-pendulum") && out.contains("[too-large]"),
+        "{out}"
+    );
+}
