@@ -100,6 +100,8 @@ const STUDENTS: &[&str] = &[
     "\"quoted\"",
     "",
     "émile@uni.example",
+    "\rcarl",
+    "\tdee",
 ];
 
 /// One generated class file before rendering.
@@ -114,7 +116,14 @@ struct Class {
 
 /// One input: a class file rendered as some spreadsheet would, sometimes mutated.
 pub fn generate(r: &mut Rng) -> Vec<u8> {
-    let class = if chance(r, 0.5) { wide(r) } else { long(r) };
+    let mut class = if chance(r, 0.5) { wide(r) } else { long(r) };
+    // A trailing delimiter on every line (an empty last column), as some exports write.
+    if chance(r, 0.1) {
+        class.header.push(String::new());
+        for cells in &mut class.records {
+            cells.push(String::new());
+        }
+    }
     let delimiter = if chance(r, 0.25) { ';' } else { ',' };
     let ending = *pick(r, &["\n", "\r\n", "\r"]);
     let mut text = String::new();
@@ -321,7 +330,12 @@ fn utf16(text: &str, little: bool) -> Vec<u8> {
 /// One byte-level change: invalid UTF-8, a stray quote or line break, a cut, a NUL.
 fn mutate(r: &mut Rng, bytes: &mut Vec<u8>) {
     let at = below(r, bytes.len() + 1);
-    match below(r, 7) {
+    match below(r, 8) {
+        7 => {
+            // A quoted field over the line limit: refused, never read as one answer.
+            let field = format!("\"{}\"", "x\n".repeat(101));
+            bytes.splice(at..at, field.into_bytes());
+        }
         0 => bytes.insert(at, *pick(r, &[0xff, 0xc3, 0x80, 0xfe])),
         1 => bytes.insert(at, b'"'),
         2 => bytes.insert(at, b'\r'),
