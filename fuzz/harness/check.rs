@@ -405,7 +405,9 @@ fn wrong_values(r: &mut Rng, part: &Part) -> Option<(String, String)> {
     Some((out.join(", "), how))
 }
 
-/// A constructed right answer: the reference, scaled, sides swapped, reordered.
+/// A constructed right answer: the reference, scaled, sides swapped, reordered. (A Lagrangian
+/// is not scaled: `k·L` gives the same equations but is `constant-factor`, not the L asked
+/// for, and a bare number added to it has the wrong dimension; equilibria keep their stated stability where the part requires it.)
 fn right(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, String)> {
     let reference = part.reference_text(p.system.coordinates.len());
     let k = pick(r, &["2", "-3", "1e-9", "1e9"]);
@@ -428,12 +430,20 @@ fn right(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, Strin
             eqs[0] = format!("({l})*{k} = ({rr})*{k}");
             (eqs.join("; "), format!("scaled: equation 0 times {k}"))
         }
-        (PartKind::Lagrangian, _) => (format!("{k}*({reference})"), format!("scaled: times {k}")),
+        (PartKind::Lagrangian, _) => (
+            format!("{k}*({reference}) + ({reference}) - {k}*({reference})"),
+            format!("restated: kL + L - kL with k = {k}"),
+        ),
         (
             PartKind::Equilibria | PartKind::Frequencies | PartKind::Values | PartKind::Equations,
             _,
         ) => {
             let mut items = part.answers.clone();
+            if part.kind == PartKind::Equilibria && part.require_stability {
+                for (a, s) in items.iter_mut().zip(&part.stability) {
+                    *a = format!("{a} ({s})");
+                }
+            }
             items.reverse();
             let sep = if part.kind == PartKind::Frequencies || part.kind == PartKind::Values {
                 ", "

@@ -186,7 +186,10 @@ fn refused(r: &mut Rng, base: &str) -> Option<(String, String)> {
     })
 }
 
-/// The first equation of motion's reference multiplied by a velocity (the energy law).
+/// The first equation of motion's reference multiplied by a velocity (the energy law) or by
+/// the coordinate — not by a coordinate the equation divides by (`k/r^2`): where it vanishes
+/// the equation is not finite, so the product still determines the accelerations wherever
+/// the physics does (principle 6), and verification rightly accepts it.
 fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
     let part = base.find("kind = \"equation\"")?;
     let at = part + base[part..].find("\nanswer = \"")? + "\nanswer = \"".len();
@@ -196,7 +199,12 @@ fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
         return None;
     }
     let coord = base.split("name = \"").nth(1)?.split('"').next()?;
-    let f = pick(r, &[format!("{coord}'"), coord.to_string()]).clone();
+    let singular = lhs.contains(&format!("/{coord}")) || rhs.contains(&format!("/{coord}"));
+    let f = if singular {
+        format!("{coord}'")
+    } else {
+        pick(r, &[format!("{coord}'"), coord.to_string()]).clone()
+    };
     let eq = format!("({lhs})*{f} = ({rhs})*{f}");
     Some((
         format!("{}{eq}{}", &base[..at], &base[end..]),
