@@ -128,12 +128,17 @@ fn grammar(r: &mut Rng, v: &Vocab, part: &Part) -> String {
 }
 
 /// Factors that vanish somewhere in the domain: each velocity, each coordinate, its sine,
-/// and (with `params`) a difference of two parameters of one dimension.
-fn vanishing(p: &Problem, params: bool) -> Vec<String> {
+/// and (with `params`) a difference of two parameters of one dimension. Not a coordinate the
+/// `reference` divides by (`k/r^2`): where it vanishes the reference is not finite, so the
+/// product is still right wherever the physics is defined (principle 6).
+fn vanishing(p: &Problem, params: bool, reference: &str) -> Vec<String> {
     let mut f = Vec::new();
     for c in &p.system.coordinates {
         let q = &c.name;
-        f.extend([format!("{q}'"), q.clone(), format!("sin({q})")]);
+        f.extend([format!("{q}'"), format!("sin({q})")]);
+        if !reference.contains(&format!("/{q}")) {
+            f.push(q.clone());
+        }
     }
     if params {
         let ps = &p.system.parameters;
@@ -209,7 +214,7 @@ fn wrong_equation(r: &mut Rng, p: &Problem, reference: &str) -> Option<(String, 
     }
     Some(match below(r, 6) {
         0 | 1 => {
-            let f = pick(r, &vanishing(p, true)).clone();
+            let f = pick(r, &vanishing(p, true, reference)).clone();
             (
                 format!("({lhs})*{f} = ({rhs})*{f}"),
                 format!("vanishing-factor: times {f}"),
@@ -268,7 +273,7 @@ fn wrong_system(r: &mut Rng, p: &Problem, eqs: &[String]) -> Option<(String, Str
     let mut out: Vec<String> = eqs.to_vec();
     let how = match below(r, 4) {
         0 => {
-            let f = pick(r, &vanishing(p, true)).clone();
+            let f = pick(r, &vanishing(p, true, &eqs[k])).clone();
             out[k] = format!("({})*{f} = ({})*{f}", sides[k].0, sides[k].1);
             format!("vanishing-factor: equation {k} times {f}")
         }
@@ -312,7 +317,7 @@ fn wrong_expression(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, St
     Some(match below(r, 5) {
         0 | 1 => {
             // A constant multiple of L is an equivalent Lagrangian: only state factors.
-            let f = pick(r, &vanishing(p, !lagrangian)).clone();
+            let f = pick(r, &vanishing(p, !lagrangian, &reference)).clone();
             (
                 format!("({reference})*{f}"),
                 format!("vanishing-factor: times {f}"),
