@@ -317,7 +317,7 @@ fn wrong_expression(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, St
     Some(match below(r, 5) {
         0 | 1 => {
             // A constant multiple of L is an equivalent Lagrangian: only state factors.
-            let f = pick(r, &vanishing(p, !lagrangian, &reference)).clone();
+            let f = pick(r, &vanishing(p, !lagrangian, reference)).clone();
             (
                 format!("({reference})*{f}"),
                 format!("vanishing-factor: times {f}"),
