@@ -6,6 +6,9 @@
 //! cargo run --release --example fuzz -- TARGET --replay FILE…
 //! ```
 //!
+//! The `grade` target runs the `lagrange` binary beside the fuzzer (`target/release/lagrange`):
+//! `cargo build --release` before it, so that it grades with the code under test.
+//!
 //! The process you start is a supervisor: it runs the inputs in a child process (itself, with
 //! `--worker`) under an address-space limit (`ulimit -v`, default 1024 MB), reads the index of
 //! each input before it runs, and when the child dies (out of memory, stack overflow) or hangs
@@ -76,12 +79,12 @@ fn parse_opts() -> Result<Opts, String> {
             "--replay" => o.replay.extend(args.by_ref().map(Into::into)),
             "all" => o.targets.extend(Target::ALL),
             name => o.targets.push(Target::named(name).ok_or(format!(
-                "no target `{name}` (parse, check, toml, cli-args or all)"
+                "no target `{name}` (parse, check, toml, cli-args, grade or all)"
             ))?),
         }
     }
     if o.targets.is_empty() {
-        return Err("name a target: parse, check, toml, cli-args or all".into());
+        return Err("name a target: parse, check, toml, cli-args, grade or all".into());
     }
     Ok(o)
 }

@@ -128,19 +128,17 @@ fn grammar(r: &mut Rng, v: &Vocab, part: &Part) -> String {
 }
 
 /// Factors that vanish somewhere in the domain: each velocity, each coordinate, its sine,
-/// and (with `params`) a difference of two parameters of one dimension.
-fn vanishing(p: &Problem, params: bool) -> Vec<String> {
+/// and (with `params`) a difference of two parameters of one dimension. Not a coordinate the
+/// `reference` divides by (`k/r^2`): where it vanishes the reference is not finite, so the
+/// product is still right wherever the physics is defined (principle 6).
+fn vanishing(p: &Problem, params: bool, reference: &str) -> Vec<String> {
     let mut f = Vec::new();
-    // Factors that vanish at regular states (issue 19: a factor vanishing only where the
-    // physics is singular, r at r = 0 under a force k/r², is right).
     for c in &p.system.coordinates {
         let q = &c.name;
-        let mid = 0.5 * (c.range.0 + c.range.1) + 0.1234;
-        f.extend([
-            format!("{q}'"),
-            format!("({q} - {mid})"),
-            format!("sin({q} - 0.3)"),
-        ]);
+        f.extend([format!("{q}'"), format!("sin({q})")]);
+        if !reference.contains(&format!("/{q}")) {
+            f.push(q.clone());
+        }
     }
     if params {
         let ps = &p.system.parameters;
@@ -216,7 +214,7 @@ fn wrong_equation(r: &mut Rng, p: &Problem, reference: &str) -> Option<(String, 
     }
     Some(match below(r, 6) {
         0 | 1 => {
-            let f = pick(r, &vanishing(p, true)).clone();
+            let f = pick(r, &vanishing(p, true, reference)).clone();
             (
                 format!("({lhs})*{f} = ({rhs})*{f}"),
                 format!("vanishing-factor: times {f}"),
@@ -275,7 +273,7 @@ fn wrong_system(r: &mut Rng, p: &Problem, eqs: &[String]) -> Option<(String, Str
     let mut out: Vec<String> = eqs.to_vec();
     let how = match below(r, 4) {
         0 => {
-            let f = pick(r, &vanishing(p, true)).clone();
+            let f = pick(r, &vanishing(p, true, &eqs[k])).clone();
             out[k] = format!("({})*{f} = ({})*{f}", sides[k].0, sides[k].1);
             format!("vanishing-factor: equation {k} times {f}")
         }
@@ -319,7 +317,7 @@ fn wrong_expression(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, St
     Some(match below(r, 5) {
         0 | 1 => {
             // A constant multiple of L is an equivalent Lagrangian: only state factors.
-            let f = pick(r, &vanishing(p, !lagrangian)).clone();
+            let f = pick(r, &vanishing(p, !lagrangian, reference)).clone();
             (
                 format!("({reference})*{f}"),
                 format!("vanishing-factor: times {f}"),
@@ -412,7 +410,9 @@ fn wrong_values(r: &mut Rng, part: &Part) -> Option<(String, String)> {
     Some((out.join(", "), how))
 }
 
-/// A constructed right answer: the reference, scaled, sides swapped, reordered.
+/// A constructed right answer: the reference, scaled, sides swapped, reordered. (A Lagrangian
+/// is not scaled: `k·L` gives the same equations but is `constant-factor`, not the L asked
+/// for, and a bare number added to it has the wrong dimension; equilibria keep their stated stability where the part requires it.)
 fn right(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, String)> {
     let reference = part.reference_text(p.system.coordinates.len());
     let k = pick(r, &["2", "-3", "1e-9", "1e9"]);
@@ -435,21 +435,18 @@ fn right(r: &mut Rng, p: &Problem, part: &Part) -> Option<(String, Expect, Strin
             eqs[0] = format!("({l})*{k} = ({rr})*{k}");
             (eqs.join("; "), format!("scaled: equation 0 times {k}"))
         }
-        // A constant multiple of L is not the Lagrangian asked (issue 19); the same L
-        // written as k·L − (k − 1)·L is.
         (PartKind::Lagrangian, _) => (
-            format!("{k}*({reference}) - ({k} - 1)*({reference})"),
-            format!("rearranged: {k} L - ({k} - 1) L"),
+            format!("{k}*({reference}) + ({reference}) - {k}*({reference})"),
+            format!("restated: kL + L - kL with k = {k}"),
         ),
         (
             PartKind::Equilibria | PartKind::Frequencies | PartKind::Values | PartKind::Equations,
             _,
         ) => {
             let mut items = part.answers.clone();
-            // Stated stability travels with its point (a part may require it).
-            if part.kind == PartKind::Equilibria && part.stability.len() == items.len() {
-                for (item, s) in items.iter_mut().zip(&part.stability) {
-                    *item = format!("{item} ({s})");
+            if part.kind == PartKind::Equilibria && part.require_stability {
+                for (a, s) in items.iter_mut().zip(&part.stability) {
+                    *a = format!("{a} ({s})");
                 }
             }
             items.reverse();

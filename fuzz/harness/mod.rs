@@ -1,9 +1,10 @@
 //! The fuzz harness, shared by the `fuzz` example (long seeded runs) and the integration test
-//! `fuzz_replay` (the corpus replayed as ordinary tests): four targets, each a generator and
+//! `fuzz_replay` (the corpus replayed as ordinary tests): five targets, each a generator and
 //! an oracle, and one runner that catches panics and times every input.
 //!
 //! An input is bytes: raw text for `parse` and `toml`, a JSON case for `check` and
-//! `cli-args` (which need more than one string). The oracle of every target is: no panic, no
+//! `cli-args` (which need more than one string), a settings line and a class file for
+//! `grade` (which runs the `lagrange` binary). The oracle of every target is: no panic, no
 //! input over the time limit, and the target's own soundness checks (no false accept of a
 //! constructed wrong answer, printing reads back to the same node, …).
 
@@ -12,6 +13,7 @@
 
 pub mod check;
 pub mod cli_args;
+pub mod grade;
 pub mod inputs;
 pub mod parse;
 pub mod text;
@@ -32,11 +34,19 @@ pub enum Target {
     Toml,
     /// The values of the command-line arguments, through the library calls the CLI makes.
     CliArgs,
+    /// Class files through `lagrange grade` in a temporary folder.
+    Grade,
 }
 
 impl Target {
     /// Every target.
-    pub const ALL: [Target; 4] = [Target::Parse, Target::Check, Target::Toml, Target::CliArgs];
+    pub const ALL: [Target; 5] = [
+        Target::Parse,
+        Target::Check,
+        Target::Toml,
+        Target::CliArgs,
+        Target::Grade,
+    ];
 
     /// The name on the command line and of the corpus folder.
     pub fn name(self) -> &'static str {
@@ -45,6 +55,7 @@ impl Target {
             Target::Check => "check",
             Target::Toml => "toml",
             Target::CliArgs => "cli-args",
+            Target::Grade => "grade",
         }
     }
 
@@ -61,6 +72,7 @@ impl Target {
             Target::Check => check::generate(&mut r),
             Target::Toml => toml::generate(&mut r),
             Target::CliArgs => cli_args::generate(&mut r),
+            Target::Grade => grade::generate(&mut r),
         }
     }
 
@@ -72,6 +84,7 @@ impl Target {
             Target::Check => check::execute(input),
             Target::Toml => toml::execute(input),
             Target::CliArgs => cli_args::execute(input),
+            Target::Grade => grade::execute(input),
         }
     }
 }
@@ -138,9 +151,15 @@ fn quiet_panics() {
     });
 }
 
-/// Runs one input: catches a panic, times it, and applies the oracle.
+/// Runs one input: catches a panic, times it, and applies the oracle. A `grade` input runs a
+/// process on a whole class file, so it gets ten times the limit.
 pub fn run_one(target: Target, input: &[u8], limit: Duration) -> Option<Failure> {
     quiet_panics();
+    let limit = if target == Target::Grade {
+        limit * 10
+    } else {
+        limit
+    };
     let start = Instant::now();
     let outcome = catch_unwind(AssertUnwindSafe(|| target.execute(input)));
     let took = start.elapsed();

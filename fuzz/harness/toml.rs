@@ -186,8 +186,10 @@ fn refused(r: &mut Rng, base: &str) -> Option<(String, String)> {
     })
 }
 
-/// The first equation of motion's reference multiplied by a velocity (the energy law) or a
-/// factor vanishing at a regular state.
+/// The first equation of motion's reference multiplied by a velocity (the energy law) or by
+/// the coordinate — not by a coordinate the equation divides by (`k/r^2`): where it vanishes
+/// the equation is not finite, so the product still determines the accelerations wherever
+/// the physics does (principle 6), and verification rightly accepts it.
 fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
     let part = base.find("kind = \"equation\"")?;
     let at = part + base[part..].find("\nanswer = \"")? + "\nanswer = \"".len();
@@ -197,9 +199,12 @@ fn vanishing_reference(r: &mut Rng, base: &str) -> Option<(String, String)> {
         return None;
     }
     let coord = base.split("name = \"").nth(1)?.split('"').next()?;
-    // A velocity, or a factor vanishing at a regular state (issue 19: `r` alone vanishes
-    // only where a central force's k/r² is not finite, and is right there).
-    let f = pick(r, &[format!("{coord}'"), format!("({coord} - 0.7321)")]).clone();
+    let singular = lhs.contains(&format!("/{coord}")) || rhs.contains(&format!("/{coord}"));
+    let f = if singular {
+        format!("{coord}'")
+    } else {
+        pick(r, &[format!("{coord}'"), coord.to_string()]).clone()
+    };
     let eq = format!("({lhs})*{f} = ({rhs})*{f}");
     Some((
         format!("{}{eq}{}", &base[..at], &base[end..]),

@@ -8,8 +8,10 @@ use super::finding::{Finding, line_of};
 use super::schema::ProblemFile;
 use crate::problem::Problem;
 
-/// Largest problem file read, in bytes.
-pub const MAX_FILE_BYTES: usize = 1 << 20;
+/// Largest problem file read, in bytes: 256 KiB, some fifty times the largest problem of the
+/// bank. A larger file is refused by name and size before it is read (a 600 kB file once made
+/// every command that loads the folder slow), and only commands that need it read it.
+pub const MAX_FILE_BYTES: usize = 256 * 1024;
 /// Deepest nesting of arrays and tables accepted.
 pub const MAX_NESTING: usize = 32;
 
@@ -240,18 +242,32 @@ pub fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
 /// does not build a whole bank: a file is built only when it mentions the id and its `id`
 /// line does not name another problem. Files that fail to load are skipped, as
 /// [`load_dir`] would list them as failures. Two files that define the id are an error
-/// naming both (the id would mean whichever file a command happened to read).
+/// naming both (the id would mean whichever file a command happened to read). When no file
+/// defines it but one that might have could not be read or loaded (too large, not UTF-8, a
+/// TOML error in a file that mentions the id), the error names that file and why, rather than
+/// "no problem".
 pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
-    let load = |path: &Path| -> Option<Problem> {
-        let text = read_file(path).ok()?;
+    let mut unloaded: Vec<Finding> = Vec::new();
+    let mut load = |path: &Path| -> Option<Problem> {
+        let text = match read_file(path) {
+            Ok(t) => t,
+            Err(f) => {
+                unloaded.push(f);
+                return None;
+            }
+        };
         // A file that does not mention the id cannot define it (a fast substring search);
         // one whose `id` line names another problem does not either.
         if !text.contains(id) || declared_id(&text).is_some_and(|d| d != id) {
             return None;
         }
-        load_str(&path.display().to_string(), &text)
-            .ok()
-            .filter(|p| p.id == id)
+        match load_str(&path.display().to_string(), &text) {
+            Ok(p) => Some(p).filter(|p| p.id == id),
+            Err(f) => {
+                unloaded.push(f);
+                None
+            }
+        }
     };
     let mut found: Option<Problem> = None;
     for path in toml_files(dir)? {
@@ -261,6 +277,26 @@ pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
             }
             found = Some(p);
         }
+    }
+    if found.is_none()
+        && let Some(f) = unloaded.first()
+    {
+        return Err(format!(
+            "no problem `{}` loaded from {}: {}:{}: [{}] {}{}",
+            crate::expr::error::visible(id),
+            dir.display(),
+            f.file,
+            f.line,
+            f.code,
+            f.message,
+            match unloaded.len() {
+                1 => String::new(),
+                n => format!(
+                    " (and {} more files; `lagrange problems verify` lists them)",
+                    n - 1
+                ),
+            }
+        ));
     }
     Ok(found)
 }

@@ -8,6 +8,10 @@ pub const MAX_INPUT_BYTES: usize = 20_000;
 /// The longest text a system is built from (a Lagrangian, T, V, a force, a constraint):
 /// larger than an answer, still bounded.
 pub const MAX_SYSTEM_INPUT_BYTES: usize = 1_000_000;
+/// Highest order of a time derivative a student may write (primes, `dot(q')`, combining dots):
+/// far above any equation of motion, low enough that every order the tool derives from it
+/// still fits its counters. A higher order is a positioned error, never read as a lower one.
+pub const MAX_DERIVATIVE_ORDER: usize = 20;
 /// Deepest nesting accepted (parentheses, unary signs, exponents, function calls).
 pub const MAX_DEPTH: usize = 100;
 
@@ -65,6 +69,9 @@ pub enum ParseErrorKind {
     DotNeedsName { name: String },
     #[error("a derivative mark applies to a name")]
     PrimeWithoutName,
+    /// `q` followed by more derivative marks than [`MAX_DERIVATIVE_ORDER`].
+    #[error("a derivative of order {order} is beyond the highest order lagrange reads ({max})")]
+    OrderTooHigh { order: u32, max: usize },
     #[error("an equation is expected here")]
     EquationExpected,
     /// `sin θ²`, `sin θ/2`, `sin ωt`: a bare argument with two common readings.
@@ -102,6 +109,7 @@ impl ParseErrorKind {
             Self::TooManyDigits { .. } => "too-many-digits",
             Self::DotNeedsName { .. } => "dot-needs-name",
             Self::PrimeWithoutName => "prime-without-name",
+            Self::OrderTooHigh { .. } => "order-too-high",
             Self::EquationExpected => "equation-expected",
             Self::AmbiguousArgument { .. } => "ambiguous",
             Self::InversePower { .. } => "ambiguous",
@@ -170,6 +178,9 @@ impl ParseErrorKind {
             }
             Self::DotNeedsName { name } => format!("write `{name}(theta)` for a coordinate theta"),
             Self::PrimeWithoutName => "write `theta'`, not `(…)'`".into(),
+            Self::OrderTooHigh { max, .. } => {
+                format!("write at most {max} derivative marks on a name")
+            }
             Self::EquationExpected => "write an equation with `=`".into(),
             Self::AmbiguousArgument { .. } => {
                 "add parentheses to say which: a function's argument without `(` is only the number and name right after it".into()

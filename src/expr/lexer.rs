@@ -29,7 +29,7 @@ pub enum Tok {
     /// A name (Greek spelled out, subscripts as digits) and how many combining dots follow it.
     Name {
         text: String,
-        dots: u8,
+        dots: u32,
     },
     /// `'` after a name: one time derivative.
     Prime,
@@ -227,7 +227,7 @@ fn is_name_start(c: char) -> bool {
 /// dots (U+0307, U+0308) count derivatives; subscript digits become digits.
 fn name(src: &str, start: usize) -> (Tok, usize) {
     let mut text = String::new();
-    let mut dots = 0u8;
+    let mut dots = 0u32;
     let mut end = start;
     let mut first = true;
     let mut greek = false;
@@ -240,7 +240,7 @@ fn name(src: &str, start: usize) -> (Tok, usize) {
                 // A dotted letter is a name of its own: `ẋ` then digits or subscripts.
                 greek = true;
                 text.push(b);
-                dots = dots.saturating_add(d);
+                dots = dots.saturating_add(u32::from(d));
             } else if let Some(g) = names::greek_name(c) {
                 greek = true;
                 text.push_str(g);
@@ -347,7 +347,7 @@ mod tests {
         lex(src).unwrap().into_iter().map(|t| t.tok).collect()
     }
 
-    fn name(t: &str, dots: u8) -> Tok {
+    fn name(t: &str, dots: u32) -> Tok {
         Tok::Name {
             text: t.into(),
             dots,

@@ -2,6 +2,11 @@
 //! matching-bracket highlighting, a greyed hint after the cursor (how the line will be read,
 //! or the usage of the command being typed) and a validator that keeps a line with
 //! unbalanced brackets open.
+//!
+//! The hint and the bracket highlighting work on the whole line at every keystroke, so they
+//! stop past [`LIVE_HELP_MAX_BYTES`]: a long line pasted without bracketed paste then costs
+//! time linear in its length (each character is echoed as typed, issue 20 §6) instead of a
+//! reading and a repaint of the whole line per character.
 
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -17,6 +22,10 @@ use rustyline::{Context, Helper};
 
 use lagrange::tutor::Session;
 use lagrange::tutor::command::command_info;
+
+/// The longest line that gets a hint and bracket highlighting as it is typed. Beyond it the
+/// hint could not be read on one screen line anyway; the line is still read in full on Enter.
+pub const LIVE_HELP_MAX_BYTES: usize = 400;
 
 /// The REPL's rustyline helper, sharing the session with the loop.
 pub struct ReplHelper {
@@ -39,10 +48,11 @@ impl ReplHelper {
     }
 }
 
-/// What the hint shows for `line`: a command's usage, or how an answer will be read.
+/// What the hint shows for `line`: a command's usage, or how an answer will be read; nothing
+/// for a line longer than [`LIVE_HELP_MAX_BYTES`].
 pub fn hint_for(session: &Session, line: &str) -> Option<String> {
     let t = line.trim_start();
-    if t.is_empty() {
+    if t.is_empty() || line.len() > LIVE_HELP_MAX_BYTES {
         return None;
     }
     if let Some(cmd) = t.strip_prefix(':') {
@@ -109,7 +119,7 @@ impl Hinter for ReplHelper {
 
 impl Highlighter for ReplHelper {
     fn highlight<'l>(&self, line: &'l str, pos: usize) -> Cow<'l, str> {
-        if self.color {
+        if self.color && line.len() <= LIVE_HELP_MAX_BYTES {
             self.brackets.highlight(line, pos)
         } else {
             Cow::Borrowed(line)
@@ -123,7 +133,10 @@ impl Highlighter for ReplHelper {
         }
     }
     fn highlight_char(&self, line: &str, pos: usize, kind: CmdKind) -> bool {
-        self.color && self.brackets.highlight_char(line, pos, kind)
+        // `false` lets rustyline echo the character alone rather than repaint the line.
+        self.color
+            && line.len() <= LIVE_HELP_MAX_BYTES
+            && self.brackets.highlight_char(line, pos, kind)
     }
 }
 
@@ -172,5 +185,23 @@ mod tests {
         assert_eq!(hint_for(&s, "g"), None);
         let r = hint_for(&s, ":read theta''").unwrap_or_default();
         assert!(r.contains('θ'), "{r}");
+    }
+
+    /// Issue 20 §6: a 19 kB line typed (or pasted without bracketed paste) one character at
+    /// a time asks for a hint at every character; past the bound the hint costs nothing, so
+    /// the whole line costs time linear in its length (it took ~20 s).
+    #[test]
+    fn hinting_a_long_line_character_by_character_is_linear() {
+        let mut s = Session::new(lagrange::embedded::bank(), Progress::new());
+        s.handle(":open simple-pendulum");
+        let line = "m*l^2*theta'^2 + ".repeat(19_000 / 17);
+        let start = std::time::Instant::now();
+        let mut hinted = 0;
+        for end in 1..=line.len() {
+            hinted += usize::from(hint_for(&s, &line[..end]).is_some());
+        }
+        let took = start.elapsed();
+        assert!(hinted > 0 && hinted <= LIVE_HELP_MAX_BYTES, "{hinted}");
+        assert!(took.as_secs_f64() < 2.0, "19,000 hints took {took:?}");
     }
 }

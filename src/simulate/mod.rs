@@ -58,21 +58,21 @@ pub enum SimError {
     #[error("invalid setting: {0}")]
     Invalid(String),
     /// M became singular along the motion, at the state `y` = (q, q').
-    #[error("the mass matrix became singular at t = {t}")]
+    #[error("the mass matrix became singular at t = {}", time(*t))]
     Singular { t: f64, y: Vec<f64> },
     /// The solution or the right-hand side stopped being finite.
-    #[error("the solution diverges near t = {t}")]
+    #[error("{}", diverged_at(*t))]
     Diverges { t: f64 },
     /// The adaptive step fell below rounding of t.
     #[error(
-        "the step size underflowed at t = {t}: the solution may blow up there (reach infinity in finite time), or the equations are too stiff or singular"
+        "the step size underflowed at t = {}: the solution may blow up there (reach infinity in finite time), or the equations are too stiff or singular", time(*t)
     )]
     StepUnderflow { t: f64 },
     /// More steps than allowed.
-    #[error("more than {max} steps were needed before t = {t}")]
+    #[error("more than {max} steps were needed before t = {}", time(*t))]
     TooManySteps { max: usize, t: f64 },
     /// The implicit stage equations did not converge.
-    #[error("the implicit Gauss step did not converge at t = {t} (try a smaller step)")]
+    #[error("the implicit Gauss step did not converge at t = {} (try a smaller step)", time(*t))]
     NoConvergence { t: f64 },
     /// The progress callback asked the run to stop.
     #[error("interrupted")]
@@ -80,6 +80,29 @@ pub enum SimError {
     /// Building the equations failed.
     #[error(transparent)]
     Mechanics(#[from] MechError),
+}
+
+/// A time for a message: as is where that is short, else in scientific notation (`4.49e307`,
+/// never 308 digits).
+pub fn time(t: f64) -> String {
+    if t == 0.0 || (1e-6..1e9).contains(&t.abs()) {
+        format!("{t}")
+    } else {
+        format!("{t:e}")
+    }
+}
+
+/// What happened when the motion stopped being finite: where, or — when time itself ran past
+/// the largest number (t = ∞) — that, in words.
+fn diverged_at(t: f64) -> String {
+    if t.is_finite() {
+        format!("the solution diverges near t = {}", time(t))
+    } else {
+        "the time itself overflowed: the steps carried t past the largest number a computer \
+         holds (about 1.8e308) before the motion ended, so the solution could not be followed \
+         to the end"
+            .into()
+    }
 }
 
 /// "the parameter `g`" or "the parameters `g`, `l`".

@@ -78,6 +78,11 @@ fn cli_args_corpus_replays_clean() {
 }
 
 #[test]
+fn grade_corpus_replays_clean() {
+    replay(Target::Grade);
+}
+
+#[test]
 fn generation_is_deterministic() {
     for t in Target::ALL {
         for i in 0..20 {

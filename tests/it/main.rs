@@ -1,6 +1,7 @@
 //! The integration-test binary: every test of the public library and the CLI, grouped by
 //! concept, sharing the helpers in `helpers.rs`.
 
+mod attack20;
 mod bank;
 mod chaos14;
 mod cli;

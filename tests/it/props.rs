@@ -3,7 +3,8 @@
 //! - simplification preserves the value;
 //! - plain and Unicode printing read back to the same node;
 //! - the compiled evaluator agrees with an independent tree walker;
-//! - no string, and no soup of valid tokens, makes the reader panic.
+//! - no string, and no soup of valid tokens, makes the reader panic;
+//! - whatever a soup of derivative forms and function names reads as prints back (issue 20 §6).
 
 use lagrange::expr::eval::eval_tree;
 use lagrange::expr::{Context, Id, Pool, Program, Sym, read, read_expr};
@@ -174,6 +175,25 @@ proptest! {
         let _ = read(&s, &Context::open(), &mut pool);
         let _ = read(&s, &crate::helpers::mech_ctx(), &mut pool);
     }
+
+    /// Issue 20 §6: whatever reads, printed plain or in Unicode, reads back as the same node —
+    /// also soups of derivative forms over function names (`dot(sqrt)` printed `sqrt'`).
+    #[test]
+    fn whatever_reads_prints_back(toks in prop::collection::vec(prop::sample::select(vec![
+        "x", "q", "sqrt", "sin", "log", "abs", "dot(", "ddot(", "'", "''", "θ̇", "(", ")", "(",
+        ")", "2", "+", "-", "*", "/", "^", " ", "pi", "t", "xdot", "q_ddot", "√",
+    ]), 1..24)) {
+        let s: String = toks.concat();
+        let mut pool = Pool::new();
+        let ctx = Context::open().with_coordinates(["x"]);
+        let Ok(e) = read_expr(&s, &ctx, &mut pool) else { return Ok(()); };
+        let plain = pool.plain(e);
+        let back = read_expr(&plain, &ctx, &mut pool);
+        prop_assert_eq!(back.clone().ok(), Some(e), "{} printed as {} read back as {:?}", s, plain, back);
+        let uni = pool.unicode(e);
+        let back = read_expr(&uni, &ctx, &mut pool);
+        prop_assert_eq!(back.clone().ok(), Some(e), "{} printed as {} read back as {:?}", s, uni, back);
+    }
 }
 
 #[test]
@@ -222,5 +242,44 @@ proptest! {
         let input: String = soup.concat();
         let v = checker.check(part, &input).unwrap();
         prop_assert!((0.0..=1.0).contains(&v.score));
+    }
+}
+
+/// Issue 20 §6: every derivative form over every kind of name — a coordinate, an unknown
+/// name, a function, π, t — either is refused or prints (plain and Unicode) back to itself.
+/// `dot(sqrt)` once read as a coordinate `sqrt` printed `sqrt'`, which does not read.
+#[test]
+fn every_derivative_form_of_every_name_prints_back() {
+    let names = [
+        "x", "q", "sqrt", "sin", "log", "abs", "exp", "pi", "t", "dot", "ddot", "d", "e", "theta",
+    ];
+    let forms = [
+        "dot({})",
+        "ddot({})",
+        "{}'",
+        "{}''",
+        "dot({}')",
+        "{}dot",
+        "{}_ddot",
+        "{}\u{307}",
+        "{}\u{308}",
+        "2 {}'",
+        "({})'",
+        "{}'(t)",
+    ];
+    for ctx in [Context::open(), Context::open().with_coordinates(["x"])] {
+        for n in names {
+            for f in forms {
+                let s = f.replace("{}", n);
+                let mut pool = Pool::new();
+                let Ok(e) = read_expr(&s, &ctx, &mut pool) else {
+                    continue;
+                };
+                for printed in [pool.plain(e), pool.unicode(e)] {
+                    let back = read_expr(&printed, &ctx, &mut pool);
+                    assert_eq!(back, Ok(e), "{s} printed as {printed}");
+                }
+            }
+        }
     }
 }

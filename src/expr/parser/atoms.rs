@@ -4,7 +4,7 @@
 use super::Parser;
 use crate::expr::ast::{Ast, AstKind};
 use crate::expr::context::{Call, Context, Resolved, call_named};
-use crate::expr::error::{ParseError, ParseErrorKind};
+use crate::expr::error::{MAX_DERIVATIVE_ORDER, ParseError, ParseErrorKind};
 use crate::expr::lexer::{Span, Tok};
 
 impl Parser<'_> {
@@ -15,23 +15,39 @@ impl Parser<'_> {
             && self.peek_at(2) == Some(&Tok::RParen)
     }
 
-    /// Applies `order` derivative marks to a name read as `a`.
+    /// Applies `order` derivative marks to a name read as `a`; a total order beyond
+    /// [`MAX_DERIVATIVE_ORDER`] is refused at the marks, never wrapped or cut.
     pub(super) fn differentiate(
         &mut self,
         a: Ast,
-        order: u8,
+        order: u32,
         end: usize,
     ) -> Result<Ast, ParseError> {
         let span = a.span.start..end;
+        let bounded = |total: u32| {
+            u8::try_from(total)
+                .ok()
+                .filter(|&o| usize::from(o) <= MAX_DERIVATIVE_ORDER)
+                .ok_or_else(|| {
+                    ParseError::new(
+                        ParseErrorKind::OrderTooHigh {
+                            order: total,
+                            max: MAX_DERIVATIVE_ORDER,
+                        },
+                        span.clone(),
+                    )
+                })
+        };
         match a.kind {
             AstKind::Coordinate { name, order: o } => Ok(Ast {
                 kind: AstKind::Coordinate {
                     name,
-                    order: o.saturating_add(order),
+                    order: bounded(u32::from(o).saturating_add(order))?,
                 },
                 span,
             }),
             AstKind::Parameter(name) if self.ctx.is_open() && !self.ctx.is_parameter(&name) => {
+                let order = bounded(order)?;
                 self.implied.insert(name.clone());
                 Ok(Ast {
                     kind: AstKind::Coordinate { name, order },
@@ -120,7 +136,7 @@ impl Parser<'_> {
         }
     }
 
-    fn name(&mut self, text: String, dots: u8, span: Span) -> Result<Ast, ParseError> {
+    fn name(&mut self, text: String, dots: u32, span: Span) -> Result<Ast, ParseError> {
         if text == "dot" || text == "ddot" {
             return self.dot_call(&text, span);
         }
@@ -175,7 +191,7 @@ impl Parser<'_> {
     }
 
     /// `a` differentiated `dots` times (combining dots over a name), or `a` itself.
-    fn with_dots(&mut self, a: Ast, dots: u8, end: usize) -> Result<Ast, ParseError> {
+    fn with_dots(&mut self, a: Ast, dots: u32, end: usize) -> Result<Ast, ParseError> {
         if dots > 0 {
             self.differentiate(a, dots, end)
         } else {

@@ -231,6 +231,11 @@ impl Parser<'_> {
         else {
             return Err(bad());
         };
+        // `dot(sqrt)`: a function's name is never a coordinate (it would print as `sqrt'`,
+        // which reads as a function without its argument).
+        if is_function_name(&text) {
+            return Err(bad());
+        }
         let mut primes = dots;
         while self.eat(&Tok::Prime) {
             primes = primes.saturating_add(1);
@@ -260,10 +265,11 @@ impl Parser<'_> {
                 ));
             }
         };
-        self.differentiate(inner, order + primes, end).map(|a| Ast {
-            span: span.start..end,
-            ..a
-        })
+        self.differentiate(inner, primes.saturating_add(order), end)
+            .map(|a| Ast {
+                span: span.start..end,
+                ..a
+            })
     }
 }
 

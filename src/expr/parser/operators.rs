@@ -163,7 +163,7 @@ impl Parser<'_> {
 
     /// The derivative marks (`'`) after a primary, and a following `(t)`.
     pub(super) fn primes(&mut self, mut a: Ast) -> Result<Ast, ParseError> {
-        let mut primes = 0u8;
+        let mut primes = 0u32;
         let mut prime_span = a.span.clone();
         while self.peek() == Some(&Tok::Prime) {
             prime_span = self.here();
