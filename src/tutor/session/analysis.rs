@@ -69,8 +69,8 @@ pub(super) fn analyse_typed(text: &str, modes: bool) -> Response {
     let coords: Vec<String> = match coords {
         Some(c) => c
             .split(',')
-            .map(|x| x.trim().to_string())
-            .filter(|x| !x.is_empty())
+            .filter(|x| !x.trim().is_empty())
+            .map(crate::expr::spelled)
             .collect(),
         None => moving_names(l),
     };
