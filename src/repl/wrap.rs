@@ -65,6 +65,25 @@ pub fn columns(s: &str) -> usize {
     n
 }
 
+/// `s` without its escape sequences (colour codes).
+#[cfg(test)]
+pub fn strip(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\x1b' {
+            for d in chars.by_ref() {
+                if d.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
