@@ -64,24 +64,8 @@ fn reading_hint(session: &Session, text: &str) -> Option<String> {
     let ctx = problem.context();
     let mut pool = problem.system.pool.clone();
     let reading = lagrange::read(text, &ctx, &mut pool).ok()?;
-    let shown = unicode(&reading, &pool);
+    let shown = reading.unicode(&pool);
     (shown != text).then(|| format!("   ⇒ {shown}"))
-}
-
-/// A reading in Unicode: an expression, an equation or a list.
-fn unicode(r: &lagrange::expr::Reading, pool: &lagrange::Pool) -> String {
-    use lagrange::expr::Reading;
-    match r {
-        Reading::Expr(id, _) => pool.unicode(*id),
-        Reading::Equation { lhs, rhs, .. } => {
-            format!("{} = {}", pool.unicode(*lhs), pool.unicode(*rhs))
-        }
-        Reading::List(items, _) | Reading::System(items, _) => items
-            .iter()
-            .map(|i| unicode(i, pool))
-            .collect::<Vec<_>>()
-            .join(", "),
-    }
 }
 
 impl Completer for ReplHelper {

@@ -120,7 +120,12 @@ fn solution(o: &mut String, s: &SolutionReply, paint: &dyn Paint) -> std::fmt::R
         writeln!(o, "{}", paint.heading("worked derivation:"))?;
         for (i, w) in s.derivation.iter().enumerate() {
             writeln!(o, "  {}. {}", i + 1, paint.dim(&w.prompt))?;
-            writeln!(o, "     {}", w.answer)?;
+            let shown = if w.unicode.is_empty() {
+                &w.answer
+            } else {
+                &w.unicode
+            };
+            writeln!(o, "     {shown}")?;
         }
     }
     writeln!(o, "{} {}", paint.heading("answer:"), s.answer)?;
