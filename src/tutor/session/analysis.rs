@@ -35,8 +35,39 @@ impl Session {
         }
     }
 
+    /// `:derive` or `:modes` on the open problem, marking the unsolved parts whose answers it
+    /// shows revealed (as `:solution` does), and saying so in the note.
+    pub(super) fn analyse_and_reveal(&mut self, modes: bool) -> Response {
+        let mut r = self.analyse(modes);
+        let (Response::Analysis(a), Some(p)) = (&mut r, self.problem()) else {
+            return r;
+        };
+        let pid = p.id.clone();
+        let shown: Vec<String> = p
+            .parts
+            .iter()
+            .filter(|q| reveals(q, modes) && !self.progress.is_solved(&pid, &q.id))
+            .map(|q| q.id.clone())
+            .collect();
+        if shown.is_empty() {
+            return r;
+        }
+        for id in &shown {
+            self.progress.part_mut(&pid, id).revealed = true;
+        }
+        let said = format!(
+            "this shows the answer to {} (marked revealed, as `:solution` does)",
+            shown.join(", ")
+        );
+        a.note = Some(match a.note.take() {
+            Some(n) => format!("{n}\n{said}"),
+            None => said,
+        });
+        r
+    }
+
     /// `:derive` or `:modes` on the open problem's system.
-    pub(super) fn analyse(&self, modes: bool) -> Response {
+    fn analyse(&self, modes: bool) -> Response {
         let Some(p) = self.problem() else {
             return no_problem();
         };
@@ -59,6 +90,22 @@ impl Session {
             ..ModesOptions::default()
         };
         analysis_response(&p.system, modes, &opts, note)
+    }
+}
+
+/// Whether `:derive` (or, with `modes`, `:modes`) prints the answer to `part`: the
+/// Lagrangian, momenta, equations of motion, energy function and cyclic coordinates; the
+/// equilibria, frequencies and steady motions.
+fn reveals(part: &crate::problem::Part, modes: bool) -> bool {
+    use crate::problem::{PartKind as K, Quantity as Q};
+    if modes {
+        matches!(part.kind, K::Equilibria | K::Frequencies | K::SteadyMotion)
+    } else {
+        matches!(part.kind, K::Lagrangian | K::Equation | K::Equations)
+            || matches!(
+                part.quantity,
+                Q::Lagrangian | Q::Momentum(_) | Q::EnergyFunction | Q::Cyclic
+            )
     }
 }
 
