@@ -134,7 +134,8 @@ pub fn continuation(input: &str) -> String {
     } else {
         format!("{n} brackets are still open")
     };
-    format!("\n  … {what}: close it with `)` and press Enter, or Ctrl-C to cancel the line")
+    // Short enough for 80 columns with 2 brackets open (the editor would break it mid-word).
+    format!("\n  … {what}: type `)` and Enter, or Ctrl-C to cancel the line")
 }
 
 impl Helper for ReplHelper {}
