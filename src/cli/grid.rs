@@ -88,7 +88,8 @@ fn parse_axis(item: &str, at: usize) -> Result<Axis, String> {
             "--grid: column {at}: `{item}` has no `=` (write name=start:end:count)"
         ));
     };
-    let name = name.trim();
+    let name = lagrange::expr::spelled(name);
+    let name = name.as_str();
     let at_range = at + item.find('=').unwrap_or(0) + 1;
     let parts: Vec<&str> = range.split(':').collect();
     if parts.len() != 3 {

@@ -122,8 +122,8 @@ fn steady(text: &str) -> Vec<(String, String)> {
         .map(str::trim)
         .filter(|x| !x.is_empty())
         .map(|item| match item.split_once('=') {
-            Some((a, b)) => (a.trim().to_string(), b.trim().to_string()),
-            None => (item.to_string(), item.to_string()),
+            Some((a, b)) => (lagrange::expr::spelled(a), b.trim().to_string()),
+            None => (lagrange::expr::spelled(item), lagrange::expr::spelled(item)),
         })
         .collect()
 }

@@ -51,10 +51,13 @@ pub fn run(args: &ReadArgs, color: bool, out: &mut String) -> anyhow::Result<Exi
             .split_once('=')
             .with_context(|| format!("--dims item `{item}` should look like `g=L T^-2`"))?;
         let d = Dimension::parse(d).map_err(anyhow::Error::msg)?;
-        dims.push((name.trim().to_string(), d));
+        dims.push((lagrange::expr::spelled(name), d));
     }
     let opts = ReadOptions {
-        coords: split_list(&args.coords),
+        coords: split_list(&args.coords)
+            .iter()
+            .map(|c| lagrange::expr::spelled(c))
+            .collect(),
         dims,
         strict: args.strict,
         diff: args.diff.clone(),

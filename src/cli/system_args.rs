@@ -111,12 +111,14 @@ impl SystemArgs {
 
     /// The system typed with flags: a Lagrangian, T and V, or bodies; forces; constraints.
     fn build_typed(&self) -> Result<System, CliError> {
-        let coords: Vec<&str> = self
+        // Names as in expressions: `θ₁` is `theta1`.
+        let spelled: Vec<String> = self
             .coords
             .split(',')
-            .map(str::trim)
-            .filter(|c| !c.is_empty())
+            .filter(|c| !c.trim().is_empty())
+            .map(lagrange::expr::spelled)
             .collect();
+        let coords: Vec<&str> = spelled.iter().map(String::as_str).collect();
         let no_system = self.lagrangian.is_none()
             && self.kinetic.is_none()
             && self.potential.is_none()

@@ -28,6 +28,23 @@ impl Reading {
             | Reading::System(_, s) => s.clone(),
         }
     }
+
+    /// The reading in Unicode: an expression, `lhs = rhs`, or items joined by `, ` (a list)
+    /// or `; ` (a system).
+    pub fn unicode(&self, pool: &Pool) -> String {
+        let join = |items: &[Reading], sep: &str| {
+            let shown: Vec<String> = items.iter().map(|i| i.unicode(pool)).collect();
+            shown.join(sep)
+        };
+        match self {
+            Reading::Expr(id, _) => pool.unicode(*id),
+            Reading::Equation { lhs, rhs, .. } => {
+                format!("{} = {}", pool.unicode(*lhs), pool.unicode(*rhs))
+            }
+            Reading::List(items, _) => join(items, ", "),
+            Reading::System(items, _) => join(items, "; "),
+        }
+    }
 }
 
 /// Lowers one syntax node. Recursion follows the syntax tree, whose depth the parser limits.

@@ -26,6 +26,7 @@ pub use dimension::{DimError, Dimension, Dimensions};
 pub use error::{ParseError, ParseErrorKind};
 pub use eval::{Program, Undefined};
 pub use lower::{Reading, read, read_equation, read_expr};
+pub use names::spelled;
 pub use node::{Func, Id, Node, Sym};
 pub use pool::Pool;
 pub use print::Style;

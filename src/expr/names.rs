@@ -191,6 +191,36 @@ pub fn normalize(name: &str) -> String {
     out
 }
 
+/// A name as typed in a flag or an option (`θ₁`, `θ̇₁`, `ẋ`, `m_1`) in its spelled ASCII form
+/// (`theta1`, `theta1'`, `x'`, `m1`): Greek letters spelled, subscript digits as digits, and
+/// dots above (U+0307, U+0308, precomposed) as primes at the end. Other text is kept.
+pub fn spelled(name: &str) -> String {
+    let mut out = String::with_capacity(name.len());
+    let mut primes = 0;
+    for c in name.trim().chars() {
+        match c {
+            '\u{307}' => primes += 1,
+            '\u{308}' => primes += 2,
+            '\'' => primes += 1,
+            _ => {
+                if let Some(g) = greek_name(c) {
+                    out.push_str(g);
+                } else if let Some(d) = subscript_digit(c) {
+                    out.push(char::from_digit(d, 10).unwrap_or('0'));
+                } else if let Some((b, dots)) = precomposed(c) {
+                    out.push(b);
+                    primes += dots;
+                } else {
+                    out.push(c);
+                }
+            }
+        }
+    }
+    let mut out = normalize(&out);
+    out.extend(std::iter::repeat_n('\'', usize::from(primes)));
+    out
+}
+
 /// Splits a name into its letters and its trailing digits (`theta12` → (`theta`, `12`)).
 pub(crate) fn split_digits(name: &str) -> (&str, &str) {
     let k = name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
@@ -221,5 +251,10 @@ mod tests {
         assert_eq!(superscript(-12), "⁻¹²");
         assert_eq!(subscript("20"), "₂₀");
         assert_eq!(split_digits("theta12"), ("theta", "12"));
+        assert_eq!(spelled("θ₁"), "theta1");
+        assert_eq!(spelled("θ̇₁"), "theta1'");
+        assert_eq!(spelled(" φ' "), "phi'");
+        assert_eq!(spelled("m_2"), "m2");
+        assert_eq!(spelled("x"), "x");
     }
 }

@@ -74,24 +74,8 @@ fn reading_hint(session: &Session, text: &str) -> Option<String> {
     let ctx = problem.context();
     let mut pool = problem.system.pool.clone();
     let reading = lagrange::read(text, &ctx, &mut pool).ok()?;
-    let shown = unicode(&reading, &pool);
+    let shown = reading.unicode(&pool);
     (shown != text).then(|| format!("   ⇒ {shown}"))
-}
-
-/// A reading in Unicode: an expression, an equation or a list.
-fn unicode(r: &lagrange::expr::Reading, pool: &lagrange::Pool) -> String {
-    use lagrange::expr::Reading;
-    match r {
-        Reading::Expr(id, _) => pool.unicode(*id),
-        Reading::Equation { lhs, rhs, .. } => {
-            format!("{} = {}", pool.unicode(*lhs), pool.unicode(*rhs))
-        }
-        Reading::List(items, _) | Reading::System(items, _) => items
-            .iter()
-            .map(|i| unicode(i, pool))
-            .collect::<Vec<_>>()
-            .join(", "),
-    }
 }
 
 impl Completer for ReplHelper {
@@ -163,7 +147,8 @@ pub fn continuation(input: &str) -> String {
     } else {
         format!("{n} brackets are still open")
     };
-    format!("\n  … {what}: close it with `)` and press Enter, or Ctrl-C to cancel the line")
+    // Short enough for 80 columns with 2 brackets open (the editor would break it mid-word).
+    format!("\n  … {what}: type `)` and Enter, or Ctrl-C to cancel the line")
 }
 
 impl Helper for ReplHelper {}

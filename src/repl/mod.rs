@@ -54,7 +54,16 @@ impl Output {
             let paint: &dyn Paint = if self.color { &Terminal } else { &Plain };
             let texts: Vec<String> = responses
                 .iter()
-                .map(|r| render::response(r, line, paint, self.color))
+                .map(|r| match (r, self.width) {
+                    // A statement wrapped at the terminal's width is one paragraph per
+                    // paragraph of the file, not the file's own line breaks.
+                    (Response::Statement(s), Some(_)) => {
+                        let mut s = s.clone();
+                        s.sheet.statement = wrap::reflow(&s.sheet.statement);
+                        render::response(&Response::Statement(s), line, paint, self.color)
+                    }
+                    _ => render::response(r, line, paint, self.color),
+                })
                 .collect();
             match self.width {
                 Some(w) => wrap::wrap(&texts.concat(), w),

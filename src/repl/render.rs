@@ -17,6 +17,9 @@ use lagrange::tutor::response::{
 /// How `:read` asks for dimensions in the REPL (the CLI says `--dims`).
 const GIVE_DIMENSIONS: &str = "dimensions come from the open problem";
 
+/// The width of `:help`'s usage column.
+const HELP_COLUMN: usize = 18;
+
 /// The text of one response to `line`, ending in a newline (empty for `Quit`).
 pub fn response(r: &Response, line: &str, paint: &dyn Paint, color: bool) -> String {
     let mut o = String::new();
@@ -94,8 +97,14 @@ fn write_response(
         }
         Response::Parts(p) => parts(o, p, paint),
         Response::Help(h) => {
+            // Padded before painting (colour codes take no column); a usage longer than the
+            // column puts its summary on the next line, under the others.
             for c in &h.commands {
-                writeln!(o, "  {:<18} {}", paint.heading(&c.usage), c.summary)?;
+                let usage = paint.heading(&c.usage);
+                match HELP_COLUMN.checked_sub(c.usage.chars().count()) {
+                    Some(pad) => writeln!(o, "  {usage}{} {}", " ".repeat(pad), c.summary)?,
+                    None => writeln!(o, "  {usage}\n  {} {}", " ".repeat(HELP_COLUMN), c.summary)?,
+                }
             }
             Ok(())
         }
@@ -111,7 +120,12 @@ fn solution(o: &mut String, s: &SolutionReply, paint: &dyn Paint) -> std::fmt::R
         writeln!(o, "{}", paint.heading("worked derivation:"))?;
         for (i, w) in s.derivation.iter().enumerate() {
             writeln!(o, "  {}. {}", i + 1, paint.dim(&w.prompt))?;
-            writeln!(o, "     {}", w.answer)?;
+            let shown = if w.unicode.is_empty() {
+                &w.answer
+            } else {
+                &w.unicode
+            };
+            writeln!(o, "     {shown}")?;
         }
     }
     writeln!(o, "{} {}", paint.heading("answer:"), s.answer)?;
@@ -226,20 +240,40 @@ fn problems(o: &mut String, list: &[ProblemEntry], paint: &dyn Paint) -> std::fm
 
 fn parts(o: &mut String, p: &PartsReply, paint: &dyn Paint) -> std::fmt::Result {
     writeln!(o, "{}", paint.heading(&p.problem))?;
+    // Columns as wide as their longest entry (so the table fits 80 columns), padded before
+    // painting; attempts and hints are dropped where there are none.
+    let id_w = p
+        .parts
+        .iter()
+        .map(|e| e.id.chars().count())
+        .max()
+        .unwrap_or(0);
+    let kind_w = p.parts.iter().map(|e| e.part_kind.chars().count()).max();
+    let kind_w = kind_w.unwrap_or(0);
+    let num_w = p.parts.len().to_string().len();
     for e in &p.parts {
         let cur = if e.current { ">" } else { " " };
-        let state = if e.solved {
-            paint.good("solved")
+        let (word, pad) = if e.solved {
+            (paint.good("solved"), 2)
         } else if e.revealed {
-            paint.warn("revealed")
+            (paint.warn("revealed"), 0)
         } else {
-            paint.dim("open")
+            (paint.dim("open"), 4)
         };
-        writeln!(
-            o,
-            "{cur} {}. {:<20} {:<10} {state}  attempts {}  hints {}",
-            e.number, e.id, e.part_kind, e.attempts, e.hints_used
-        )?;
+        let mut line = format!(
+            "{cur} {:>num_w$}. {:<id_w$}  {:<kind_w$}  {word}",
+            e.number, e.id, e.part_kind
+        );
+        if e.attempts > 0 || e.hints_used > 0 {
+            let _ = write!(
+                line,
+                "{}  attempts {}, hints {}",
+                " ".repeat(pad),
+                e.attempts,
+                e.hints_used
+            );
+        }
+        writeln!(o, "{line}")?;
     }
     Ok(())
 }
@@ -289,5 +323,41 @@ mod tests {
             "error[unknown-command]: no command `:hnt`\n  help: did you mean `:hint`?\n"
         );
         assert_eq!(response(&Response::Quit, "", &Plain, false), "");
+    }
+
+    /// Paints headings as the terminal does, with escape codes.
+    struct Bold;
+    impl Paint for Bold {
+        fn heading(&self, s: &str) -> String {
+            format!("\x1b[1m{s}\x1b[0m")
+        }
+    }
+
+    #[test]
+    fn help_columns_align_with_colour() {
+        let mut s = lagrange::tutor::Session::new(
+            lagrange::embedded::bank(),
+            lagrange::tutor::Progress::new(),
+        );
+        let help = s.handle(":help");
+        let t = response(&help[0], ":help", &Bold, true);
+        let plain = crate::repl::wrap::strip(&t);
+        // Every summary starts in one column (a usage too long for its column stands alone).
+        for l in plain.lines() {
+            let c: Vec<char> = l.chars().collect();
+            let alone = c.len() > 2 + HELP_COLUMN && !c[2..].contains(&' ') || c.len() <= 21;
+            let aligned = c.len() > 21 && c[20] == ' ' && c[21] != ' ';
+            assert!(
+                alone || aligned || l.starts_with("  :simulate"),
+                "{l:?} in\n{plain}"
+            );
+        }
+        s.handle(":open double-pendulum");
+        let parts = s.handle(":parts");
+        let t = response(&parts[0], ":parts", &Bold, true);
+        assert!(
+            t.lines().all(|l| crate::repl::wrap::columns(l) <= 80),
+            "{t}"
+        );
     }
 }

@@ -1,6 +1,6 @@
 //! Wrapping the REPL's text at the terminal's width, by words: a line longer than the width
-//! breaks at spaces (never inside a word), continued under its own indentation plus two
-//! columns. Colour codes and combining accents (θ̇) take no column.
+//! breaks at spaces (never inside a word), continued at the margin (prose) or under its own
+//! indentation plus two columns (an indented line). Colour codes and combining accents (θ̇) take no column.
 
 /// `text` wrapped at `width` columns (lines already short enough are kept as they are).
 pub fn wrap(text: &str, width: usize) -> String {
@@ -15,6 +15,15 @@ pub fn wrap(text: &str, width: usize) -> String {
     out
 }
 
+/// `text` with the line breaks inside each paragraph made spaces (paragraphs are separated
+/// by blank lines), ready to be wrapped at another width.
+pub fn reflow(text: &str) -> String {
+    text.split("\n\n")
+        .map(|p| p.split('\n').map(str::trim).collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join("\n\n")
+}
+
 /// One line wrapped into `out`.
 fn wrap_line(line: &str, width: usize, out: &mut String) {
     if columns(line) <= width {
@@ -23,7 +32,12 @@ fn wrap_line(line: &str, width: usize, out: &mut String) {
     }
     let indent = line.len() - line.trim_start().len();
     let lead = &line[..indent];
-    let more = format!("{lead}  ");
+    // Prose (no indentation) goes on at the margin; an indented line under itself + 2.
+    let more = if indent == 0 {
+        String::new()
+    } else {
+        format!("{lead}  ")
+    };
     let mut used = 0;
     let mut first = true;
     for word in line.trim_start().split(' ').filter(|w| !w.is_empty()) {
@@ -65,6 +79,25 @@ pub fn columns(s: &str) -> usize {
     n
 }
 
+/// `s` without its escape sequences (colour codes).
+#[cfg(test)]
+pub fn strip(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\x1b' {
+            for d in chars.by_ref() {
+                if d.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -77,6 +110,11 @@ mod tests {
         assert!(w.contains("frequencies"), "{w}");
         assert!(w.lines().skip(1).all(|l| l.starts_with("    ")), "{w}");
         assert_eq!(wrap("short", 80), "short");
+    }
+
+    #[test]
+    fn paragraphs_are_reflowed() {
+        assert_eq!(reflow("a b\nc\n\nd\n e"), "a b c\n\nd e");
     }
 
     #[test]

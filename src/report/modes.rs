@@ -98,14 +98,15 @@ pub enum ModesError {
 #[error("`{0}` should look like name=value")]
 pub struct BadAssignment(pub String);
 
-/// Comma-separated `name=value` pairs, trimmed; empty items are skipped.
+/// Comma-separated `name=value` pairs, trimmed; empty items are skipped. Names are read as in
+/// expressions (`θ₁=0.1` names `theta1`; see [`crate::expr::spelled`]).
 pub fn assignments(text: &str) -> Result<Vec<(String, String)>, BadAssignment> {
     text.split(',')
         .map(str::trim)
         .filter(|x| !x.is_empty())
         .map(|item| {
             item.split_once('=')
-                .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+                .map(|(a, b)| (crate::expr::spelled(a), b.trim().to_string()))
                 .ok_or_else(|| BadAssignment(item.to_string()))
         })
         .collect()

@@ -210,8 +210,9 @@ impl ProblemSheet {
 }
 
 /// LaTeX-ish inline math for a terminal: `$\theta_1$` → θ₁, `$m^2$` → m².
+/// `\sqrt{k/m}` → √(k/m), `\frac{a}{b}` → a/b, `_{12}` → ₁₂ likewise.
 pub fn terminal_math(text: &str) -> String {
-    let mut s = text.replace('$', "");
+    let mut s = braces(&text.replace('$', ""));
     for (c, name) in names::GREEK {
         s = s.replace(&format!("\\{name}"), &c.to_string());
     }
@@ -242,6 +243,67 @@ pub fn terminal_math(text: &str) -> String {
             _ => out.push(c),
         }
     }
+    out
+}
+
+/// `\sqrt{…}` and `\frac{…}{…}` as √ and /, with brackets round a group of more than one
+/// symbol; the braces of `_{…}` and `^{…}` dropped (their digits become scripts afterwards).
+fn braces(text: &str) -> String {
+    // The group that starts at `s` (just after its `{`) and the text after its `}`.
+    fn group(s: &str) -> (&str, &str) {
+        let mut depth = 1;
+        for (i, c) in s.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return (&s[..i], &s[i + 1..]);
+                    }
+                }
+                _ => {}
+            }
+        }
+        (s, "")
+    }
+    fn atom(s: &str) -> String {
+        let s = braces(s);
+        if s.chars().count() <= 1 || s.chars().all(char::is_alphanumeric) {
+            s
+        } else {
+            format!("({s})")
+        }
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find(['\\', '_', '^']) {
+        out.push_str(&rest[..i]);
+        let tail = &rest[i..];
+        if let Some(t) = tail.strip_prefix("\\sqrt{") {
+            let (inner, after) = group(t);
+            out.push('√');
+            out.push_str(&atom(inner));
+            rest = after;
+        } else if let Some(t) = tail.strip_prefix("\\frac{") {
+            let (num, after) = group(t);
+            let (den, after) = match after.strip_prefix('{') {
+                Some(a) => group(a),
+                None => ("", after),
+            };
+            out.push_str(&format!("{}/{}", atom(num), atom(den)));
+            rest = after;
+        } else if let Some(t) = tail.get(1..).and_then(|t| t.strip_prefix('{')) {
+            let (inner, after) = group(t);
+            out.push_str(&tail[..1]);
+            out.push_str(&braces(inner));
+            rest = after;
+        } else {
+            let n = tail.chars().next().map_or(1, char::len_utf8);
+            out.push_str(&tail[..n]);
+            rest = &tail[n..];
+        }
+    }
+    out.push_str(rest);
     out
 }
 

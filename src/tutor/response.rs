@@ -138,6 +138,9 @@ pub struct WorkedStep {
     pub prompt: String,
     /// The result, as a student would type it.
     pub answer: String,
+    /// The result read back, in Unicode as every other formula is shown (empty if it
+    /// cannot be read).
+    pub unicode: String,
 }
 
 /// One problem of the bank with the student's progress on it.

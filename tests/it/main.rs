@@ -36,6 +36,7 @@ mod portrait14;
 mod props;
 mod pty;
 mod repl;
+mod repl21;
 mod resources;
 mod rigid13;
 mod scale;

@@ -72,6 +72,50 @@ fn ctrl_c_interrupts_a_long_simulation_and_the_repl_goes_on() {
     p.send_line("1/2 m l^2 x").unwrap();
     p.exp_string("not counted as an attempt")
         .expect("another command still answers");
+}
+
+/// Issue 21 §3 in a real terminal of 80 columns: Tab completes a unique command with the
+/// space its argument follows, the statement wraps by words at 80 columns (its paragraphs
+/// reflowed), and an unclosed bracket says how to finish or cancel the line.
+#[cfg(unix)]
+#[test]
+fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
+    use rexpect::session::spawn_command;
+    let home = std::env::temp_dir().join(format!("lagrange-pty80-{}", std::process::id()));
+    std::fs::create_dir_all(&home).unwrap();
+    // The pty's size is set from inside it (stty on its own stdin), then the REPL runs.
+    let mut cmd = std::process::Command::new("sh");
+    cmd.arg("-c")
+        .arg(format!(
+            "stty cols 80 rows 40 && exec '{}' repl",
+            env!("CARGO_BIN_EXE_lagrange")
+        ))
+        .env("LAGRANGE_HOME", &home)
+        .env("NO_COLOR", "1")
+        .env("COLUMNS", "80")
+        .env("TERM", "xterm");
+    let mut p = spawn_command(cmd, Some(10_000)).expect("the REPL starts in a pty");
+    p.exp_string("Ctrl-D quits").expect("the banner");
+    // `:op` + Tab is `:open ` (with its space): the id typed next follows it directly.
+    p.send(":op").unwrap();
+    p.send("\t").unwrap();
+    p.send_line("spring-cart").unwrap();
+    p.exp_string("> :open ")
+        .expect("Tab completed `:op` to `:open `");
+    p.exp_string("spring-cart").expect("the id typed after it");
+    p.exp_string("(spring-cart)")
+        .expect("the problem opened: the space came from Tab");
+    // The statement's first paragraph, reflowed and wrapped at 80 columns by words.
+    p.exp_string("A cart of mass M rolls freely on a level track. On its flat top a block of mass")
+        .expect("the first line fills 80 columns");
+    p.exp_string("\r\nm slides without friction, tied to the front of the cart by a spring of")
+        .expect("the next line goes on at the margin, no word broken");
+    p.exp_string("kinetic>").expect("the first part is current");
+    p.send_line("1/2 M (x'^2").unwrap();
+    p.exp_string("a bracket is still open: type `)` and Enter, or Ctrl-C to cancel the line")
+        .expect("the open bracket is explained on one line");
+    p.send_line(")").unwrap();
+    p.exp_string("score").expect("the finished line is checked");
     p.send_control('d').unwrap();
     p.exp_eof().expect("Ctrl-D ends the session");
     std::fs::remove_dir_all(&home).ok();

@@ -35,8 +35,39 @@ impl Session {
         }
     }
 
+    /// `:derive` or `:modes` on the open problem, marking the unsolved parts whose answers it
+    /// shows revealed (as `:solution` does), and saying so in the note.
+    pub(super) fn analyse_and_reveal(&mut self, modes: bool) -> Response {
+        let mut r = self.analyse(modes);
+        let (Response::Analysis(a), Some(p)) = (&mut r, self.problem()) else {
+            return r;
+        };
+        let pid = p.id.clone();
+        let shown: Vec<String> = p
+            .parts
+            .iter()
+            .filter(|q| reveals(q, modes) && !self.progress.is_solved(&pid, &q.id))
+            .map(|q| q.id.clone())
+            .collect();
+        if shown.is_empty() {
+            return r;
+        }
+        for id in &shown {
+            self.progress.part_mut(&pid, id).revealed = true;
+        }
+        let said = format!(
+            "this shows the answer to {} (marked revealed, as `:solution` does)",
+            shown.join(", ")
+        );
+        a.note = Some(match a.note.take() {
+            Some(n) => format!("{n}\n{said}"),
+            None => said,
+        });
+        r
+    }
+
     /// `:derive` or `:modes` on the open problem's system.
-    pub(super) fn analyse(&self, modes: bool) -> Response {
+    fn analyse(&self, modes: bool) -> Response {
         let Some(p) = self.problem() else {
             return no_problem();
         };
@@ -62,6 +93,22 @@ impl Session {
     }
 }
 
+/// Whether `:derive` (or, with `modes`, `:modes`) prints the answer to `part`: the
+/// Lagrangian, momenta, equations of motion, energy function and cyclic coordinates; the
+/// equilibria, frequencies and steady motions.
+fn reveals(part: &crate::problem::Part, modes: bool) -> bool {
+    use crate::problem::{PartKind as K, Quantity as Q};
+    if modes {
+        matches!(part.kind, K::Equilibria | K::Frequencies | K::SteadyMotion)
+    } else {
+        matches!(part.kind, K::Lagrangian | K::Equation | K::Equations)
+            || matches!(
+                part.quantity,
+                Q::Lagrangian | Q::Momentum(_) | Q::EnergyFunction | Q::Cyclic
+            )
+    }
+}
+
 /// `:derive L` / `:modes L` on a typed Lagrangian, with optional `--coords q1,q2` (else the
 /// names that appear with a time derivative) and, for modes, `--params m=1,k=2`.
 pub(super) fn analyse_typed(text: &str, modes: bool) -> Response {
@@ -69,8 +116,8 @@ pub(super) fn analyse_typed(text: &str, modes: bool) -> Response {
     let coords: Vec<String> = match coords {
         Some(c) => c
             .split(',')
-            .map(|x| x.trim().to_string())
-            .filter(|x| !x.is_empty())
+            .filter(|x| !x.trim().is_empty())
+            .map(crate::expr::spelled)
             .collect(),
         None => moving_names(l),
     };

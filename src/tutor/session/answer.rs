@@ -206,12 +206,21 @@ fn worked_derivation(problem: &Problem, part: &Part) -> Vec<WorkedStep> {
     }) else {
         return Vec::new();
     };
+    let ctx = problem.context();
+    let mut pool = problem.system.pool.clone();
     steps[..=end]
         .iter()
-        .map(|s| WorkedStep {
-            step: s.id.clone(),
-            prompt: s.prompt.clone(),
-            answer: s.reference_text(problem.system.n()),
+        .map(|s| {
+            let answer = s.reference_text(problem.system.n());
+            let unicode = crate::expr::read(&answer, &ctx, &mut pool)
+                .map(|r| r.unicode(&pool))
+                .unwrap_or_default();
+            WorkedStep {
+                step: s.id.clone(),
+                prompt: s.prompt.clone(),
+                answer,
+                unicode,
+            }
         })
         .collect()
 }

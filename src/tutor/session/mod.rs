@@ -103,13 +103,17 @@ impl Session {
         match parse(line) {
             Ok(cmd) => self.execute(cmd),
             Err(e) => {
-                let suggestion = match &e {
-                    crate::tutor::command::CommandError::Unknown { suggestion, .. } => {
-                        suggestion.as_ref().map(|s| format!(":{s}"))
+                // The suggestion goes in its own slot only (the face shows it once).
+                match &e {
+                    crate::tutor::command::CommandError::Unknown {
+                        name,
+                        suggestion: Some(s),
+                    } => {
+                        let message = format!("there is no command `:{}`", visible(name));
+                        vec![Response::error(e.code(), message, Some(format!(":{s}")))]
                     }
-                    _ => None,
-                };
-                vec![Response::error(e.code(), e.to_string(), suggestion)]
+                    _ => vec![Response::error(e.code(), e.to_string(), None)],
+                }
             }
         }
     }
@@ -140,8 +144,8 @@ impl Session {
             Command::Help(topic) => vec![help(topic.as_deref())],
             Command::Quit => vec![Response::Quit],
             Command::Read(expr) => vec![self.read(&expr)],
-            Command::Derive(l) if l.is_empty() => vec![self.analyse(false)],
-            Command::Modes(l) if l.is_empty() => vec![self.analyse(true)],
+            Command::Derive(l) if l.is_empty() => vec![self.analyse_and_reveal(false)],
+            Command::Modes(l) if l.is_empty() => vec![self.analyse_and_reveal(true)],
             Command::Derive(l) => vec![analyse_typed(&l, false)],
             Command::Modes(l) => vec![analyse_typed(&l, true)],
             Command::Simulate(args) => vec![self.simulate(&args)],
@@ -259,9 +263,10 @@ impl Session {
     fn open(&mut self, id: &str) -> Vec<Response> {
         let Some(index) = self.bank.problems.iter().position(|p| p.id == id) else {
             let suggestion = did_you_mean(id, self.bank.problems.iter().map(|p| p.id.as_str()));
+            // A suggestion is shown from its own slot, not repeated in the message.
             let hint = match &suggestion {
-                Some(s) => format!(" — did you mean `{s}`?"),
-                None => " — `:problems` lists them".to_string(),
+                Some(_) => "",
+                None => " — `:problems` lists them",
             };
             let message = format!("there is no problem `{}`{hint}", visible(id));
             return vec![Response::error("unknown-problem", message, suggestion)];

@@ -29,7 +29,15 @@ impl Session {
         };
         let opts = match options(args, &p.simulation) {
             Ok(o) => o,
-            Err(message) => return Response::error("bad-simulate", message, Some(USAGE.into())),
+            Err(message) => {
+                // The usage goes with the message (the did-you-mean slot holds names only).
+                let message = if message.contains(USAGE) {
+                    message
+                } else {
+                    format!("{message}; usage: {USAGE}")
+                };
+                return Response::error("bad-simulate", message, None);
+            }
         };
         let missing = missing_parameters(&p.system, &opts.params);
         if !missing.is_empty() {
@@ -56,7 +64,8 @@ impl Session {
                     note: None,
                 })
             }
-            Err(e) => Response::error(e.code(), e.to_string(), Some(e.help())),
+            // The did-you-mean slot holds a name only; the help goes with the message.
+            Err(e) => Response::error(e.code(), format!("{e}: {}", e.help()), None),
         }
     }
 }
