@@ -1,7 +1,6 @@
 //! The integration-test binary: every test of the public library and the CLI, grouped by
 //! concept, sharing the helpers in `helpers.rs`.
 
-mod attack20;
 mod bank;
 mod chaos14;
 mod cli;
@@ -22,6 +21,7 @@ mod grid14;
 mod helpers;
 mod higher_order_lagrangian;
 mod hostile;
+mod input_bounds;
 mod labels_stability;
 mod ladder;
 mod lagrangian_meaning;
@@ -36,7 +36,7 @@ mod portrait14;
 mod props;
 mod pty;
 mod repl;
-mod repl21;
+mod repl_finish;
 mod resources;
 mod rigid13;
 mod scale;
