@@ -180,16 +180,21 @@ impl Part {
             PartKind::Equilibria if coordinates > 1 => "; ",
             _ => ", ",
         };
+        self.reference_items().join(sep)
+    }
+
+    /// The reference answer's items as a student writes them: an equilibrium with the
+    /// stability the part requires (`r = 0 (unstable)`).
+    pub fn reference_items(&self) -> Vec<String> {
         if self.require_stability {
-            let items: Vec<String> = self
+            return self
                 .answers
                 .iter()
                 .zip(&self.stability)
                 .map(|(a, s)| format!("{a} ({s})"))
                 .collect();
-            return items.join(sep);
         }
-        self.answers.join(sep)
+        self.answers.clone()
     }
 
     /// Whether the prompt asks about stability (`stable`, `stability`, `unstable`), so that an

@@ -158,7 +158,7 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
                 kind: part.kind.name().to_string(),
                 points: part.points,
                 prompt: terminal_math(&part.prompt),
-                answers: answers.then(|| part.answers.clone()),
+                answers: answers.then(|| part.reference_items()),
             })
             .collect(),
     }

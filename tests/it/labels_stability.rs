@@ -462,3 +462,15 @@ fn the_reading_shows_the_label_in_each_style() {
     );
     assert_eq!(v.reading.unicode, "ω² = (2 + √2)·g/l, ω² = (2 − √2)·g/l");
 }
+
+/// The answer sheet shows what a right answer is: a part that requires stability shows the
+/// points with it, and that text, checked, is correct (it showed `r = 0`, which scores 50%).
+#[test]
+fn the_answer_sheet_shows_the_required_stability() {
+    let (code, out, _) = crate::helpers::lagrange(&["problems", "show", "bead-wire", "--answers"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("answer: r = 0 (unstable)"), "{out}");
+    let (code, out, _) =
+        crate::helpers::lagrange(&["check", "bead-wire", "equilibria", "r = 0 (unstable)"]);
+    assert_eq!(code, 0, "{out}");
+}
