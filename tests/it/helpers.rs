@@ -77,3 +77,40 @@ pub fn one(s: &mut lagrange::tutor::Session, line: &str) -> lagrange::tutor::Res
     assert_eq!(r.len(), 1, "`{line}` gave {r:?}");
     r.remove(0)
 }
+
+/// (problem, part, answer, status, the verdict's first code or `None` for none).
+pub type VerdictRow<'a> = (
+    &'a str,
+    &'a str,
+    &'a str,
+    lagrange::Status,
+    Option<lagrange::Code>,
+);
+
+/// Checks each row on the built-in bank; fails listing every row that disagrees, with the
+/// first diagnosis's message.
+pub fn verdict_table(rows: &[VerdictRow]) {
+    let bank = lagrange::bank::embedded::bank();
+    let mut failures = Vec::new();
+    for &(problem, part, answer, status, code) in rows {
+        let p = bank.problem(problem).expect("a bank problem");
+        let v = lagrange::Checker::new(p)
+            .check(part, answer)
+            .expect("a part");
+        let codes: Vec<lagrange::Code> = v.diagnoses.iter().map(|d| d.code).collect();
+        let code_ok = match code {
+            Some(c) => codes.first() == Some(&c),
+            None => codes.is_empty(),
+        };
+        if v.status != status || !code_ok {
+            failures.push(format!(
+                "{problem}/{part} `{answer}`: {:?} {codes:?} ({}), want {status:?} {code:?}",
+                v.status,
+                v.diagnoses
+                    .first()
+                    .map_or(String::new(), |d| d.message.clone())
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}

@@ -8,32 +8,7 @@
 use lagrange::bank::{embedded, load_str};
 use lagrange::check::{Checker, Code, Status};
 
-/// (problem, part, answer, status, first code or `None` for none).
-type Row<'a> = (&'a str, &'a str, &'a str, Status, Option<Code>);
-
-fn table(rows: &[Row]) {
-    let bank = embedded::bank();
-    let mut failures = Vec::new();
-    for &(problem, part, answer, status, code) in rows {
-        let p = bank.problem(problem).expect("a bank problem");
-        let v = Checker::new(p).check(part, answer).expect("a part");
-        let codes: Vec<Code> = v.diagnoses.iter().map(|d| d.code).collect();
-        let code_ok = match code {
-            Some(c) => codes.first() == Some(&c),
-            None => codes.is_empty(),
-        };
-        if v.status != status || !code_ok {
-            failures.push(format!(
-                "{problem}/{part} `{answer}`: {:?} {codes:?} ({}), want {status:?} {code:?}",
-                v.status,
-                v.diagnoses
-                    .first()
-                    .map_or(String::new(), |d| d.message.clone())
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
-}
+use crate::helpers::verdict_table as table;
 
 #[test]
 fn a_label_states_a_quantity_and_is_judged_as_written() {

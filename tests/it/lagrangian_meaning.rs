@@ -20,25 +20,7 @@ fn verdict(p: &Problem, part: &str, answer: &str) -> Verdict {
         .unwrap_or_else(|e| panic!("{}/{part}: {e}", p.id))
 }
 
-/// Checks each (problem, part, answer, status, code the verdict must have; `None`: no code).
-fn table(rows: &[(&str, &str, &str, Status, Option<Code>)]) {
-    let mut failures = Vec::new();
-    for &(problem, part, answer, status, code) in rows {
-        let v = verdict(&bank(problem), part, answer);
-        let codes: Vec<Code> = v.diagnoses.iter().map(|d| d.code).collect();
-        let code_ok = match code {
-            Some(c) => codes.first() == Some(&c),
-            None => codes.is_empty(),
-        };
-        if v.status != status || !code_ok {
-            failures.push(format!(
-                "{problem}/{part} `{answer}`: {:?} {codes:?}, want {status:?} {code:?}",
-                v.status
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
-}
+use crate::helpers::verdict_table as table;
 
 const PENDULUM_L: &str = "(1/2*m*l^2*theta'^2 + m*g*l*cos(theta))";
 

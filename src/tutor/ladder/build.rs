@@ -3,7 +3,6 @@
 //! characteristic roots, frequencies), with the engine's results as reference answers.
 
 use rustc_hash::FxHashMap;
-
 use super::step::{LadderError, Step};
 use crate::expr::{Id, Style, Sym, read_expr};
 use crate::mechanics::System;
