@@ -2,11 +2,11 @@
 //! coordinate's Euler–Lagrange steps and the statics (equilibria, linearized equations,
 //! characteristic roots, frequencies), with the engine's results as reference answers.
 
-use rustc_hash::FxHashMap;
 use super::step::{LadderError, Step};
 use crate::expr::{Id, Style, Sym, read_expr};
 use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Problem, Quantity};
+use rustc_hash::FxHashMap;
 
 mod bodies;
 mod teach;
