@@ -10,6 +10,16 @@ use crate::helpers::lagrange;
 
 const OSCILLATOR: &str = "m*x'^2/2 - k*x^2/2";
 
+/// `lagrange simulate` of the oscillator from x = 1 for 2 s, then `extra` (where it writes).
+fn simulate_oscillator(extra: &[&str]) -> (i32, String, String) {
+    let mut args = vec![
+        "simulate", "-L", OSCILLATOR, "--coords", "x", "--params", "m=1, k=1", "--init", "x=1",
+        "--t-end", "2",
+    ];
+    args.extend_from_slice(extra);
+    lagrange(&args)
+}
+
 /// A class file with a formula for a student key, answers starting with `-`, `=`, `@` and
 /// `+`, and an answer holding a terminal escape and HTML.
 const HOSTILE: &str = "student,problem,part,answer\n\
@@ -276,21 +286,7 @@ fn summary_md_and_stdout_show_html_markdown_and_escapes_as_text() {
 #[test]
 fn simulate_streams_into_dev_null_and_never_replaces_it() {
     use std::os::unix::fs::FileTypeExt as _;
-    let (code, _, err) = lagrange(&[
-        "simulate",
-        "-L",
-        OSCILLATOR,
-        "--coords",
-        "x",
-        "--params",
-        "m=1, k=1",
-        "--init",
-        "x=1",
-        "--t-end",
-        "2",
-        "--out",
-        "/dev/null",
-    ]);
+    let (code, _, err) = simulate_oscillator(&["--out", "/dev/null"]);
     assert_eq!(code, 0, "{err}");
     let kind = std::fs::symlink_metadata("/dev/null")
         .expect("stat")
@@ -308,10 +304,7 @@ fn simulate_refuses_a_link_at_its_csv_or_picture_name() {
         let link = d.join(name);
         std::os::unix::fs::symlink(d.join("precious.txt"), &link).expect("symlink");
         let path = link.to_str().unwrap_or_default();
-        let (code, _, err) = lagrange(&[
-            "simulate", "-L", OSCILLATOR, "--coords", "x", "--params", "m=1, k=1", "--init", "x=1",
-            "--t-end", "2", flag, path,
-        ]);
+        let (code, _, err) = simulate_oscillator(&[flag, path]);
         assert_eq!(code, 2, "{flag}: {err}");
         assert!(err.contains("symbolic link"), "{flag}: {err}");
         assert_eq!(
@@ -329,18 +322,7 @@ fn pictures_are_written_whole_with_no_temporary_file_left() {
     let d = dir.path();
     let (svg, png) = (d.join("q.svg"), d.join("phase.png"));
     std::fs::write(&svg, "an older picture").expect("write");
-    let (code, _, err) = lagrange(&[
-        "simulate",
-        "-L",
-        OSCILLATOR,
-        "--coords",
-        "x",
-        "--params",
-        "m=1, k=1",
-        "--init",
-        "x=1",
-        "--t-end",
-        "2",
+    let (code, _, err) = simulate_oscillator(&[
         "--plot",
         svg.to_str().unwrap_or_default(),
         "--phase",
