@@ -9,10 +9,6 @@ use super::error::MechError;
 use super::system::System;
 use crate::expr::Program;
 
-/// A mass matrix whose smallest singular value is below this fraction of its largest is
-/// singular (the test derive uses when it checks M).
-const SINGULAR: f64 = 1e-12;
-
 /// M and f compiled together; evaluates accelerations without re-reading expressions.
 #[derive(Clone, Debug)]
 pub struct Dynamics {
@@ -164,30 +160,23 @@ impl Dynamics {
     }
 }
 
-/// Solves M x = f: Cholesky when M is positive definite, LU otherwise; a singular M is an
-/// error naming the coordinate whose row vanishes (or all of them).
+/// Solves M x = f: Cholesky when M is positive definite, LU otherwise; an M singular by the
+/// one rule (`mechanics::singular`) is an error naming the coordinate whose row vanishes (or all of them).
 pub(crate) fn solve(
     m: &DMatrix<f64>,
     f: &DVector<f64>,
     names: &[String],
 ) -> Result<DVector<f64>, MechError> {
-    if let Some(ch) = m.clone().cholesky() {
-        return Ok(ch.solve(f));
+    if !super::singular::is_singular(m) {
+        let x = match m.clone().cholesky() {
+            Some(ch) => Some(ch.solve(f)),
+            None => m.clone().lu().solve(f),
+        };
+        if let Some(x) = x.filter(|x| x.iter().all(|v| v.is_finite())) {
+            return Ok(x);
+        }
     }
     let scale = m.amax();
-    // Invertible when the smallest singular value is not rounding relative to the largest
-    // (a determinant against scaleⁿ under- or overflows for masses of 1e-110 or 1e110).
-    let sv = m.singular_values();
-    let (lo, hi) = sv
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
-    if hi > 0.0
-        && lo > SINGULAR * hi
-        && let Some(x) = m.clone().lu().solve(f)
-        && x.iter().all(|v| v.is_finite())
-    {
-        return Ok(x);
-    }
     for (i, name) in names.iter().enumerate() {
         // Relative to the largest entry; an all-zero M has every row zero.
         if m.row(i).amax() <= 1e-14 * scale {

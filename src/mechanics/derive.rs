@@ -147,25 +147,8 @@ impl System {
             }
             nowhere = None;
             let m = nalgebra::DMatrix::from_fn(n, n, |r, c| prog.output(r * n + c, &scratch));
-            // A kinetic energy is positive definite: Cholesky settles it. Otherwise (an
-            // indefinite but invertible M) compare the extreme singular values; a determinant
-            // test would misjudge large, well-posed but ill-conditioned systems.
-            if let Some(ch) = m.clone().cholesky() {
-                // Rounding can let an exactly singular M factor with a tiny pivot.
-                let d = ch.l().diagonal();
-                let (lo, hi) = d
-                    .iter()
-                    .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
-                if hi > 0.0 && (lo / hi).powi(2) > 1e-13 {
-                    return Ok(());
-                }
-                continue;
-            }
-            let sv = m.singular_values();
-            let (lo, hi) = sv
-                .iter()
-                .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
-            if hi > 0.0 && lo > 1e-12 * hi {
+            // The simulator and the checker apply the same rule (`mechanics::singular`).
+            if !super::singular::is_singular(&m) {
                 return Ok(());
             }
         }

@@ -22,6 +22,7 @@ pub mod point_force;
 pub mod quadratic;
 pub mod rigid;
 pub(crate) mod sample;
+pub(crate) mod singular;
 pub mod state;
 pub mod steady;
 pub mod symbolic_modes;

@@ -1,16 +1,15 @@
 //! The right-hand side y' = F(t, y) of a system, y = (q, q'): M and f compiled once with the
 //! parameter values fixed; each call loads the state into the sample point and solves
-//! M q'' = f by Gaussian elimination with partial pivoting in reused buffers (no allocation).
+//! M q'' = f by Gaussian elimination with partial pivoting in reused buffers, singular by
+//! the one rule the checker uses (`mechanics::singular`).
 //! With constraints, the augmented equations M q'' − Aᵀλ = f, A q'' = −r are solved instead
 //! (index reduced to the acceleration level; the report watches the constraints' drift).
 
 use super::{Ode, SimError};
 use crate::expr::Program;
 use crate::mechanics::accel::Dynamics;
+use crate::mechanics::singular::solve_in_place;
 use crate::mechanics::{Layout, System};
-
-/// A pivot below this fraction of the largest entry of M makes M singular.
-pub(super) const SINGULAR: f64 = 1e-13;
 
 /// The compiled equations of motion of one system at fixed parameter values.
 #[derive(Clone, Debug)]
@@ -202,76 +201,9 @@ pub fn parameter_values<S: AsRef<str>>(
         .collect())
 }
 
-/// Solves M x = f for the row-major n × n `m` in place (x overwrites `f`) by Gaussian
-/// elimination with partial pivoting; `None` when M is singular relative to its largest entry.
-pub(super) fn solve_in_place(n: usize, m: &mut [f64], f: &mut [f64]) -> Option<()> {
-    let scale = m.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    if !(scale > 0.0 && scale.is_finite()) {
-        return None;
-    }
-    if n == 2 {
-        // Cramer's rule, singular when |det| is rounding next to the products forming it.
-        let det = m[0] * m[3] - m[1] * m[2];
-        if det.abs()
-            <= SINGULAR
-                * (m[0] * m[3])
-                    .abs()
-                    .max((m[1] * m[2]).abs())
-                    .max(scale * scale)
-        {
-            return None;
-        }
-        let (f0, f1) = (f[0], f[1]);
-        f[0] = (f0 * m[3] - m[1] * f1) / det;
-        f[1] = (m[0] * f1 - m[2] * f0) / det;
-        return Some(());
-    }
-    for k in 0..n {
-        let p = (k..n).max_by(|&a, &b| m[a * n + k].abs().total_cmp(&m[b * n + k].abs()))?;
-        if m[p * n + k].abs() <= SINGULAR * scale {
-            return None;
-        }
-        if p != k {
-            for c in 0..n {
-                m.swap(k * n + c, p * n + c);
-            }
-            f.swap(k, p);
-        }
-        let pivot = m[k * n + k];
-        for r in k + 1..n {
-            let factor = m[r * n + k] / pivot;
-            if factor != 0.0 {
-                for c in k..n {
-                    m[r * n + c] -= factor * m[k * n + c];
-                }
-                f[r] -= factor * f[k];
-            }
-        }
-    }
-    for k in (0..n).rev() {
-        let mut s = f[k];
-        for c in k + 1..n {
-            s -= m[k * n + c] * f[c];
-        }
-        f[k] = s / m[k * n + k];
-    }
-    Some(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn pivoting_solve_matches_a_hand_solution() {
-        // [[0, 2], [3, 1]] x = [4, 5] → x = (1, 2).
-        let mut m = [0.0, 2.0, 3.0, 1.0];
-        let mut f = [4.0, 5.0];
-        assert!(solve_in_place(2, &mut m, &mut f).is_some());
-        assert!((f[0] - 1.0).abs() < 1e-15 && (f[1] - 2.0).abs() < 1e-15);
-        let mut m = [1.0, 2.0, 2.0, 4.0];
-        assert!(solve_in_place(2, &mut m, &mut [1.0, 1.0]).is_none());
-    }
 
     #[test]
     fn parameters_are_checked_by_name() {

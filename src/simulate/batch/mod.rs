@@ -18,9 +18,9 @@
 
 use std::f64::consts::PI;
 
-use super::rhs::solve_in_place;
 use super::{Ode, Rhs, SimError};
 use crate::mechanics::Layout;
+use crate::mechanics::singular::{is_singular_2x2, solve_in_place};
 use crate::progress::{Interrupted, Progress, Silent, tick};
 
 /// The step used for flip maps when none is given: RK4's error at 1e-3 is far below the
@@ -483,10 +483,7 @@ impl<'a, const K: usize> Lanes<'a, K> {
         for l in 0..K {
             let (a, b, c, d) = (m[0][l], m[1][l], m[2][l], m[3][l]);
             let det = a * d - b * c;
-            let scale = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
-            let size = (a * d).abs().max((b * c).abs()).max(scale * scale);
-            let ok = scale > 0.0 && scale.is_finite() && det.abs() > super::rhs::SINGULAR * size;
-            singular |= u64::from(!ok) << l;
+            singular |= u64::from(is_singular_2x2(a, b, c, d)) << l;
             self.k[j][lay.phase_qdot(0)][l] = (f[0][l] * d - b * f[1][l]) / det;
             self.k[j][lay.phase_qdot(1)][l] = (a * f[1][l] - c * f[0][l]) / det;
         }
