@@ -1,12 +1,12 @@
-//! Bodies and point forces on the command line: `--point "mass=m; at=x, y"`,
-//! `--rigid "mass=M; at=…; inertia=I; angle=theta"` (or `moments=…`/`tensor=…` with
-//! `omega=…`/`euler=…`), `--gravity "g"` or `"g, z"`, `--spring "k=k; from=1; to=0, 0"`, and
+//! Bodies and point forces on the command line: `--point "mass=m; position=x, y"`,
+//! `--rigid "mass=M; position=…; inertia=I; angle=theta"` (or `moments=…`/`tensor=…` with
+//! `omega_body=…`/`euler=…`), `--gravity "g"` or `"g, z"`, `--spring "k=k; from=1; to=0, 0"`, and
 //! `--force-at "x, y: Fx, Fy"`.
 //! The text is split here; the physics is the library's (`mechanics::rigid`).
 
 use lagrange::expr::Id;
 use lagrange::mechanics::bodies::{Anchor, Body, Potential};
-use lagrange::mechanics::{Inertia, MechError, Orientation, Rigid, System};
+use lagrange::mechanics::{MechError, RigidSpec, System};
 
 use super::system_args::CliError;
 
@@ -44,6 +44,15 @@ fn fields<'a>(
             )));
         };
         let k = k.trim();
+        // The names before the command line took the problem file's.
+        if let Some((_, now)) = [("at", "position"), ("omega", "omega_body")]
+            .iter()
+            .find(|(old, now)| *old == k && known.contains(now))
+        {
+            return Err(CliError::Usage(format!(
+                "{flag}: `{k}=` is now `{now}=`, the name a problem file uses"
+            )));
+        }
         if !known.contains(&k) {
             return Err(CliError::Usage(format!(
                 "{flag}: unknown key `{k}` (keys: {})",
@@ -72,13 +81,6 @@ fn one(sys: &mut System, text: &str, what: &str) -> Result<Id, CliError> {
     Ok(sys.read(text, what, &ctx)?)
 }
 
-fn three(sys: &mut System, text: &str, what: &str) -> Result<[Id; 3], CliError> {
-    let v = list(sys, text, what)?;
-    let n = v.len();
-    <[Id; 3]>::try_from(v)
-        .map_err(|_| CliError::Usage(format!("{what}: {n} entries given, 3 are needed")))
-}
-
 /// The body flags, read into `base`'s pool (a system of the coordinates only).
 pub(super) struct BodyFlags<'a> {
     pub points: &'a [String],
@@ -98,15 +100,15 @@ impl BodyFlags<'_> {
     pub fn build(&self, mut base: System) -> Result<System, CliError> {
         let mut bodies = Vec::new();
         for p in self.points {
-            let f = fields("--point", p, &["mass", "at"])?;
+            let f = fields("--point", p, &["mass", "position"])?;
             let get = |k: &str| f.iter().find(|(o, _)| *o == k).map(|(_, v)| *v);
-            let (Some(m), Some(at)) = (get("mass"), get("at")) else {
-                return Err(CliError::usage("--point needs mass=… and at=…"));
+            let (Some(m), Some(at)) = (get("mass"), get("position")) else {
+                return Err(CliError::usage("--point needs mass=… and position=…"));
             };
             let mass = one(&mut base, m, "--point mass")?;
-            let position = list(&mut base, at, "--point at")?;
+            let position = list(&mut base, at, "--point position")?;
             if !(2..=3).contains(&position.len()) {
-                return Err(CliError::usage("--point at=… has 2 or 3 components"));
+                return Err(CliError::usage("--point position=… has 2 or 3 components"));
             }
             bodies.push(Body::Point { mass, position });
         }
@@ -144,52 +146,37 @@ impl BodyFlags<'_> {
     }
 }
 
-const RIGID_KEYS: [&str; 8] = [
-    "mass", "at", "inertia", "moments", "tensor", "angle", "omega", "euler",
-];
-
-/// `--rigid "mass=M; at=x, y; inertia=I; angle=theta"` (or 3-D: `moments=I1, I2, I3` or
-/// `tensor=` nine entries row by row, with `omega=w1, w2, w3` or `euler=phi, theta, psi`).
+/// `--rigid "mass=M; position=x, y; inertia=I; angle=theta"` (or 3-D: `moments=I1, I2, I3` or
+/// `tensor=` nine entries row by row, with `omega_body=w1, w2, w3` or `euler=phi, theta, psi`):
+/// the problem file's names, read into the library's [`RigidSpec`] and checked there.
 fn rigid(sys: &mut System, text: &str) -> Result<Body, CliError> {
-    let f = fields("--rigid", text, &RIGID_KEYS)?;
+    let f = fields("--rigid", text, &RigidSpec::KEYS)?;
     let get = |k: &str| f.iter().find(|(o, _)| *o == k).map(|(_, v)| *v);
-    let (Some(m), Some(at)) = (get("mass"), get("at")) else {
-        return Err(CliError::usage(
-            "--rigid needs mass=… and at=… (the centre of mass)",
-        ));
+    let one = |sys: &mut System, k: &str| {
+        get(k)
+            .map(|v| one(sys, v, &format!("--rigid {k}")))
+            .transpose()
     };
-    let mass = one(sys, m, "--rigid mass")?;
-    let position = list(sys, at, "--rigid at")?;
-    let inertia = match (get("inertia"), get("moments"), get("tensor")) {
-        (Some(i), None, None) => Inertia::Principal(vec![one(sys, i, "--rigid inertia")?]),
-        (None, Some(m), None) => Inertia::Principal(list(sys, m, "--rigid moments")?),
-        (None, None, Some(t)) => {
-            let v = list(sys, t, "--rigid tensor")?;
-            if v.len() != 9 {
-                return Err(CliError::usage(
-                    "--rigid tensor=… has 9 entries, row by row",
-                ));
-            }
-            Inertia::Tensor([[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]])
-        }
-        _ => {
-            return Err(CliError::usage(
-                "--rigid needs exactly one of inertia=… (planar), moments=… or tensor=…",
-            ));
-        }
+    let mass = one(sys, "mass")?;
+    let inertia = one(sys, "inertia")?;
+    let angle = one(sys, "angle")?;
+    let all = |sys: &mut System, k: &str| {
+        get(k)
+            .map(|v| list(sys, v, &format!("--rigid {k}")))
+            .transpose()
     };
-    let orientation = match (get("angle"), get("omega"), get("euler")) {
-        (Some(a), None, None) => Orientation::Planar(one(sys, a, "--rigid angle")?),
-        (None, Some(w), None) => Orientation::BodyRates(three(sys, w, "--rigid omega")?),
-        (None, None, Some(e)) => Orientation::Euler(three(sys, e, "--rigid euler")?),
-        _ => {
-            return Err(CliError::usage(
-                "--rigid needs exactly one of angle=… (planar), omega=… or euler=…",
-            ));
-        }
+    let spec = RigidSpec {
+        mass,
+        position: all(sys, "position")?,
+        inertia,
+        moments: all(sys, "moments")?,
+        // Nine entries on one line, row by row; any other count is the checker's error.
+        tensor: all(sys, "tensor")?.map(|v| v.chunks(3).map(<[Id]>::to_vec).collect()),
+        angle,
+        omega_body: all(sys, "omega_body")?,
+        euler: all(sys, "euler")?,
     };
-    let r =
-        Rigid::new(&mut sys.pool, mass, position, inertia, orientation).map_err(MechError::from)?;
+    let r = spec.build(&mut sys.pool).map_err(MechError::from)?;
     Ok(Body::Rigid(Box::new(r)))
 }
 

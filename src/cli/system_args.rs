@@ -31,13 +31,13 @@ pub struct SystemArgs {
     /// The potential energy (with --kinetic, or added to the bodies' potentials).
     #[arg(long, short = 'V', allow_hyphen_values = true)]
     pub potential: Option<String>,
-    /// A point body, "mass=m; at=x, y" (its position in the coordinates); repeat for several.
+    /// A point body, "mass=m; position=x, y" (its position in the coordinates); repeat for several.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
     pub point: Vec<String>,
-    /// A rigid body, "mass=M; at=xc, yc; inertia=I; angle=theta" (planar: centre of mass,
-    /// moment about it, orientation angle) or in 3-D "mass=M; at=x, y, z; moments=I1, I2, I3"
+    /// A rigid body, "mass=M; position=xc, yc; inertia=I; angle=theta" (planar: centre of mass,
+    /// moment about it, orientation angle) or in 3-D "mass=M; position=x, y, z; moments=I1, I2, I3"
     /// (or tensor=nine entries row by row) with "euler=phi, theta, psi" (z-x-z) or
-    /// "omega=w1, w2, w3" (body-frame angular velocity); repeat for several.
+    /// "omega_body=w1, w2, w3" (body-frame angular velocity); repeat for several.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["lagrangian", "kinetic"])]
     pub rigid: Vec<String>,
     /// Uniform gravity on the bodies, "g" (down the y axis) or "g, z" (down the z axis).

@@ -33,6 +33,6 @@ pub use derive::{CoordinateSteps, Derivation};
 pub use energy::{Conservation, Energy, VelocityParts};
 pub use error::MechError;
 pub use point_force::PointForce;
-pub use rigid::{Inertia, Orientation, Rigid, RigidError};
+pub use rigid::{Inertia, Orientation, Rigid, RigidError, RigidSpec};
 pub use state::Layout;
 pub use system::{Constraint, ConstraintKind, Coordinate, Domain, Parameter, System};

@@ -41,9 +41,96 @@ pub struct Rigid {
     pub orientation: Orientation,
 }
 
+/// A rigid body as it is stated, in a problem file's `[[bodies]]` (`kind = "rigid"`) or in the
+/// command line's `--rigid`, with its expressions already read. Both use these names
+/// ([`RigidSpec::KEYS`]) and this one checker ([`RigidSpec::build`]).
+#[derive(Clone, Debug, Default)]
+pub struct RigidSpec {
+    pub mass: Option<Id>,
+    /// The centre of mass (2 or 3 components).
+    pub position: Option<Vec<Id>>,
+    /// One moment about the axis normal to the plane (planar).
+    pub inertia: Option<Id>,
+    /// Three principal moments about the centre of mass (3-D).
+    pub moments: Option<Vec<Id>>,
+    /// The inertia tensor about the centre of mass in the body frame, 3 rows of 3.
+    pub tensor: Option<Vec<Vec<Id>>>,
+    /// A planar body's angle.
+    pub angle: Option<Id>,
+    /// Body-frame angular-velocity components (3-D).
+    pub omega_body: Option<Vec<Id>>,
+    /// z-x-z Euler angles φ, θ, ψ (3-D).
+    pub euler: Option<Vec<Id>>,
+}
+
+impl RigidSpec {
+    /// The names of the fields, as a problem file and the command line spell them.
+    pub const KEYS: [&'static str; 8] = [
+        "mass",
+        "position",
+        "inertia",
+        "moments",
+        "tensor",
+        "angle",
+        "omega_body",
+        "euler",
+    ];
+
+    /// The body, when exactly one inertia and one orientation are given and every list has
+    /// its length; then [`Rigid::new`]'s checks.
+    pub fn build(self, pool: &mut Pool) -> Result<Rigid, RigidError> {
+        let (Some(mass), Some(position)) = (self.mass, self.position) else {
+            return Err(RigidError::Missing);
+        };
+        let inertia = match (self.inertia, self.moments, self.tensor) {
+            (Some(i), None, None) => Inertia::Principal(vec![i]),
+            (None, Some(m), None) => Inertia::Principal(m),
+            (None, None, Some(rows)) => {
+                if rows.len() != 3 || rows.iter().any(|r| r.len() != 3) {
+                    return Err(RigidError::TensorShape);
+                }
+                let row = |r: &[Id]| [r[0], r[1], r[2]];
+                Inertia::Tensor([row(&rows[0]), row(&rows[1]), row(&rows[2])])
+            }
+            _ => {
+                return Err(RigidError::OneOf {
+                    keys: "`inertia` (planar), `moments` or `tensor`",
+                });
+            }
+        };
+        let three = |key: &'static str, v: Vec<Id>| {
+            let given = v.len();
+            <[Id; 3]>::try_from(v).map_err(|_| RigidError::Three { key, given })
+        };
+        let orientation = match (self.angle, self.omega_body, self.euler) {
+            (Some(a), None, None) => Orientation::Planar(a),
+            (None, Some(w), None) => Orientation::BodyRates(three("omega_body", w)?),
+            (None, None, Some(e)) => Orientation::Euler(three("euler", e)?),
+            _ => {
+                return Err(RigidError::OneOf {
+                    keys: "`angle` (planar), `omega_body` or `euler`",
+                });
+            }
+        };
+        Rigid::new(pool, mass, position, inertia, orientation)
+    }
+}
+
 /// What makes a rigid body or a point force ill-posed.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum RigidError {
+    /// The mass or the centre of mass is missing.
+    #[error("a rigid body needs `mass` and `position` (its centre of mass)")]
+    Missing,
+    /// None or several of a set of alternatives.
+    #[error("a rigid body needs exactly one of {keys}")]
+    OneOf { keys: &'static str },
+    /// A tensor that is not 3 rows of 3.
+    #[error("`tensor` is 3 rows of 3 entries")]
+    TensorShape,
+    /// A three-component field with another count.
+    #[error("`{key}` has {given} entries (3 are needed)")]
+    Three { key: &'static str, given: usize },
     /// A position or force with a component count other than 2 or 3.
     #[error("{what} has {given} components (2 or 3 are possible)")]
     Components { what: &'static str, given: usize },
@@ -83,6 +170,8 @@ impl RigidError {
     /// A stable kebab-case code.
     pub fn code(&self) -> &'static str {
         match self {
+            RigidError::Missing | RigidError::OneOf { .. } => "bad-body",
+            RigidError::TensorShape | RigidError::Three { .. } => "bad-components",
             RigidError::Components { .. } => "bad-components",
             RigidError::ForceDimension { .. } => "force-dimension",
             RigidError::InertiaShape { .. } => "inertia-shape",
@@ -96,6 +185,12 @@ impl RigidError {
     /// What to do about it.
     pub fn help(&self) -> String {
         match self {
+            RigidError::Missing => "give `mass` and `position`".into(),
+            RigidError::OneOf { .. } => "give one of them, not none or two".into(),
+            RigidError::TensorShape => {
+                "a file gives 3 rows of 3; the command line gives 9 entries, row by row".into()
+            }
+            RigidError::Three { .. } => "give three components".into(),
             RigidError::Components { .. } => "give 2 (planar) or 3 components".into(),
             RigidError::ForceDimension { .. } => {
                 "give the force and its point in the same dimension".into()

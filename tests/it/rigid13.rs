@@ -351,7 +351,7 @@ fn command_line_rigid_body_gravity_and_force_at() {
         "-q",
         "theta",
         "--rigid",
-        "mass=m; at=l/2*sin(theta), -l/2*cos(theta); inertia=m*l^2/12; angle=theta",
+        "mass=m; position=l/2*sin(theta), -l/2*cos(theta); inertia=m*l^2/12; angle=theta",
         "--gravity",
         "g",
         "--force-at",
@@ -365,7 +365,7 @@ fn command_line_rigid_body_gravity_and_force_at() {
         "-q",
         "theta",
         "--rigid",
-        "mass=m; at=l/2*sin(theta), -l/2*cos(theta); inertia=m*l^2/12; angle=theta",
+        "mass=m; position=l/2*sin(theta), -l/2*cos(theta); inertia=m*l^2/12; angle=theta",
         "--gravity",
         "g",
         "--params",
@@ -381,10 +381,79 @@ fn command_line_rigid_body_gravity_and_force_at() {
         "-q",
         "theta",
         "--rigid",
-        "mass=m; at=0, 0; moments=1, 2, 3; angle=theta",
+        "mass=m; position=0, 0; moments=1, 2, 3; angle=theta",
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("inertia-shape"), "{err}");
+}
+
+#[test]
+fn command_line_and_problem_file_share_the_rigid_body_names_and_checker() {
+    // The same wrong body (two orientations) gets the same refusal from both faces.
+    let (code, _, err) = lagrange(&[
+        "derive",
+        "-q",
+        "theta",
+        "--rigid",
+        "mass=m; position=0, 0; inertia=I; angle=theta; euler=theta, 0, 0",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("exactly one of `angle` (planar), `omega_body` or `euler`"),
+        "{err}"
+    );
+    let body = r#"
+[parameters]
+m = { dimension = "M", range = [0.5, 2.0] }
+I = { dimension = "M L^2", range = [0.5, 2.0] }
+
+[[bodies]]
+kind = "rigid"
+mass = "m"
+position = ["0", "0"]
+inertia = "I"
+angle = "theta"
+euler = ["theta", "0", "0"]
+"#;
+    let text =
+        format!("id = \"bad\"\ntitle = \"bad\"\ncoordinates = {TOP_COORDS}\nparts = []\n{body}");
+    let f = load_str("bad.toml", &text).expect_err("refused");
+    assert!(
+        f.message
+            .contains("exactly one of `angle` (planar), `omega_body` or `euler`"),
+        "{}",
+        f.message
+    );
+    // The command line's old names say what they are called now.
+    for (flag, spec, old, now) in [
+        (
+            "--rigid",
+            "mass=m; at=0, 0; inertia=I; angle=theta",
+            "at",
+            "position",
+        ),
+        ("--point", "mass=m; at=0, 0", "at", "position"),
+        (
+            "--rigid",
+            "mass=m; position=0, 0, 0; moments=1, 2, 3; omega=1, 2, 3",
+            "omega",
+            "omega_body",
+        ),
+    ] {
+        let (code, _, err) = lagrange(&["derive", "-q", "theta", flag, spec]);
+        assert_eq!(code, 2, "{spec}");
+        assert!(err.contains(&format!("`{old}=` is now `{now}=`")), "{err}");
+    }
+    // A tensor of the wrong size on the command line.
+    let (code, _, err) = lagrange(&[
+        "derive",
+        "-q",
+        "phi, theta, psi",
+        "--rigid",
+        "mass=m; position=0, 0, 0; tensor=1, 0, 0, 0, 1, 0, 0, 0; euler=phi, theta, psi",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("`tensor` is 3 rows of 3 entries"), "{err}");
 }
 
 #[test]
@@ -460,9 +529,9 @@ fn command_line_points_and_a_spring() {
         "-q",
         "x1,x2",
         "--point",
-        "mass=m; at=x1, 0",
+        "mass=m; position=x1, 0",
         "--point",
-        "mass=m; at=x2, 0",
+        "mass=m; position=x2, 0",
         "--spring",
         "k=k; from=1; to=2; natural=a",
         "--params",
