@@ -2,7 +2,7 @@
 //! physics at 2 rad and 0.2 rad (short runs; the library's tests hold the long ones), every
 //! bad input as a one-line error, and the README's pictures as their commands draw them.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::helpers::lagrange;
 
@@ -154,11 +154,8 @@ fn bad_input_is_a_one_line_error() {
     assert!(line.contains("more than a tenth of --t-end"), "{line}");
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lagrange-chaos-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("chaos-{name}"))
 }
 
 /// The README's commands draw the committed `docs/chaos.svg` and `docs/poincare.svg`.
@@ -202,7 +199,6 @@ fn the_readme_pictures_are_what_their_commands_draw() {
             "docs/{name} is stale: rerun the README's command"
         );
     }
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]

@@ -114,3 +114,37 @@ pub fn verdict_table(rows: &[VerdictRow]) {
     }
     assert!(failures.is_empty(), "\n{}", failures.join("\n"));
 }
+
+/// A fresh, empty temporary folder that is removed with everything in it when dropped — also
+/// when the test fails — so a run of the suite leaves nothing in the system's temp folder.
+/// It derefs to its [`Path`](std::path::Path), so `dir.join(…)` and `&dir` work as with a path.
+pub struct Scratch(tempfile::TempDir);
+
+/// A new [`Scratch`] folder named `lagrange-{label}-…` (the label says which test left it,
+/// should a killed run leave one).
+pub fn scratch(label: &str) -> Scratch {
+    let dir = tempfile::Builder::new()
+        .prefix(&format!("lagrange-{label}-"))
+        .tempdir()
+        .expect("a temporary folder");
+    Scratch(dir)
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<std::path::Path> for Scratch {
+    fn as_ref(&self) -> &std::path::Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.path().as_os_str()
+    }
+}

@@ -2,18 +2,15 @@
 //! coordinates' Unicode names on the axes and one polyline of `--samples` points per curve;
 //! `--plot -` prints a terminal chart.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::helpers::lagrange;
 
 const DP_PARAMS: &str = "m1=1, m2=1, l1=1, l2=1, g=9.81";
 
 /// A fresh directory for this test's files.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lagrange-plot-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("plot-{name}"))
 }
 
 fn svg(path: &Path) -> String {
@@ -95,7 +92,6 @@ fn the_double_pendulum_draws_q_of_t_its_phase_portrait_and_its_energy_error() {
     let e = svg(&e);
     assert!(e.contains("(h − h₀)/|h₀|"));
     assert_eq!(curves(&e), vec![300]);
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
@@ -194,5 +190,4 @@ fn the_readme_phase_portrait_is_what_its_command_draws() {
         "docs/pendulum-phase.svg is stale: rerun the README's command"
     );
     assert_eq!(samples_drawn(&svg(&committed), 1), 500);
-    let _ = std::fs::remove_dir_all(&d);
 }

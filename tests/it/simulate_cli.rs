@@ -134,8 +134,7 @@ fn gauss_and_rk4_run_at_a_fixed_step() {
 
 #[test]
 fn out_writes_the_even_grid_with_h() {
-    let dir = std::env::temp_dir().join(format!("simcli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::helpers::scratch("simcli");
     let path = dir.join("run.csv");
     let (code, _, err) = lagrange(&[
         "simulate",
@@ -163,7 +162,6 @@ fn out_writes_the_even_grid_with_h() {
     assert_eq!(last[0], 2.0);
     assert!((last[1] - 2f64.cos()).abs() < 1e-9);
     assert!((last[3] - 0.5).abs() < 1e-9);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
