@@ -8,6 +8,7 @@ mod conventions;
 mod corpus;
 mod diagnostics;
 mod dimensions;
+mod docs_commands;
 mod duplicate_ids;
 mod energy_constraints;
 mod equilibria;
