@@ -298,7 +298,7 @@ mod tests {
 
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
-        // The codes as documented (README, JSON consumers), most specific first.
+        // The codes as documented (docs/checking.md, JSON consumers), most specific first.
         const DOCUMENTED: [&str; 45] = [
             "unknown-symbol",
             "substituted-symbol",

@@ -204,14 +204,12 @@ mod tests {
 
     #[test]
     fn corrupt_file_is_moved_aside() {
-        let dir = std::env::temp_dir().join(format!("lagrange-store-{}", std::process::id()));
-        std::fs::remove_dir_all(&dir).ok();
-        std::fs::create_dir_all(&dir).ok();
+        let dir = tempfile::tempdir().unwrap();
+        let dir = dir.path();
         std::fs::write(dir.join("progress.json"), "{not json").ok();
-        let (_, p, warning) = Store::open(&dir);
+        let (_, p, warning) = Store::open(dir);
         assert!(warning.is_some_and(|w| w.contains("corrupt-1")));
         assert!(dir.join("progress.json.corrupt-1").exists());
         assert_eq!(p.to_json(), Progress::new().to_json());
-        std::fs::remove_dir_all(&dir).ok();
     }
 }

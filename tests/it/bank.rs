@@ -78,8 +78,7 @@ fn broken_problems_are_rejected_with_their_specific_message() {
 
 #[test]
 fn one_bad_file_does_not_stop_the_others() {
-    let tmp = std::env::temp_dir().join(format!("lagrange-bank-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = crate::helpers::scratch("bank");
     std::fs::copy(
         root().join("problems/simple-pendulum.toml"),
         tmp.join("a.toml"),
@@ -93,7 +92,6 @@ fn one_bad_file_does_not_stop_the_others() {
     std::fs::write(tmp.join("c.toml"), [0xff, 0xfe, 0x00]).unwrap();
     std::fs::copy(root().join("problems/atwood.toml"), tmp.join("d.toml")).unwrap();
     let bank = load_dir(&tmp).unwrap();
-    std::fs::remove_dir_all(&tmp).ok();
     assert_eq!(bank.problems.len(), 2);
     assert_eq!(bank.failures.len(), 2);
     assert!(bank.failures.iter().any(|f| f.code == "not-utf8"));

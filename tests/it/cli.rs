@@ -533,8 +533,7 @@ fn argument_errors_are_the_faces_own() {
 #[test]
 fn check_a_part_that_cannot_be_prepared_gets_its_own_help() {
     // Assumptions that no parameter values satisfy: the part cannot be prepared.
-    let dir = std::env::temp_dir().join(format!("lagrange-unprepared-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::helpers::scratch("unprepared");
     std::fs::write(
         dir.join("nowhere.toml"),
         r#"id = "nowhere"
@@ -559,7 +558,6 @@ answer = "m*l^2*theta'' + m*g*l*sin(theta) = 0"
     let problems = dir.to_string_lossy().into_owned();
     let (c, _, err) = lagrange(&["--problems", &problems, "check", "nowhere", "eom", "x"]);
     let (c2, _, err2) = lagrange(&["--problems", &problems, "check", "nowhere", "no-part", "x"]);
-    let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(c, 2, "{err}");
     assert!(err.contains("hold almost nowhere"), "{err}");
     assert!(!err.contains("the parts are"), "{err}");

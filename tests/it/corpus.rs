@@ -353,7 +353,7 @@ fn every_diagnosis_code_is_exercised() {
         if matches!(
             code,
             "wrong-kind" | "syntax" | "not-equal" | "equivalent-lagrangian" | "up-to-constant"
-            // Needs the student's earlier answers: exercised in `follow.rs`.
+            // Needs the student's earlier answers: exercised in `follow_through.rs`.
             | "follows-from-earlier"
         ) || used.contains(code)
         {

@@ -1,15 +1,13 @@
 //! Issue 19 §5: two problem files with one id are refused at load, naming both files, by
 //! every command that loads problems (a check and a grade once judged by different files).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::helpers::lagrange;
 
 /// A folder holding the simple pendulum twice: `simple-pendulum.toml` and `z-copy.toml`.
-fn twin_folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lagrange-twin-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+fn twin_folder(name: &str) -> crate::helpers::Scratch {
+    let dir = crate::helpers::scratch(&format!("twin-{name}"));
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("problems/simple-pendulum.toml");
     std::fs::copy(&src, dir.join("simple-pendulum.toml")).unwrap();
     std::fs::copy(&src, dir.join("z-copy.toml")).unwrap();
@@ -21,7 +19,6 @@ fn a_folder_with_two_files_of_one_id_loads_neither() {
     let dir = twin_folder("lib");
     let bank = lagrange::load_dir(&dir).unwrap();
     let one = lagrange::bank::load::load_one(&dir, "simple-pendulum");
-    std::fs::remove_dir_all(&dir).ok();
     assert!(bank.problem("simple-pendulum").is_none());
     let f = &bank.failures;
     assert_eq!(f.len(), 1, "{f:?}");
@@ -74,7 +71,6 @@ fn every_command_refuses_a_duplicated_id_and_names_both_files() {
     for (what, args) in runs {
         results.push((what, lagrange(&args)));
     }
-    std::fs::remove_dir_all(&dir).ok();
     for (what, (code, out, err)) in results {
         assert_ne!(code, 0, "{what}: {out}{err}");
         let said = format!("{out}{err}");

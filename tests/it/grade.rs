@@ -13,11 +13,8 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 /// A fresh, empty temporary folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lagrange-grade-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+fn scratch(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("grade-{name}"))
 }
 
 /// Runs `lagrange grade ARGS` with extra environment and optional stdin.
@@ -43,7 +40,7 @@ fn grade(args: &[&str], env: &[(&str, &str)], stdin: Option<&[u8]>) -> (i32, Str
 }
 
 /// Grades `input` into a scratch folder and returns the folder.
-fn graded(input: &Path, name: &str, extra: &[&str]) -> PathBuf {
+fn graded(input: &Path, name: &str, extra: &[&str]) -> crate::helpers::Scratch {
     let out = scratch(name);
     let mut args = vec![
         input.to_str().unwrap_or_default(),

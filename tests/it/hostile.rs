@@ -36,15 +36,13 @@ fn assert_no_invisibles(text: &str) {
 
 #[test]
 fn duplicate_problem_ids_across_separately_named_files_are_refused() {
-    let tmp = std::env::temp_dir().join(format!("lagrange-dup-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = crate::helpers::scratch("hostile");
     let src = root().join("problems/simple-pendulum.toml");
     std::fs::copy(&src, tmp.join("a.toml")).unwrap();
     std::fs::copy(&src, tmp.join("b.toml")).unwrap();
     let a = tmp.join("a.toml").display().to_string();
     let b = tmp.join("b.toml").display().to_string();
     let (code, out, _) = lagrange(&["problems", "verify", &a, &b]);
-    std::fs::remove_dir_all(&tmp).ok();
     assert_eq!(code, 1, "{out}");
     assert!(out.contains("[duplicate-id]"), "{out}");
     // Issue 19 §5: both files are named, and neither is verified as the problem.
@@ -288,8 +286,7 @@ fn modes_double_pendulum_asks_only_for_the_parameters_l_uses() {
 
 #[test]
 fn a_problem_files_title_and_prompt_are_shown_escaped() {
-    let tmp = std::env::temp_dir().join(format!("lagrange-show-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = crate::helpers::scratch("hostile");
     let text = std::fs::read_to_string(root().join("problems/simple-pendulum.toml"))
         .unwrap()
         .replace(
@@ -304,7 +301,6 @@ fn a_problem_files_title_and_prompt_are_shown_escaped() {
     let dir = tmp.display().to_string();
     let (code, show, _) = lagrange(&["--problems", &dir, "problems", "show", "simple-pendulum"]);
     let (_, list, _) = lagrange(&["--problems", &dir, "problems", "list"]);
-    std::fs::remove_dir_all(&tmp).ok();
     assert_eq!(code, 0);
     for out in [&show, &list] {
         assert_no_raw_controls(out);

@@ -416,9 +416,7 @@ fn the_repl_follows_through_from_a_labelled_lagrangian() {
 
 #[test]
 fn grade_follows_through_from_a_labelled_lagrangian() {
-    let dir = std::env::temp_dir().join(format!("lagrange-follow19-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::helpers::scratch("follow");
     let csv = dir.join("class.csv");
     std::fs::write(
         &csv,
@@ -438,7 +436,6 @@ fn grade_follows_through_from_a_labelled_lagrangian() {
         "--follow-through",
     ]);
     let results = std::fs::read_to_string(out.join("results.csv")).unwrap_or_default();
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(code, 0, "{err}");
     let rows: Vec<&str> = results.lines().collect();
     assert!(

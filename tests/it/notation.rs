@@ -412,7 +412,7 @@ fn regression_a_reciprocal_power_at_the_size_limit_reads_back_as_printed() {
 fn the_repl_prints_a_parse_error_once() {
     use std::io::Write;
     use std::process::{Command, Stdio};
-    let home = std::env::temp_dir().join(format!("lagrange-it-notation-{}", std::process::id()));
+    let home = crate::helpers::scratch("notation");
     let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
         .args(["repl", "--no-save", "simple-pendulum"])
         .env("LAGRANGE_HOME", &home)
@@ -432,5 +432,4 @@ fn the_repl_prints_a_parse_error_once() {
     let out = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.matches("can be read as").count(), 1, "{out}");
     assert_eq!(out.matches("cannot check this answer").count(), 1, "{out}");
-    let _ = std::fs::remove_dir_all(&home);
 }

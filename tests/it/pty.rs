@@ -5,8 +5,7 @@
 #[test]
 fn a_student_types_in_a_terminal() {
     use rexpect::session::spawn_command;
-    let home = std::env::temp_dir().join(format!("lagrange-pty-{}", std::process::id()));
-    std::fs::create_dir_all(&home).unwrap();
+    let home = crate::helpers::scratch("pty");
     let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lagrange"));
     cmd.args(["repl", "simple-pendulum"])
         .env("LAGRANGE_HOME", &home)
@@ -34,7 +33,6 @@ fn a_student_types_in_a_terminal() {
         .expect("the next part is current");
     p.send_control('d').unwrap();
     p.exp_eof().expect("Ctrl-D ends the session");
-    std::fs::remove_dir_all(&home).ok();
 }
 
 /// Ctrl-C during a long `:simulate` stops the simulation, not the REPL: it answers
@@ -45,8 +43,7 @@ fn a_student_types_in_a_terminal() {
 #[test]
 fn ctrl_c_interrupts_a_long_simulation_and_the_repl_goes_on() {
     use rexpect::session::spawn_command;
-    let home = std::env::temp_dir().join(format!("lagrange-pty-int-{}", std::process::id()));
-    std::fs::create_dir_all(&home).unwrap();
+    let home = crate::helpers::scratch("pty");
     let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lagrange"));
     cmd.args(["repl", "double-pendulum", "--no-save"])
         .env("LAGRANGE_HOME", &home)
@@ -81,8 +78,7 @@ fn ctrl_c_interrupts_a_long_simulation_and_the_repl_goes_on() {
 #[test]
 fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
     use rexpect::session::spawn_command;
-    let home = std::env::temp_dir().join(format!("lagrange-pty80-{}", std::process::id()));
-    std::fs::create_dir_all(&home).unwrap();
+    let home = crate::helpers::scratch("pty");
     // The pty's size is set from inside it (stty on its own stdin), then the REPL runs.
     let mut cmd = std::process::Command::new("sh");
     cmd.arg("-c")
@@ -118,7 +114,6 @@ fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
     p.exp_string("score").expect("the finished line is checked");
     p.send_control('d').unwrap();
     p.exp_eof().expect("Ctrl-D ends the session");
-    std::fs::remove_dir_all(&home).ok();
 }
 
 /// Issue 20 §6: a 19 kB line pasted into a terminal without bracketed paste arrives one
@@ -129,8 +124,7 @@ fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
 #[test]
 fn a_long_line_pasted_without_bracketed_paste_is_answered_quickly() {
     use rexpect::session::spawn_command;
-    let home = std::env::temp_dir().join(format!("lagrange-pty-long-{}", std::process::id()));
-    std::fs::create_dir_all(&home).unwrap();
+    let home = crate::helpers::scratch("pty");
     let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lagrange"));
     cmd.args(["repl", "simple-pendulum"])
         .env("LAGRANGE_HOME", &home)
@@ -142,5 +136,4 @@ fn a_long_line_pasted_without_bracketed_paste_is_answered_quickly() {
     // The session's timeout bounds it: a quadratic echo (minutes) never reaches the verdict.
     p.exp_string("score").expect("a verdict within the timeout");
     p.send_control('d').unwrap();
-    std::fs::remove_dir_all(&home).ok();
 }

@@ -3,15 +3,12 @@
 //! a corrupt one moved aside) and `lagrange` with no command and no terminal.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// A fresh `LAGRANGE_HOME` for one test.
-fn home(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lagrange-it-repl-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a temp dir");
-    dir
+fn home(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("repl-{name}"))
 }
 
 /// Runs `lagrange ARGS` with `input` piped in; (exit code, stdout, stderr).
@@ -64,7 +61,6 @@ fn a_session_per_bank_problem() {
         assert!(out.contains("\ncorrect"), "{}: {out}", p.id);
         insta::assert_snapshot!(format!("repl_{}", p.id), format!("{script}---\n{out}"));
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -94,7 +90,6 @@ fn json_gives_one_object_per_line() {
     assert_eq!(objects[2]["part"], "kinetic");
     assert_eq!(objects[2]["score"], 1.0);
     assert_eq!(objects[5]["suggestion"], ":open");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -112,7 +107,6 @@ fn progress_is_saved_and_reloaded() {
     let (_, _, _) = repl(&dir, &["repl", "--no-save", "simple-pendulum"], "0\n");
     let after = std::fs::read_to_string(dir.join("progress.json")).expect("still there");
     assert_eq!(saved, after);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -128,7 +122,6 @@ fn a_corrupt_progress_file_is_moved_aside() {
     assert!(out.contains("total: 0 of"), "{out}");
     let aside = std::fs::read_to_string(dir.join("progress.json.corrupt-1")).expect("kept");
     assert_eq!(aside, "{\"version\": tru");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -139,7 +132,6 @@ fn without_a_terminal_lagrange_prints_help() {
     assert!(out.is_empty());
     assert!(err.contains("Usage: lagrange"), "{err}");
     assert!(err.contains("repl"), "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -158,7 +150,6 @@ fn the_global_problems_folder_is_the_bank() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("atwood"), "{out}");
     assert!(!out.contains("simple-pendulum"), "{out}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A wrong answer to a tutor step, chosen by what the step asks so that its diagnosis is a
@@ -252,7 +243,6 @@ fn a_tutor_session_per_bank_problem() {
         );
         insta::assert_snapshot!(format!("tutor_{}", p.id), format!("{script}\n---\n{out}"));
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

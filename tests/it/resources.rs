@@ -5,7 +5,7 @@
 //! problem, under an address-space limit.
 
 use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -75,11 +75,8 @@ fn short(args: &[&str]) -> String {
 }
 
 /// A fresh, empty temporary folder for one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lagrange-res-{name}-{}", std::process::id()));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    dir
+fn temp_dir(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("res-{name}"))
 }
 
 fn problem_text(name: &str) -> String {
@@ -135,7 +132,6 @@ fn a_toml_coordinate_range_of_1e308_does_not_panic() {
         None,
     );
     let verify = run(&["--problems", d, "problems", "verify"], SECONDS_30, None);
-    std::fs::remove_dir_all(&dir).ok();
     assert!(!check.stderr.contains("panicked"), "{}", check.stderr);
     assert_eq!(check.code, Some(0), "{}{}", check.stdout, check.stderr);
     assert!(check.stdout.contains("correct"), "{}", check.stdout);
@@ -175,7 +171,6 @@ fn a_fifo_named_a_toml_is_a_finding_not_a_hang() {
     );
     // In this process only once the binary has shown that it does not open the FIFO.
     let bank = lagrange::bank::load_dir(&dir).expect("the folder reads");
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(list.code, Some(0), "{}", list.stderr);
     assert!(list.stdout.contains("atwood"), "{}", list.stdout);
     assert!(
@@ -218,7 +213,6 @@ fn dev_zero_linked_as_a_toml_is_a_finding_within_bounded_memory() {
     );
     // In this process only once the binary has shown that it does not read the device.
     let bank = lagrange::bank::load_dir(&dir).expect("the folder reads");
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(bank.failures.len(), 1);
     assert_eq!(bank.failures[0].code, "not-a-file");
 }
@@ -242,7 +236,6 @@ fn a_large_file_is_refused_by_its_size_before_it_is_read() {
         SECONDS_30,
         Some(400_000),
     );
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(list.code, Some(0), "{}", list.stderr);
     assert!(
         list.stdout.contains(&format!(
@@ -369,7 +362,6 @@ fn check_in_a_folder_of_many_problems_builds_only_the_one_asked_for() {
     let (other, _) = timed(&["--problems", d, "check", "atwood", "eom", eom]);
     let (missing, _) = timed(&["--problems", d, "check", "nope", "eom", eom]);
     let (derived, derived_time) = timed(&["--problems", d, "derive", "p00007"]);
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(list.code, Some(0), "{}", list.stderr);
     assert_eq!(named.code, Some(0), "{}", named.stderr);
     assert!(named.stdout.contains("correct"));

@@ -2,7 +2,7 @@
 //! oscillator's state at t = π/2 against cos and sin, the double pendulum's energy error at
 //! 1e-10, the CSV grid, the text summary (snapshot), and every bad input as a one-line error.
 
-use crate::helpers::lagrange;
+use crate::helpers::{lagrange, mask_numbers, value_after};
 
 const DOUBLE_PENDULUM: &str = "(m1 + m2)/2*l1^2*theta1'^2 + m2/2*l2^2*theta2'^2 \
     + m2*l1*l2*theta1'*theta2'*cos(theta1 - theta2) + (m1 + m2)*g*l1*cos(theta1) \
@@ -134,8 +134,7 @@ fn gauss_and_rk4_run_at_a_fixed_step() {
 
 #[test]
 fn out_writes_the_even_grid_with_h() {
-    let dir = std::env::temp_dir().join(format!("simcli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::helpers::scratch("simcli");
     let path = dir.join("run.csv");
     let (code, _, err) = lagrange(&[
         "simulate",
@@ -163,7 +162,6 @@ fn out_writes_the_even_grid_with_h() {
     assert_eq!(last[0], 2.0);
     assert!((last[1] - 2f64.cos()).abs() < 1e-9);
     assert!((last[3] - 0.5).abs() < 1e-9);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -184,16 +182,37 @@ fn the_text_summary() {
         "1.5",
     ]);
     assert_eq!(code, 0, "{err}");
-    // The drift's last digits are rounding: keep the summary's shape, not them.
-    let out: String = out
-        .lines()
-        .map(|l| match l.find("largest relative drift") {
-            Some(i) => format!("{}largest relative drift [small]", &l[..i]),
-            None => l.to_string(),
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    insta::assert_snapshot!(out);
+    // Physics, not digits: x = cos 2t, x' = −2 sin 2t, h = ½x'² + 2x² = 2 throughout.
+    let line = |start: &str| {
+        out.lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no `{start}` line in\n{out}"))
+    };
+    let (at, last) = (line("t = 1.5: "), line("Final: "));
+    for (l, t) in [(at, 1.5f64), (last, 3.0)] {
+        assert!(
+            (value_after(l, "x = ") - (2.0 * t).cos()).abs() < 1e-8,
+            "{l}"
+        );
+        assert!(
+            (value_after(l, "x' = ") + 2.0 * (2.0 * t).sin()).abs() < 1e-8,
+            "{l}"
+        );
+    }
+    let energy = line("Energy: ");
+    assert_eq!(value_after(energy, "h(0) = "), 2.0, "{energy}");
+    assert!(
+        (value_after(energy, "h(end) = ") - 2.0).abs() < 2e-9,
+        "{energy}"
+    );
+    assert!(value_after(energy, "drift ") < 1e-9, "{energy}");
+    // Adaptive steps: some taken, every one costing right-hand-side evaluations.
+    let steps = line("Steps: ");
+    let accepted = value_after(steps, "Steps: ");
+    let evaluations = value_after(steps, "rejected, ");
+    assert!(accepted >= 1.0 && evaluations > accepted, "{steps}");
+    // The wording and layout, numbers masked.
+    insta::assert_snapshot!(mask_numbers(&out));
 }
 
 #[test]

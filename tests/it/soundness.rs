@@ -311,7 +311,7 @@ fn wrong_answer(
 
 proptest::proptest! {
     #![proptest_config(proptest::test_runner::Config {
-        // LAGRANGE_SOUNDNESS_CASES=N runs a longer search (the README's fuzzing section).
+        // LAGRANGE_SOUNDNESS_CASES=N runs a longer search (docs/development.md, Fuzzing).
         cases: std::env::var("LAGRANGE_SOUNDNESS_CASES")
             .ok()
             .and_then(|n| n.parse().ok())

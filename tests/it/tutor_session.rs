@@ -228,7 +228,7 @@ fn follow_through_in_the_session_from_a_wrong_lagrangian_to_its_eom() {
 }
 
 /// A wrong L and the EOM that follows from it, per bank problem with a `lagrangian` part (as
-/// in `follow.rs`), answered through the session.
+/// in `follow_through.rs`), answered through the session.
 const WRONG_L: &[(&str, &str, &str)] = &[
     (
         "atwood",

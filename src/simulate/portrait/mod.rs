@@ -3,7 +3,7 @@
 //! coordinate's range, each with the velocity that gives it its energy, so that one picture
 //! shows the librations, the separatrix and (for an angle) the rotations both ways.
 //!
-//! Choices (documented in `lagrange simulate --help` and the README):
+//! Choices (documented in `lagrange simulate --help` and docs/simulation.md):
 //! - the start is the lowest point q* of V over the coordinate's range (one period [a, a + 2π)
 //!   for an angle), found on a grid and refined by golden-section search — not `--init`,
 //!   because from q* every energy above V(q*) is reachable;

@@ -3,8 +3,6 @@
 //! tolerance; the lane evaluator against the scalar one on every bank system; PNG files by
 //! their signature and size; the errors by exit code and message.
 
-use std::path::PathBuf;
-
 use crate::helpers::lagrange;
 use lagrange::mechanics::System;
 use lagrange::mechanics::accel::Dynamics;
@@ -13,11 +11,8 @@ use lagrange::simulate::{Rhs, Tolerances, dop853};
 const DP_PARAMS: &str = "m1=1, m2=1, l1=1, l2=1, g=9.81";
 use lagrange::mechanics::fixtures::{DOUBLE_PENDULUM as DP, DOUBLE_PENDULUM_ANCHOR};
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lagrange-grid-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> crate::helpers::Scratch {
+    crate::helpers::scratch(&format!("grid-{name}"))
 }
 
 /// The first time |θ₁| or |θ₂| reaches π, from a DOP853 run at rtol = atol = 1e-12: the

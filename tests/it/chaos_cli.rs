@@ -1,10 +1,8 @@
 //! Issue 14, item 5: `lagrange chaos` on the command line — the JSON's fields and its
 //! physics at 2 rad and 0.2 rad (short runs; the library's tests hold the long ones), every
-//! bad input as a one-line error, and the README's pictures as their commands draw them.
+//! bad input as a one-line error, and the exponent behind the documented picture.
 
-use std::path::{Path, PathBuf};
-
-use crate::helpers::lagrange;
+use crate::helpers::{lagrange, mask_numbers, value_after};
 
 const DP_PARAMS: &str = "m1=1, m2=1, l1=1, l2=1, g=9.81";
 
@@ -154,55 +152,17 @@ fn bad_input_is_a_one_line_error() {
     assert!(line.contains("more than a tenth of --t-end"), "{line}");
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lagrange-chaos-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// The README's commands draw the committed `docs/chaos.svg` and `docs/poincare.svg`.
+/// The run behind the docs' `docs/chaos.svg` (the double pendulum from 2 rad for 1000 s):
+/// its estimate is the λ ≈ 1.3 s⁻¹ the caption states, within the spread of runs of that
+/// length (1.29 … 1.37 across tolerances and deltas). The picture itself is drawn by the
+/// documented command in `docs_commands.rs`; a chaotic run's bytes are not reproducible
+/// across machines, its exponent is.
 #[test]
-fn the_readme_pictures_are_what_their_commands_draw() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let d = dir("readme");
-    let runs: [(&str, &[&str], &str); 2] = [
-        (
-            "chaos.svg",
-            &["--init", "theta1=2, theta2=2", "--t-end", "1000", "--plot"],
-            "--t-end 1000 --plot docs/chaos.svg",
-        ),
-        (
-            "poincare.svg",
-            &[
-                "--init",
-                "theta1=1, theta2=1",
-                "--t-end",
-                "100",
-                "--crossings",
-                "100",
-                "--poincare",
-            ],
-            "--t-end 100 --crossings 100 --poincare docs/poincare.svg",
-        ),
-    ];
-    for (name, args, in_readme) in runs {
-        assert!(readme.contains(in_readme), "{in_readme}");
-        let fresh = d.join(name);
-        let mut args = args.to_vec();
-        args.push(fresh.to_str().unwrap());
-        let (code, _, err) = chaos(&args);
-        assert_eq!(code, 0, "{err}");
-        let fresh = std::fs::read_to_string(&fresh).unwrap();
-        assert!(fresh.trim_end().ends_with("</svg>"));
-        let committed = std::fs::read_to_string(root.join("docs").join(name)).unwrap();
-        assert!(
-            fresh == committed,
-            "docs/{name} is stale: rerun the README's command"
-        );
-    }
-    let _ = std::fs::remove_dir_all(&d);
+fn the_documented_chaos_run_settles_near_its_exponent() {
+    let v = json(&["--init", "theta1=2, theta2=2", "--t-end", "1000"]);
+    let l = v["exponent"].as_f64().unwrap();
+    assert!((1.25..=1.45).contains(&l), "λ = {l}");
+    assert_eq!(v["verdict"], "chaotic");
 }
 
 #[test]
@@ -220,7 +180,25 @@ fn the_text_summary() {
         "never",
     ]);
     assert_eq!(code, 0, "{err}");
-    insta::assert_snapshot!(out);
+    // Regular motion (0.2 rad): the estimate falls like ln(t)/t and the neighbours stay close.
+    let line = |start: &str| {
+        out.lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no `{start}` line in\n{out}"))
+    };
+    let lambda = value_after(line("Largest Lyapunov exponent: "), "λ ≈ ");
+    assert!(lambda > 0.0 && lambda < 100f64.ln() / 100.0, "{out}");
+    let running = line("Running estimate: ");
+    let estimates: Vec<f64> = ["t = 1: ", "t = 10: ", "t = 34: ", "t = 100: "]
+        .iter()
+        .map(|k| value_after(running, k))
+        .collect();
+    assert!(estimates.windows(2).all(|w| w[1] < w[0]), "{running}");
+    let separation = line("Separation: ");
+    assert!(value_after(separation, "at most ") < 1e-7, "{separation}");
+    assert!(line("Meaning: ").contains("falling towards 0"), "{out}");
+    // The wording and layout, numbers masked.
+    insta::assert_snapshot!(mask_numbers(&out));
 }
 
 /// Hostile inputs: a positive exponent that is not chaos is named for what it is — one

@@ -198,20 +198,53 @@ proptest! {
 
 #[test]
 fn hostile_inputs_are_refused_not_crashed() {
-    let mut pool = Pool::new();
+    // Too long or too deep: refused with the bound named, in process (a typed error) and by
+    // `lagrange read` (exit 1, the documented "could not be read", and the message first).
     let deep = "(".repeat(100_000);
     let powers = "2^".repeat(5000) + "2";
     let negs = "-".repeat(50_000) + "x";
-    let huge_exp = "2^2^2^2^2^2^2^2";
-    for s in [
-        deep.as_str(),
-        powers.as_str(),
-        negs.as_str(),
-        huge_exp,
-        "9^9^9^9",
-        "(x+1)^100000",
-    ] {
-        let _ = read(s, &Context::open(), &mut pool);
+    let refused = [
+        (
+            deep.as_str(),
+            "too-long",
+            "the input is 100000 bytes long; at most 20000 are read",
+        ),
+        (
+            powers.as_str(),
+            "too-deep",
+            "the expression is nested more than 100 levels deep",
+        ),
+        (
+            negs.as_str(),
+            "too-long",
+            "the input is 50001 bytes long; at most 20000 are read",
+        ),
+    ];
+    for (input, code, message) in refused {
+        let mut pool = Pool::new();
+        match read(input, &Context::open(), &mut pool) {
+            Ok(_) => panic!("{code}: an input of {} bytes was read", input.len()),
+            Err(e) => assert_eq!(e.kind.code(), code, "{e}"),
+        }
+        let (exit, out, err) = crate::helpers::lagrange(&["read", "--", input]);
+        assert_eq!(exit, 1, "{code}: {out}{err}");
+        let first = err.lines().next().unwrap_or_default();
+        assert_eq!(first, format!("[{code}] Error: {message}"), "{err}");
+        assert!(out.is_empty(), "{out}");
+    }
+    // Huge exponents are exact expressions, not overflows: read as written (never evaluated
+    // to a number), and printed back.
+    let read_as = [
+        ("2^2^2^2^2^2^2^2", "2^2^2^2^65536"),
+        ("9^9^9^9", "9^9^387420489"),
+        ("(x+1)^100000", "(x + 1)^100000"),
+    ];
+    for (input, plain) in read_as {
+        let mut pool = Pool::new();
+        assert!(read(input, &Context::open(), &mut pool).is_ok(), "{input}");
+        let (exit, out, err) = crate::helpers::lagrange(&["read", "--", input]);
+        assert_eq!(exit, 0, "{input}: {err}");
+        assert!(out.starts_with(&format!("read as: {plain}\n")), "{out}");
     }
 }
 

@@ -221,11 +221,11 @@ fn a_large_lagrangian_is_read_from_a_file() {
     // Over the 20 kB limit of answers: a derivation's input may be larger.
     let text = format!("1/2*m*x'^2 - 1/2*k*x^2{}", " + 0*x".repeat(4_000));
     assert!(text.len() > 20_000);
-    let path = std::env::temp_dir().join(format!("lagrange-energy13-{}.txt", std::process::id()));
+    let dir = crate::helpers::scratch("large-l");
+    let path = dir.join("lagrangian.txt");
     std::fs::write(&path, &text).unwrap();
     let arg = format!("@{}", path.display());
     let v = json(&["derive", "-L", &arg, "-q", "x", "--json"]);
-    std::fs::remove_file(&path).ok();
     assert_eq!(v["equations"][0], "m*x'' + k*x");
     let err = error_code(&["derive", "-L", "@/nonexistent/lagrange-l.txt", "-q", "x"]);
     assert!(err.contains("cannot read the file"), "{err}");
