@@ -24,6 +24,7 @@ pub mod chaos;
 mod constraint_watch;
 pub mod derivation;
 pub mod derivation_at;
+pub mod flip_map;
 pub mod formula;
 pub mod modes;
 pub mod portrait;
