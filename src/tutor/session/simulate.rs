@@ -93,8 +93,16 @@ fn options(args: &str, defaults: &SimulationDefaults) -> Result<SimulationOption
         return Err(format!("`{head}` is not a flag: {USAGE}"));
     }
     for piece in pieces {
-        let (flag, value) = piece.split_once(char::is_whitespace).unwrap_or((piece, ""));
-        let value = value.trim().trim_matches('"').trim();
+        // The command line's grammar (clap's): `--flag value` or `--flag=value`, the value
+        // optionally quoted.
+        let (flag, value) = piece
+            .split_once(|c: char| c.is_whitespace() || c == '=')
+            .unwrap_or((piece, ""));
+        let value = value.trim();
+        let value = (value.strip_prefix('"').and_then(|v| v.strip_suffix('"')))
+            .or_else(|| value.strip_prefix('\'').and_then(|v| v.strip_suffix('\'')))
+            .unwrap_or(value)
+            .trim();
         match flag {
             "init" => init = Some(numbers("--init", value)?),
             "params" => params = numbers("--params", value)?,
@@ -143,6 +151,16 @@ mod tests {
         );
         let o = super::options("--init theta'=1 --t-end 2", &d).unwrap();
         assert_eq!((o.init, o.t_end), (vec![("theta'".into(), 1.0)], 2.0));
+    }
+
+    #[test]
+    fn flags_take_the_command_lines_grammar() {
+        // `--flag=value` as clap reads it, and single or double quotes.
+        let a = options("--t-end=5 --init=theta=1, theta'=0 --params 'm=2, g=9.81'").unwrap();
+        let b = options("--t-end 5 --init \"theta=1, theta'=0\" --params m=2, g=9.81").unwrap();
+        assert_eq!((a.t_end, &a.init, &a.params), (5.0, &b.init, &b.params));
+        assert_eq!(a.init[0], ("theta".to_string(), 1.0));
+        assert!(options("--t-end=-1").is_err());
     }
 
     #[test]
