@@ -105,6 +105,7 @@ test('simple-pendulum: a wrong answer gets its diagnosis, the right one moves on
   const codes = await page.locator('#feedback .diagnoses code.code').allInnerTexts();
   assert.deepEqual(codes, ['dimension', 'wrong-factor']);
   assert.match(await page.locator('#feedback .diagnoses').innerText(), /the factor l is wrong/);
+  assert.equal(await page.locator('#feedback .reading .katex').count(), 1, 'the reading is typeset');
   await shot('02-wrong-answer');
 
   await enter("1/2*m*l^2*theta'^2");
@@ -201,6 +202,15 @@ test('problem files: a broken one shows its finding and line, a good one is prac
   await openProblem('my-pendulum');
   await enter("1/2*m*l^2*theta'^2");
   assert.equal(await page.locator('#feedback .verdict').getAttribute('data-status'), 'correct');
+  // Follow-through: an EOM that follows from the student's own wrong L says so.
+  await page.click('#parts li:nth-child(3) button');
+  await enter("1/2*m*l^2*theta'^2 - m*g*l*cos(theta)");
+  assert.equal(await page.locator('#feedback .verdict').getAttribute('data-status'), 'incorrect');
+  await page.click('#parts li:nth-child(5) button');
+  await enter("m*l^2*theta'' - m*g*l*sin(theta) = 0");
+  assert.deepEqual(await page.locator('#feedback .diagnoses code.code').allInnerTexts(), ['follows-from-earlier', 'sign-error']);
+  assert.match(await page.innerText('#feedback .diagnoses'), /follows correctly from your Lagrangian; the mistake is in L/);
+  await shot('08b-follow-through');
   // Bad input is a positioned error, never an attempt.
   await enter("1/2*m*(l*theta'^2");
   assert.equal(await page.locator('#feedback .verdict, #feedback .error').first().getAttribute('class').then((c) => /warn/.test(c)), true);

@@ -85,16 +85,28 @@ impl Engine {
 
     /// Answers one line as the REPL's `--json` protocol does: one JSON object, its further
     /// responses in `"more"`. A simulation adds `series` (its even grid), an analysis `text`
-    /// (and `latex` for `:read` and `:derive`), an unreadable answer `error_span`.
+    /// (and `latex` for `:read` and `:derive`), a verdict `reading_tex` (or, unreadable,
+    /// `error_span`), and a statement, part or hint the file's own `$…$` text (`*_tex`).
     pub fn handle(&mut self, line: &str) -> String {
         let responses = match too_long(line) {
             Some(message) => vec![Response::error("too-long", message, None)],
             None => self.session.handle(line),
         };
+        // A verdict's reading typeset: the line read as the preview reads it (same problem).
+        let judged = responses
+            .iter()
+            .any(|r| matches!(r, Response::Verdict(_) | Response::StepVerdict(_)));
+        let reading_tex = judged
+            .then(|| reading(line, &self.read_options()).ok())
+            .flatten()
+            .map(|r| r.forms.latex);
         let bank = self.session.bank();
         let value = json_object(&responses, |r, map| {
             extend(r, map, line);
             with_tex(r, map, bank);
+            if let (Response::Verdict(_) | Response::StepVerdict(_), Some(t)) = (r, &reading_tex) {
+                map.insert("reading_tex".into(), json!(t));
+            }
         })
         .unwrap_or_else(|e| json!({"kind": "error", "code": "internal", "message": e.to_string()}));
         value.to_string()

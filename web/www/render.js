@@ -48,7 +48,13 @@ function verdict(r, line) {
       h('strong', {}, s.word), ` — ${where}`,
       r.score > 0 && r.score < 1 ? ` (score ${Math.round(r.score * 100)}%)` : '',
       r.attempts ? `, attempt ${r.attempts}` : ''));
-  if (r.reading && r.reading.unicode) box.append(h('p', { class: 'reading' }, 'Read as: ', h('span', { class: 'unicode' }, r.reading.unicode)));
+  if (r.reading_tex) {
+    const m = h('span', { class: 'math' });
+    tex(m, r.reading_tex);
+    box.append(h('p', { class: 'reading' }, 'Read as: ', m));
+  } else if (r.reading && r.reading.unicode) {
+    box.append(h('p', { class: 'reading' }, 'Read as: ', h('span', { class: 'unicode' }, r.reading.unicode)));
+  }
   if (r.error_span && line) box.append(h('p', {}, marked(line, r.error_span[0], r.error_span[1])));
   const d = diagnoses(r.diagnoses);
   if (d) box.append(d);
@@ -78,7 +84,7 @@ export function response(r, line, ui) {
       const box = verdict(r, line);
       if (r.next) {
         ui.step(r.next);
-        box.append(h('p', { class: 'next' }, 'Next: ', stepPrompt(r.next)));
+        box.append(h('div', { class: 'next' }, h('p', {}, 'Next:'), stepPrompt(r.next)));
       } else if (r.step && r.next === null) {
         ui.step(null);
         box.append(h('p', { class: 'next' }, 'That was the last step: the derivation is complete.'));
@@ -120,7 +126,7 @@ export function response(r, line, ui) {
     case 'step-solution': {
       ui.step(r.next);
       const box = simple('solution', h('p', {}, h('strong', {}, `Step ${r.number} (${r.step}): `), h('span', { class: 'unicode' }, r.unicode || r.answer)));
-      box.append(r.next ? h('p', {}, 'Next: ', stepPrompt(r.next)) : h('p', {}, 'That was the last step.'));
+      box.append(r.next ? h('div', { class: 'next' }, h('p', {}, 'Next:'), stepPrompt(r.next)) : h('p', {}, 'That was the last step.'));
       return box;
     }
     case 'problems':
