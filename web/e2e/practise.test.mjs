@@ -288,6 +288,24 @@ test('the live preview keeps up with typing a 200-character line', async () => {
   assert.equal(await page.locator('#preview .katex').count(), 1);
 });
 
+test('progress exports and imports as the REPL\'s progress.json', async () => {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export')]);
+  assert.equal(download.suggestedFilename(), 'progress.json');
+  const exported = await readFile(await download.path(), 'utf8');
+  const json = JSON.parse(exported);
+  assert.equal(json.version, 1);
+  assert.equal(json.problems['simple-pendulum'].parts.kinetic.solved, true);
+  const before = await page.textContent('#summary');
+  const file = (name, text) => ({ name, mimeType: 'application/json', buffer: Buffer.from(text) });
+  await page.setInputFiles('#import-input', [file('bad.json', '{"version": 1, "problems": 3')]);
+  await page.waitForFunction(() => /Not imported/.test(document.querySelector('#progress-note').textContent));
+  assert.equal(await page.textContent('#summary'), before, 'a bad file changes nothing');
+  await page.setInputFiles('#import-input', [file('empty.json', '{"version": 1, "problems": {}}')]);
+  await page.waitForFunction(() => /^0 of /.test(document.querySelector('#summary').textContent));
+  await page.setInputFiles('#import-input', [file('progress.json', exported)]);
+  await page.waitForFunction((b) => document.querySelector('#summary').textContent === b, before);
+});
+
 test('one column at 360 px, labelled controls, live verdicts', async () => {
   await page.setViewportSize({ width: 360, height: 780 });
   await openProblem('simple-pendulum');
