@@ -211,6 +211,9 @@ test('problem files: a broken one shows its finding and line, a good one is prac
   assert.deepEqual(await page.locator('#feedback .diagnoses code.code').allInnerTexts(), ['follows-from-earlier', 'sign-error']);
   assert.match(await page.innerText('#feedback .diagnoses'), /follows correctly from your Lagrangian; the mistake is in L/);
   await shot('08b-follow-through');
+  await page.click('button[data-line=":solution"]');
+  await page.waitForSelector('#feedback .solution');
+  assert.match(await page.innerText('#feedback .solution'), /Solution of eom: m·l²·θ̈ \+ m·g·l·sin\(θ\) = 0/);
   // Bad input is a positioned error, never an attempt.
   await enter("1/2*m*(l*theta'^2");
   assert.equal(await page.locator('#feedback .verdict, #feedback .error').first().getAttribute('class').then((c) => /warn/.test(c)), true);

@@ -233,7 +233,7 @@ function preview() {
   if (r.kind === 'reading') {
     const m = h('span', { class: 'math' });
     tex(m, r.latex);
-    const dim = r.dimension && r.dimension.known ? h('span', { class: 'dim' }, ` dimension ${r.dimension.known}`) : null;
+    const dim = r.dimension && r.dimension.known ? h('span', { class: 'dim' }, ` — dimension ${r.dimension.known}`) : null;
     els.preview.replaceChildren(h('span', { class: 'label' }, 'Read as '), m, dim);
   } else if (r.kind === 'error') {
     els.preview.replaceChildren(h('span', { class: 'icon warn', 'aria-hidden': 'true' }, '⚠ '), marked(line, r.start, r.end), ' ', r.message, r.help ? ` — ${r.help}` : '');
