@@ -222,7 +222,7 @@ impl Engine {
 }
 
 impl Engine {
-    /// The session's bank, read-only (for tests and host tools).
+    /// The session, read-only (for tests and host tools).
     pub fn session(&self) -> &Session {
         &self.session
     }
