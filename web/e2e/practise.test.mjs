@@ -83,6 +83,20 @@ test('the page loads, lists the bank and shows no progress yet', async () => {
   await shot('01-problem-list');
 });
 
+test('every bank problem opens with its statement and prompts typeset without a KaTeX error', async () => {
+  const ids = await page.locator('#problem-list button[data-id]').evaluateAll((bs) => bs.map((b) => b.dataset.id));
+  for (const id of ids) {
+    await openProblem(id);
+    const parts = await page.textContent(`#problem-list button[data-id="${id}"] .count`);
+    assert.equal(`0/${await page.locator('#parts li').count()}`, parts, id);
+    assert.equal(await page.locator('.katex-error').count(), 0, `${id}: every formula typesets`);
+    assert.match(await page.textContent('#prompt-title'), /^Part 1 of \d+ — /, id);
+  }
+  await page.evaluate(() => localStorage.removeItem('lagrange.open'));
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+});
+
 test('simple-pendulum: a wrong answer gets its diagnosis, the right one moves on', async () => {
   await openProblem('simple-pendulum');
   assert.equal(await page.textContent('#problem-title'), 'Simple pendulum');
