@@ -86,24 +86,8 @@ impl Output {
     }
 }
 
-/// One JSON object for one input line: the first response, with any others in `"more"`.
-/// A line that gives no response (a blank line) gives `{"kind":"none"}`.
-pub fn json_line(responses: &[Response]) -> serde_json::Result<String> {
-    let Some((first, rest)) = responses.split_first() else {
-        return Ok(r#"{"kind":"none"}"#.to_string());
-    };
-    let mut value = serde_json::to_value(first)?;
-    if !rest.is_empty()
-        && let serde_json::Value::Object(map) = &mut value
-    {
-        let more = rest
-            .iter()
-            .map(serde_json::to_value)
-            .collect::<serde_json::Result<Vec<_>>>()?;
-        map.insert("more".into(), serde_json::Value::Array(more));
-    }
-    serde_json::to_string(&value)
-}
+// One JSON object per input line: built by the library, shared with the browser face.
+pub use lagrange::tutor::response::json_line;
 
 /// Runs the REPL until `:quit`, Ctrl-D or the end of input.
 pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {

@@ -378,6 +378,43 @@ impl Response {
     }
 }
 
+/// One JSON object for one input line, as the REPL's `--json` protocol writes it
+/// (docs/repl-protocol.md): the first response, with any others in `"more"`; a line that gives
+/// no response (a blank line) gives `{"kind":"none"}`. `extend` may add fields to each
+/// response's object (a browser face adds the drawing data a simulation skips), so every face
+/// builds the same shape from this one place.
+pub fn json_object(
+    responses: &[Response],
+    mut extend: impl FnMut(&Response, &mut serde_json::Map<String, serde_json::Value>),
+) -> serde_json::Result<serde_json::Value> {
+    let mut object = |r: &Response| {
+        let mut value = serde_json::to_value(r)?;
+        if let serde_json::Value::Object(map) = &mut value {
+            extend(r, map);
+        }
+        Ok::<_, serde_json::Error>(value)
+    };
+    let Some((first, rest)) = responses.split_first() else {
+        return Ok(serde_json::json!({"kind": "none"}));
+    };
+    let mut value = object(first)?;
+    if !rest.is_empty()
+        && let serde_json::Value::Object(map) = &mut value
+    {
+        let more = rest
+            .iter()
+            .map(&mut object)
+            .collect::<serde_json::Result<Vec<_>>>()?;
+        map.insert("more".into(), serde_json::Value::Array(more));
+    }
+    Ok(value)
+}
+
+/// [`json_object`] as one line of text, with nothing added: what `lagrange repl --json` prints.
+pub fn json_line(responses: &[Response]) -> serde_json::Result<String> {
+    serde_json::to_string(&json_object(responses, |_, _| {})?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
