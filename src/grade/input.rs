@@ -217,8 +217,9 @@ enum Layout {
 
 /// Parses a whole class file. Only an unusable header (or none) is an error; every other
 /// problem is recorded on the row it concerns.
-pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
+pub fn parse(bytes: &[u8], phases: &mut super::phases::Phases) -> Result<Table, BadFile> {
     let decoded = super::decode::decode(bytes).map_err(BadFile)?;
+    phases.end("decode");
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
@@ -243,6 +244,7 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
         .par_windows(2)
         .map(|w| read_piece(&decoded, (w[0], w[1]), &layout, width))
         .collect::<Result<Vec<Builder>, BadFile>>()?;
+    phases.end("pieces");
     let mut b = Builder::default();
     b.rows.reserve(pieces.iter().map(|p| p.rows.len()).sum());
     for p in pieces {
@@ -433,7 +435,10 @@ mod tests {
 
     #[test]
     fn headers_ignore_case_spaces_and_a_byte_order_mark() {
-        let t = parse("\u{feff} Student ,PROBLEM, Part,Answer,extra\na,p,q,x,y\n".as_bytes());
+        let t = parse(
+            "\u{feff} Student ,PROBLEM, Part,Answer,extra\na,p,q,x,y\n".as_bytes(),
+            &mut Default::default(),
+        );
         let t = t.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Long);
         assert_eq!(t.rows[0].line, 2);
@@ -443,7 +448,7 @@ mod tests {
 
     #[test]
     fn wide_rows_are_the_non_empty_cells() {
-        let t = parse(b"student,a/b,c/d\ns1,x,\ns2,,y\n").map_err(|e| e.0);
+        let t = parse(b"student,a/b,c/d\ns1,x,\ns2,,y\n", &mut Default::default()).map_err(|e| e.0);
         let t = t.unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Wide);
         let got: Vec<(u32, &str, &str)> = t
@@ -478,7 +483,7 @@ mod tests {
             }
         }
         assert!(csv.len() > 2 * super::super::decode::CUT_BYTES);
-        let t = parse(csv.as_bytes()).map_err(|e| e.0);
+        let t = parse(csv.as_bytes(), &mut Default::default()).map_err(|e| e.0);
         let t = t.unwrap_or_else(|e| panic!("{e}"));
         let lines: Vec<u32> = t.rows.iter().map(|r| r.line).collect();
         assert_eq!(lines, want);
@@ -494,7 +499,7 @@ mod tests {
 
     #[test]
     fn a_header_of_neither_format_names_the_expected_columns() {
-        let e = parse(b"name,score\n")
+        let e = parse(b"name,score\n", &mut Default::default())
             .err()
             .map(|e| e.0)
             .unwrap_or_default();

@@ -12,6 +12,7 @@ mod input;
 mod intern;
 mod judge;
 mod output;
+mod phases;
 mod summary;
 
 use std::io::Read;
@@ -58,6 +59,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("error: {message}");
         return Ok(ExitCode::from(2));
     }
+    let mut phases = phases::Phases::from_env();
     let bytes = match read_input(&opts.input) {
         Ok(b) => b,
         Err(message) => {
@@ -65,8 +67,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("read");
     // The file's hash (one serial pass) beside the parallel reading.
-    let (table, hash) = rayon::join(|| input::parse(&bytes), || file_hash(&bytes));
+    let (table, hash) = rayon::join(|| input::parse(&bytes, &mut phases), || file_hash(&bytes));
     let table = match table {
         Ok(t) => t,
         Err(input::BadFile(message)) => {
@@ -74,6 +77,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("parse");
     let bank =
         crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
     let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
@@ -104,13 +108,15 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         best: opts.best,
     };
     let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
-    let judged = judge::judge(&table, &bank, settings, &mut bar);
+    phases.end("bank");
+    let judged = judge::judge(&table, &bank, settings, &mut bar, &mut phases);
     bar.finish();
     let judged = judged?;
     let mut summary = summary::summarise(&table, &judged, &bank);
     summary.run = run.clone();
+    phases.end("summary");
     let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
-    let results = |w: &mut dyn std::io::Write| output::results(w, &table, &judged, &run);
+    let results = |w: &mut (dyn std::io::Write + Send)| output::results(w, &table, &judged, &run);
     let mut files: Vec<(&str, Vec<u8>)> = vec![("gradebook.csv", output::gradebook_csv(&book)?)];
     if let Some(lms) = opts.lms {
         let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
@@ -118,13 +124,15 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     }
     files.push(("summary.md", summary::markdown(&summary).into_bytes()));
     files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
-    let written = match write_outputs(&dir, &names, results, files) {
+    phases.end("gradebook");
+    let written = match write_outputs(&dir, &names, results, files, &mut phases) {
         Ok(w) => w,
         Err(message) => {
             eprintln!("error: {message}");
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("rename");
     let text = if opts.json {
         output::summary_json(&summary)?
     } else {
@@ -268,14 +276,17 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
 fn write_outputs(
     dir: &Path,
     names: &[&str],
-    mut results: impl FnMut(&mut dyn std::io::Write) -> std::io::Result<()>,
+    mut results: impl FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()>,
     files: Vec<(&str, Vec<u8>)>,
+    phases: &mut phases::Phases,
 ) -> Result<Vec<PathBuf>, String> {
     let folder = crate::outfile::Folder::open(dir, names)?;
     let mut staged = vec![folder.stage_with("results.csv", &mut results)?];
+    phases.end("results.csv");
     for (name, bytes) in &files {
         staged.push(folder.stage(name, bytes)?);
     }
+    phases.end("other files");
     crate::outfile::commit(staged)
 }
 
