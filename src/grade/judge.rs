@@ -60,7 +60,8 @@ pub struct Rep {
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
-    /// The verdict, or why the part could not be checked.
+    /// The verdict ([`slim`]: what grading reads of it), or why the part could not be
+    /// checked.
     pub verdict: Result<Verdict, String>,
     /// Equal for answers equal at the sample points: the summary's grouping key.
     pub fingerprint: Option<String>,
@@ -203,7 +204,7 @@ pub fn judge(
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
             .flatten();
-        (verdict, fingerprint)
+        (verdict.map(slim), fingerprint)
     });
     if bar.stopped() {
         return Err(Interrupted);
@@ -252,6 +253,27 @@ pub fn judge(
     mark_counted(rows, &mut judged, table.students.len(), settings.best);
     phases.end("counted");
     Ok(judged)
+}
+
+/// A verdict with only what grading reads of it: the status, the score, every code, the
+/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer) and
+/// the Unicode reading (the summary). Kept for every representative until the summary is
+/// made, so a class of all-different answers keeps no other message or reading.
+fn slim(mut v: Verdict) -> Verdict {
+    v.problem = String::new();
+    v.part = String::new();
+    v.reading.plain = String::new();
+    v.reading.note = None;
+    v.reading.unicode.shrink_to_fit();
+    v.parse_error = None;
+    for d in v.diagnoses.iter_mut().skip(1) {
+        d.message = String::new();
+    }
+    if let Some(d) = v.diagnoses.first_mut() {
+        d.message.shrink_to_fit();
+    }
+    v.diagnoses.shrink_to_fit();
+    v
 }
 
 /// The outcome of a row that is not checked.

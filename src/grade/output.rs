@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use lagrange::bank::Bank;
 
 use super::input::{Row, Table};
-use super::judge::Judged;
+use super::judge::{Judged, Outcome};
 use super::summary::{Summary, num, students};
 
 /// The learning-management systems an import file can be written for.
@@ -70,7 +70,7 @@ fn csv_bytes(
 /// Rows per chunk formatted by one worker; a round of chunks (two per thread) is formatted
 /// while the previous round is written, so memory stays bounded by two rounds whatever the
 /// number of rows.
-const BATCH: usize = 8 * 1024;
+const BATCH: usize = 2 * 1024;
 
 /// Whether the csv crate's writer (`QuoteStyle::Necessary`, `\n` records) quotes a field: it
 /// holds the delimiter, a quote or a line break.
@@ -141,25 +141,34 @@ pub fn results(
         "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
     ];
     out.write_all(&csv_bytes(&header, std::iter::empty()).map_err(std::io::Error::other)?)?;
-    // What an outcome writes after the answer, formatted once: status, score, codes,
-    // message, run and the line's end.
-    let tails: Vec<Vec<u8>> = (judged.outcomes.par_iter())
-        .map(|o| {
-            let mut t = Vec::with_capacity(o.message.len() + 48);
-            t.push(b',');
-            push_plain(&mut t, o.status.name());
-            t.push(b',');
-            push_plain(&mut t, &num(o.score));
-            t.push(b',');
-            push_plain(&mut t, &o.codes.join(";"));
-            t.push(b',');
-            push_cell(&mut t, &o.message);
-            t.push(b',');
-            push_plain(&mut t, run);
-            t.push(b'\n');
-            t
-        })
-        .collect();
+    // What an outcome writes after the answer: status, score, codes, message, run and the
+    // line's end. Formatted once per outcome when rows share outcomes; when nearly every row
+    // has its own (all-different answers), formatted per row instead of kept.
+    let tail = |o: &Outcome, t: &mut Vec<u8>| {
+        t.push(b',');
+        push_plain(t, o.status.name());
+        t.push(b',');
+        push_plain(t, &num(o.score));
+        t.push(b',');
+        push_plain(t, &o.codes.join(";"));
+        t.push(b',');
+        push_cell(t, &o.message);
+        t.push(b',');
+        push_plain(t, run);
+        t.push(b'\n');
+    };
+    let shared = judged.outcomes.len() * 4 <= table.rows.len();
+    let tails: Vec<Vec<u8>> = if shared {
+        (judged.outcomes.par_iter())
+            .map(|o| {
+                let mut t = Vec::with_capacity(o.message.len() + 48);
+                tail(o, &mut t);
+                t
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     let format = |chunk: &[Row], first: usize| {
         let mut w = Vec::with_capacity(chunk.len() * 128);
         for (k, r) in chunk.iter().enumerate() {
@@ -172,7 +181,11 @@ pub fn results(
             push_cell(&mut w, table.part(r));
             w.push(b',');
             push_cell(&mut w, table.answer(r));
-            w.extend_from_slice(&tails[judged.rows[first + k].outcome as usize]);
+            let o = judged.rows[first + k].outcome as usize;
+            match tails.get(o) {
+                Some(t) => w.extend_from_slice(t),
+                None => tail(&judged.outcomes[o], &mut w),
+            }
         }
         w
     };

@@ -84,10 +84,6 @@ pub struct Group {
     pub diagnosis: String,
     /// Up to two spellings as typed, most common first.
     pub examples: Vec<String>,
-    /// The reading and spellings uncut: ties in the order are broken by the full text, never
-    /// by the cut one.
-    #[serde(skip)]
-    full: (String, Vec<String>),
 }
 
 /// A group being counted: rows per representative and per spelling.
@@ -108,15 +104,15 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative, interned: a group is (part, status, meaning).
-    let mut meanings: FxHashMap<String, usize> = FxHashMap::default();
+    let mut meanings: FxHashMap<std::borrow::Cow<str>, usize> = FxHashMap::default();
     let meaning: Vec<usize> = judged
         .reps
         .iter()
         .map(|r| {
-            let m = r
-                .fingerprint
-                .clone()
-                .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
+            let m = r.fingerprint.as_deref().map_or_else(
+                || format!("text:{}", r.answer.trim()).into(),
+                std::borrow::Cow::Borrowed,
+            );
             let n = meanings.len();
             *meanings.entry(m).or_insert(n)
         })
@@ -216,19 +212,22 @@ fn empty(points: f64) -> PartSummary {
     }
 }
 
-/// Turns the tallies into each part's sorted, truncated group list.
+/// Turns the tallies into each part's sorted, truncated group list. Groups are ordered by
+/// their counts and full text ([`Shown`]); only the listed ones are made whole (codes,
+/// diagnosis, cut spellings), so a class of all-different answers keeps no more than the
+/// text each is sorted by.
 fn add_groups(
     parts: &mut BTreeMap<String, PartSummary>,
     tallies: Vec<((String, Status, usize), Tally)>,
     table: &Table,
     judged: &Judged,
 ) {
-    let mut per_part: BTreeMap<String, Vec<Group>> = BTreeMap::new();
+    let mut per_part: BTreeMap<String, Vec<Shown>> = BTreeMap::new();
     for ((key, status, _), t) in tallies {
         per_part
             .entry(key)
             .or_default()
-            .push(group(status, &t, table, judged));
+            .push(shown(status, t, table, judged));
     }
     for (key, mut groups) in per_part {
         groups.sort_by(|a, b| {
@@ -236,25 +235,41 @@ fn add_groups(
                 .cmp(&a.students)
                 .then_with(|| b.count.cmp(&a.count))
                 .then_with(|| a.full.cmp(&b.full))
-                .then_with(|| a.status.cmp(&b.status))
+                .then_with(|| a.status.name().cmp(b.status.name()))
         });
-        let (mut wrong, mut unreadable): (Vec<Group>, Vec<Group>) =
-            groups.into_iter().partition(|g| g.status != "invalid");
-        let other = |g: &[Group]| g.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
-        let (other_wrong, other_unreadable) = (other(&wrong), other(&unreadable));
-        wrong.truncate(MAX_GROUPS);
-        unreadable.truncate(MAX_GROUPS);
+        let (wrong, unreadable): (Vec<Shown>, Vec<Shown>) = groups
+            .into_iter()
+            .partition(|g| g.status != Status::Invalid);
+        let other = |g: &[Shown]| g.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
+        let listed = |g: Vec<Shown>| -> Vec<Group> {
+            g.into_iter()
+                .take(MAX_GROUPS)
+                .map(|g| group(g, judged))
+                .collect()
+        };
         if let Some(s) = parts.get_mut(&key) {
-            s.wrong = wrong;
-            s.other_wrong = other_wrong;
-            s.unreadable = unreadable;
-            s.other_unreadable = other_unreadable;
+            s.other_wrong = other(&wrong);
+            s.other_unreadable = other(&unreadable);
+            s.wrong = listed(wrong);
+            s.unreadable = listed(unreadable);
         }
     }
 }
 
-/// One group: shown as its most common reading (ties: the smaller text).
-fn group(status: Status, t: &Tally, table: &Table, judged: &Judged) -> Group {
+/// A group as it is sorted: its counts, its most common reading (ties: the smaller text) and
+/// the representative giving it, and its spellings as typed (trimmed), most common first.
+struct Shown {
+    students: usize,
+    count: usize,
+    status: Status,
+    rep: Option<usize>,
+    /// The reading and spellings uncut: ties in the order are broken by the full text,
+    /// never by the cut one.
+    full: (String, Vec<String>),
+}
+
+/// How a tallied group is sorted and shown.
+fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
     let shown_of = |rep: usize| {
         let r = &judged.reps[rep];
         match &r.verdict {
@@ -269,29 +284,41 @@ fn group(status: Status, t: &Tally, table: &Table, judged: &Judged) -> Group {
         .collect();
     reps.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(&b.1)));
     let (answer, rep) = reps
-        .first()
-        .map(|(_, s, r)| (s.clone(), Some(*r)))
+        .into_iter()
+        .next()
+        .map(|(_, s, r)| (s, Some(r)))
         .unwrap_or_default();
-    let verdict = rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
     let mut by_text: FxHashMap<&str, usize> = FxHashMap::default();
     for (&a, &n) in &t.by_answer {
         *by_text.entry(table.answers.get(a).trim()).or_insert(0) += n;
     }
     let mut texts: Vec<(&str, usize)> = by_text.into_iter().collect();
     texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
-    Group {
+    Shown {
         students: t.students.len(),
         count: t.count,
-        status: status.name().to_string(),
-        answer: cut(&answer),
+        status,
+        rep,
+        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
+    }
+}
+
+/// One listed group: shown as its most common reading, with that reading's codes and first
+/// diagnosis and its two most common spellings.
+fn group(g: Shown, judged: &Judged) -> Group {
+    let verdict = g.rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
+    Group {
+        students: g.students,
+        count: g.count,
+        status: g.status.name().to_string(),
+        answer: cut(&g.full.0),
         codes: verdict.map_or(Vec::new(), |v| {
             v.diagnoses.iter().map(|d| d.code.to_string()).collect()
         }),
         diagnosis: verdict
             .and_then(|v| v.diagnoses.first())
             .map_or(String::new(), |d| d.message.clone()),
-        examples: texts.iter().take(2).map(|(s, _)| cut(s)).collect(),
-        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
+        examples: g.full.1.iter().take(2).map(|s| cut(s)).collect(),
     }
 }
 
