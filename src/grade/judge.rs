@@ -10,7 +10,7 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
@@ -76,7 +76,7 @@ pub struct Outcome {
     /// The verdict's score times the part's points (follow-through credit included).
     pub score: f64,
     /// The diagnosis codes, most specific first (`follows-from-earlier` leading).
-    pub codes: Vec<String>,
+    pub codes: Vec<Code>,
     /// The first diagnosis, or why the row is an error or unread.
     pub message: String,
     /// `(problem, part)` indices into the bank, for rows that name a real part.
@@ -379,7 +379,7 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Invalid => Status::Invalid,
             },
             v.score * points,
-            v.diagnoses.iter().map(|d| d.code.to_string()).collect(),
+            v.diagnoses.iter().map(|d| d.code).collect(),
             v.diagnoses
                 .first()
                 .map(|d| d.message.clone())
@@ -606,11 +606,11 @@ fn follow_through(
             if accepts(d) {
                 g.status = Status::Correct;
                 g.score = points;
-                g.codes = vec![d.code.to_string()];
+                g.codes = vec![d.code];
             } else {
                 // A list already partly right keeps the larger of its own score and the credit.
                 g.score = g.score.max(credit * points);
-                g.codes.insert(0, d.code.to_string());
+                g.codes.insert(0, d.code);
             }
             g.message = d.message.clone();
             Some(judged.add(g))

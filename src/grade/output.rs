@@ -150,7 +150,8 @@ pub fn results(
         t.push(b',');
         push_plain(t, &num(o.score));
         t.push(b',');
-        push_plain(t, &o.codes.join(";"));
+        let codes: Vec<&str> = o.codes.iter().map(|c| c.as_str()).collect();
+        push_plain(t, &codes.join(";"));
         t.push(b',');
         push_cell(t, &o.message);
         t.push(b',');

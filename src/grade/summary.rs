@@ -5,7 +5,8 @@
 
 use std::collections::BTreeMap;
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -86,14 +87,43 @@ pub struct Group {
     pub examples: Vec<String>,
 }
 
-/// A group being counted: rows per representative and per spelling.
-#[derive(Default)]
+/// A group of wrong answers: its part, its status and its meaning (an index).
+type GroupKey = ((usize, usize), Status, usize);
+
+/// A group counted: rows, distinct students, rows per representative and per spelling (an
+/// interned answer), each list sorted.
 struct Tally {
     count: usize,
-    students: FxHashSet<u32>,
-    by_rep: FxHashMap<usize, usize>,
-    /// Rows per answer as typed (an interned index).
-    by_answer: FxHashMap<u32, usize>,
+    students: usize,
+    by_rep: Vec<(usize, usize)>,
+    by_answer: Vec<(u32, usize)>,
+}
+
+/// Runs of equal values in a sorted list, with their lengths.
+fn runs<T: PartialEq + Copy>(sorted: impl IntoIterator<Item = T>) -> Vec<(T, usize)> {
+    let mut out: Vec<(T, usize)> = Vec::new();
+    for x in sorted {
+        match out.last_mut() {
+            Some((y, n)) if *y == x => *n += 1,
+            _ => out.push((x, 1)),
+        }
+    }
+    out
+}
+
+/// Counts each group from its rows' (student, representative, answer), sorted.
+fn tally(rows: &[(u32, u32, u32, u32)]) -> Tally {
+    let students = runs(rows.iter().map(|r| r.1)).len();
+    let mut reps: Vec<u32> = rows.iter().map(|r| r.2).collect();
+    reps.sort_unstable();
+    let mut answers: Vec<u32> = rows.iter().map(|r| r.3).collect();
+    answers.sort_unstable();
+    Tally {
+        count: rows.len(),
+        students,
+        by_rep: runs(reps.into_iter().map(|r| r as usize)),
+        by_answer: runs(answers),
+    }
 }
 
 /// The summary of a judged class: counted per outcome and per group, never per row's text.
@@ -117,7 +147,24 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
             *meanings.entry(m).or_insert(n)
         })
         .collect();
-    let mut tallies: FxHashMap<((usize, usize), Status, usize), Tally> = FxHashMap::default();
+    // Each outcome's group (wrong and unreadable answers only), numbered once.
+    let mut group_ids: FxHashMap<GroupKey, u32> = FxHashMap::default();
+    let mut groups: Vec<GroupKey> = Vec::new();
+    let group_of: Vec<u32> = (judged.outcomes.iter())
+        .map(|o| match (o.target, o.rep, o.status) {
+            (Some(t), Some(rep), Status::Incorrect | Status::Invalid) => *group_ids
+                .entry((t, o.status, meaning[rep]))
+                .or_insert_with(|| {
+                    groups.push((t, o.status, meaning[rep]));
+                    groups.len() as u32 - 1
+                }),
+            _ => u32::MAX,
+        })
+        .collect();
+    drop(group_ids);
+    // Per row of a group: (group, student, representative, answer), sorted in parallel and
+    // counted per group: no set or map per group.
+    let mut members: Vec<(u32, u32, u32, u32)> = Vec::new();
     for (i, (row, g)) in rows.iter().zip(&judged.rows).enumerate() {
         per_outcome[g.outcome as usize] += 1;
         let o = judged.outcome(i);
@@ -129,15 +176,17 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
                 .students += 1;
             *sums.entry((p, q)).or_insert(0.0) += o.score;
         }
-        let (Some(rep), Status::Incorrect | Status::Invalid) = (o.rep, o.status) else {
-            continue;
-        };
-        let t = tallies.entry(((p, q), o.status, meaning[rep])).or_default();
-        t.count += 1;
-        t.students.insert(row.student);
-        *t.by_rep.entry(rep).or_insert(0) += 1;
-        *t.by_answer.entry(row.answer).or_insert(0) += 1;
+        let group = group_of[g.outcome as usize];
+        if let (true, Some(rep)) = (group != u32::MAX, o.rep) {
+            members.push((group, row.student, rep as u32, row.answer));
+        }
     }
+    members.par_sort_unstable();
+    let tallies: Vec<(GroupKey, Tally)> = members
+        .par_chunk_by(|a, b| a.0 == b.0)
+        .map(|rows| (groups[rows[0].0 as usize], tally(rows)))
+        .collect();
+    drop(members);
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
     for (o, &n) in judged.outcomes.iter().zip(&per_outcome) {
@@ -146,7 +195,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
         *status.entry(o.status.name().to_string()).or_insert(0) += n;
         for c in &o.codes {
-            *codes.entry(c.clone()).or_insert(0) += n;
+            *codes.entry(c.to_string()).or_insert(0) += n;
         }
         let Some((p, q)) = o.target else { continue };
         let s = parts
@@ -177,7 +226,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         parts.into_iter().map(|(t, s)| (key(t), s)).collect();
     let tallies = tallies
         .into_iter()
-        .map(|((t, status, m), tally)| ((key(t), status, m), tally))
+        .map(|((t, status, _), tally)| ((key(t), status), tally))
         .collect();
     add_groups(&mut parts, tallies, table, judged);
     Summary {
@@ -218,40 +267,43 @@ fn empty(points: f64) -> PartSummary {
 /// text each is sorted by.
 fn add_groups(
     parts: &mut BTreeMap<String, PartSummary>,
-    tallies: Vec<((String, Status, usize), Tally)>,
+    tallies: Vec<((String, Status), Tally)>,
     table: &Table,
     judged: &Judged,
 ) {
-    let mut per_part: BTreeMap<String, Vec<Shown>> = BTreeMap::new();
-    for ((key, status, _), t) in tallies {
-        per_part
-            .entry(key)
-            .or_default()
-            .push(shown(status, t, table, judged));
+    // Per part and kind (wrong, unreadable): the best groups so far and the rows of all.
+    // Cut back to the listed few whenever many have gathered, so a class of all-different
+    // answers never holds every group's text at once (the order is total up to ties, which
+    // a stable sort keeps in order of first appearance, as one sort of all would).
+    let order = |a: &Shown, b: &Shown| {
+        b.students
+            .cmp(&a.students)
+            .then_with(|| b.count.cmp(&a.count))
+            .then_with(|| a.full.cmp(&b.full))
+    };
+    let mut per_part: BTreeMap<(String, bool), (Vec<Shown>, usize)> = BTreeMap::new();
+    for ((key, status), t) in tallies {
+        let (best, rows) = per_part
+            .entry((key, status == Status::Invalid))
+            .or_default();
+        *rows += t.count;
+        best.push(shown(status, t, table, judged));
+        if best.len() >= 8 * MAX_GROUPS {
+            best.sort_by(order);
+            best.truncate(MAX_GROUPS);
+        }
     }
-    for (key, mut groups) in per_part {
-        groups.sort_by(|a, b| {
-            b.students
-                .cmp(&a.students)
-                .then_with(|| b.count.cmp(&a.count))
-                .then_with(|| a.full.cmp(&b.full))
-                .then_with(|| a.status.name().cmp(b.status.name()))
-        });
-        let (wrong, unreadable): (Vec<Shown>, Vec<Shown>) = groups
-            .into_iter()
-            .partition(|g| g.status != Status::Invalid);
-        let other = |g: &[Shown]| g.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
-        let listed = |g: Vec<Shown>| -> Vec<Group> {
-            g.into_iter()
-                .take(MAX_GROUPS)
-                .map(|g| group(g, judged))
-                .collect()
-        };
+    for ((key, unreadable), (mut best, rows)) in per_part {
+        best.sort_by(order);
+        best.truncate(MAX_GROUPS);
+        let other = rows - best.iter().map(|g| g.count).sum::<usize>();
+        let listed: Vec<Group> = best.into_iter().map(|g| group(g, judged)).collect();
         if let Some(s) = parts.get_mut(&key) {
-            s.other_wrong = other(&wrong);
-            s.other_unreadable = other(&unreadable);
-            s.wrong = listed(wrong);
-            s.unreadable = listed(unreadable);
+            if unreadable {
+                (s.unreadable, s.other_unreadable) = (listed, other);
+            } else {
+                (s.wrong, s.other_wrong) = (listed, other);
+            }
         }
     }
 }
@@ -277,11 +329,8 @@ fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
             _ => r.answer.trim().to_string(),
         }
     };
-    let mut reps: Vec<(usize, String, usize)> = t
-        .by_rep
-        .iter()
-        .map(|(&r, &n)| (n, shown_of(r), r))
-        .collect();
+    let mut reps: Vec<(usize, String, usize)> =
+        t.by_rep.iter().map(|&(r, n)| (n, shown_of(r), r)).collect();
     reps.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(&b.1)));
     let (answer, rep) = reps
         .into_iter()
@@ -289,13 +338,13 @@ fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
         .map(|(_, s, r)| (s, Some(r)))
         .unwrap_or_default();
     let mut by_text: FxHashMap<&str, usize> = FxHashMap::default();
-    for (&a, &n) in &t.by_answer {
+    for &(a, n) in &t.by_answer {
         *by_text.entry(table.answers.get(a).trim()).or_insert(0) += n;
     }
     let mut texts: Vec<(&str, usize)> = by_text.into_iter().collect();
     texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
     Shown {
-        students: t.students.len(),
+        students: t.students,
         count: t.count,
         status,
         rep,
