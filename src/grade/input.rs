@@ -176,7 +176,7 @@ impl Builder {
     /// Joins the pieces, read in file order: their text interned here in its order of first
     /// appearance, so the indices are those a single pass would have given. The text is
     /// joined in order (a small part of the work); the rows, renumbered, in parallel.
-    fn absorb(&mut self, pieces: Vec<Builder>) {
+    fn absorb(&mut self, pieces: Vec<Builder>, phases: &mut super::phases::Phases) {
         let keys: usize = pieces.iter().map(|p| p.students.len()).sum();
         self.exact.reserve(keys);
         self.folded.reserve(keys);
@@ -198,6 +198,7 @@ impl Builder {
             maps.push((students, names, answers, first_error));
             piece_rows.push(p.rows);
         }
+        phases.end("join text");
         let shift = |i: u32, to: &[u32]| to.get(i as usize).copied().unwrap_or(NONE);
         let start = self.rows.len();
         let total: usize = piece_rows.iter().map(Vec::len).sum();
@@ -313,7 +314,7 @@ fn parse_cut(
         .collect::<Result<Vec<Builder>, BadFile>>()?;
     phases.end("pieces");
     let mut b = Builder::default();
-    b.absorb(pieces);
+    b.absorb(pieces, phases);
     let (format, columns) = match layout {
         Layout::Long { .. } => (Format::Long, Vec::new()),
         Layout::Wide { parts, .. } => (

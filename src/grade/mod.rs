@@ -77,7 +77,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    phases.end("parse");
+    phases.end("renumber");
     let bank =
         crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
     let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
@@ -136,6 +136,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
     };
     phases.end("outputs");
+    phases.threads();
     let text = if opts.json {
         output::summary_json(&summary)?
     } else {

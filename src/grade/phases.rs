@@ -40,6 +40,35 @@ impl Phases {
     }
 }
 
+impl Phases {
+    /// Prints each thread's CPU time so far: with two worker threads, how evenly the work
+    /// was shared (the main thread mostly waits for the workers).
+    pub fn threads(&self) {
+        if self.last.is_none() {
+            return;
+        }
+        let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+            return;
+        };
+        let mut each: Vec<(String, u64)> = tasks
+            .flatten()
+            .filter_map(|t| {
+                let name = std::fs::read_to_string(t.path().join("comm")).ok()?;
+                let s = std::fs::read_to_string(t.path().join("schedstat")).ok()?;
+                Some((
+                    name.trim().to_string(),
+                    s.split_whitespace().next()?.parse().ok()?,
+                ))
+            })
+            .collect();
+        each.sort();
+        let shown: Vec<String> = (each.iter())
+            .map(|(name, ns)| format!("{name} {:.1} ms", *ns as f64 / 1e6))
+            .collect();
+        eprintln!("threads: {}", shown.join(", "));
+    }
+}
+
 /// The CPU time of every thread of the process, in ns (Linux: the sum of each task's
 /// `schedstat`, which counts time on a CPU in ns; 0 where it cannot be read).
 fn cpu_ns() -> u64 {
