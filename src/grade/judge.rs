@@ -77,8 +77,11 @@ pub struct Outcome {
     pub score: f64,
     /// The diagnosis codes, most specific first (`follows-from-earlier` leading).
     pub codes: Vec<Code>,
-    /// The first diagnosis, or why the row is an error or unread.
-    pub message: String,
+    /// The first diagnosis, or why the row is an error or unread; `None`: the first
+    /// diagnosis of the representative's verdict, or why it could not be checked (not copied:
+    /// a class of all-different answers has as many outcomes as rows). See
+    /// [`Judged::message`].
+    pub message: Option<String>,
     /// `(problem, part)` indices into the bank, for rows that name a real part.
     pub target: Option<(usize, usize)>,
     /// The representative whose verdict this is.
@@ -108,6 +111,18 @@ impl Judged {
     /// Row `i`'s outcome.
     pub fn outcome(&self, i: usize) -> &Outcome {
         &self.outcomes[self.rows[i].outcome as usize]
+    }
+
+    /// An outcome's message (results.csv's `message`).
+    pub fn message<'s>(&'s self, o: &'s Outcome) -> &'s str {
+        match (&o.message, o.rep) {
+            (Some(m), _) => m,
+            (None, Some(r)) => match &self.reps[r].verdict {
+                Ok(v) => v.diagnoses.first().map_or("", |d| d.message.as_str()),
+                Err(e) => e,
+            },
+            (None, None) => "",
+        }
     }
 
     /// Adds an outcome; its index.
@@ -282,7 +297,7 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
         status,
         score: 0.0,
         codes: Vec::new(),
-        message,
+        message: Some(message),
         target,
         rep: None,
     }
@@ -371,7 +386,7 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
 fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
     let points = bank.problems[p].parts[q].points;
-    let (status, score, codes, message) = match &rep.verdict {
+    let (status, score, codes) = match &rep.verdict {
         Ok(v) => (
             match v.status {
                 Checked::Correct => Status::Correct,
@@ -380,18 +395,15 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
             },
             v.score * points,
             v.diagnoses.iter().map(|d| d.code).collect(),
-            v.diagnoses
-                .first()
-                .map(|d| d.message.clone())
-                .unwrap_or_default(),
         ),
-        Err(e) => (Status::Error, 0.0, Vec::new(), e.clone()),
+        Err(_) => (Status::Error, 0.0, Vec::new()),
     };
     Outcome {
         status,
         score,
         codes,
-        message,
+        // The verdict's first message (or the error), read through `Judged::message`.
+        message: None,
         target: Some((p, q)),
         rep: Some(r),
     }
@@ -612,7 +624,7 @@ fn follow_through(
                 g.score = g.score.max(credit * points);
                 g.codes.insert(0, d.code);
             }
-            g.message = d.message.clone();
+            g.message = Some(d.message.clone());
             Some(judged.add(g))
         })
         .collect();

@@ -153,7 +153,7 @@ pub fn results(
         let codes: Vec<&str> = o.codes.iter().map(|c| c.as_str()).collect();
         push_plain(t, &codes.join(";"));
         t.push(b',');
-        push_cell(t, &o.message);
+        push_cell(t, judged.message(o));
         t.push(b',');
         push_plain(t, run);
         t.push(b'\n');
@@ -162,7 +162,7 @@ pub fn results(
     let tails: Vec<Vec<u8>> = if shared {
         (judged.outcomes.par_iter())
             .map(|o| {
-                let mut t = Vec::with_capacity(o.message.len() + 48);
+                let mut t = Vec::with_capacity(judged.message(o).len() + 48);
                 tail(o, &mut t);
                 t
             })
