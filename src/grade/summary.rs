@@ -512,3 +512,76 @@ fn groups_table(out: &mut String, key: &str, groups: &[Group], other: usize, wha
         let _ = writeln!(out, "\n{other} more {what} answers in smaller groups.");
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grade::judge::Rep;
+
+    /// Many wrong-answer groups in one part, most of them tied (one student, one attempt
+    /// each, as in a class of all-different answers): the groups listed and the count of the
+    /// others are those one sort of every group gives, though only the best few are kept
+    /// while counting.
+    #[test]
+    fn the_listed_groups_are_the_best_of_all_however_many() {
+        let mut csv = String::from("student,problem,part,answer\n");
+        let n = 500;
+        for i in 0..n {
+            csv.push_str(&format!("s{i},p,q,answer {:03}\n", (i * 7919) % n));
+        }
+        let table = super::super::input::parse(csv.as_bytes(), &mut Default::default());
+        let table = table.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+        let reps: Vec<Rep> = (0..n)
+            .map(|a| Rep {
+                problem: 0,
+                part: 0,
+                answer: table.answers.get(a as u32).to_string(),
+                verdict: Err(String::new()),
+                fingerprint: None,
+            })
+            .collect();
+        let judged = Judged {
+            rows: Vec::new(),
+            outcomes: Vec::new(),
+            reps,
+        };
+        // Group g holds representative g; a few groups have more students and attempts.
+        let tallies = |k: usize| -> Vec<((String, Status), Tally)> {
+            (0..k)
+                .map(|g| {
+                    let extra = usize::from(g % 97 == 3) * (g % 5 + 1);
+                    let tally = Tally {
+                        count: 1 + extra,
+                        students: 1 + extra / 2,
+                        by_rep: vec![(g, 1 + extra)],
+                        by_answer: vec![(g as u32, 1 + extra)],
+                    };
+                    (("p/q".to_string(), Status::Incorrect), tally)
+                })
+                .collect()
+        };
+        let mut parts = BTreeMap::from([("p/q".to_string(), empty(1.0))]);
+        add_groups(&mut parts, tallies(n), &table, &judged);
+        // The reference: every group shown, one stable sort, the first ten.
+        let mut all: Vec<Shown> = (tallies(n).into_iter())
+            .map(|((_, status), t)| shown(status, t, &table, &judged))
+            .collect();
+        all.sort_by(|a, b| {
+            b.students
+                .cmp(&a.students)
+                .then_with(|| b.count.cmp(&a.count))
+                .then_with(|| a.full.cmp(&b.full))
+        });
+        let want: Vec<(usize, usize, String)> = (all.iter().take(MAX_GROUPS))
+            .map(|g| (g.students, g.count, g.full.0.clone()))
+            .collect();
+        let other: usize = all.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
+        let p = &parts["p/q"];
+        let got: Vec<(usize, usize, String)> = (p.wrong.iter())
+            .map(|g| (g.students, g.count, g.answer.clone()))
+            .collect();
+        assert_eq!(got, want);
+        assert_eq!(p.other_wrong, other);
+        assert!(want[0].0 > 1 && want[MAX_GROUPS - 1].0 == 1, "{want:?}");
+    }
+}
