@@ -178,7 +178,7 @@ impl Folder {
     pub fn stage_with(
         &self,
         name: &str,
-        write: &mut dyn FnMut(&mut dyn std::io::Write) -> std::io::Result<()>,
+        write: &mut dyn FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()>,
     ) -> Result<Staged, String> {
         let path = self.path(name);
         check(&path, false)?;

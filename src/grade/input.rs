@@ -26,7 +26,7 @@ pub const NONE: u32 = u32::MAX;
 
 /// One answer of the class file (or one unusable line), its text held as indices into the
 /// [`Table`]'s interned strings.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Row {
     /// The input line number the record starts on (the header is line 1).
     pub line: u32,
@@ -95,15 +95,21 @@ impl Table {
 
 /// Builds a [`Table`]'s rows and text while the records are read: the whole table, or one
 /// piece of the file read on its own (`piece`: student keys only by exact spelling, in order
-/// of first appearance; [`Builder::absorb`] folds them into the table in order).
+/// of first appearance, each with its lower case; [`Builder::absorb`] folds them into the
+/// table in order).
 #[derive(Default)]
 struct Builder {
-    piece: bool,
     rows: Vec<Row>,
     students: Vec<String>,
+    /// A piece's student keys in lower case (`None`: the key itself), made beside the
+    /// reading so that joining the pieces does not lower every key again.
+    lower: Vec<Option<String>>,
     /// Student keys by exact spelling, then by lower case.
     exact: FxHashMap<String, u32>,
     folded: FxHashMap<String, u32>,
+    /// The last key looked up and its index: a class file usually lists one student's
+    /// answers together.
+    last: Option<(String, u32)>,
     merged: Vec<(String, String)>,
     names: Interner,
     answers: Interner,
@@ -111,64 +117,117 @@ struct Builder {
 }
 
 impl Builder {
-    /// The index of a (trimmed) student key: keys that differ only in case are one student,
-    /// under the first spelling (the merge noted once per other spelling).
+    /// The index of a (trimmed) student key in a piece, by exact spelling.
     fn student(&mut self, key: &str) -> u32 {
         if key.is_empty() {
             return NONE;
         }
-        if let Some(&i) = self.exact.get(key) {
+        if let Some((k, i)) = &self.last
+            && k == key
+        {
+            return *i;
+        }
+        let i = match self.exact.get(key) {
+            Some(&i) => i,
+            None => {
+                let i = self.students.len() as u32;
+                self.students.push(key.to_string());
+                let lower = key.to_lowercase();
+                self.lower.push((lower != key).then_some(lower));
+                self.exact.insert(key.to_string(), i);
+                i
+            }
+        };
+        match &mut self.last {
+            Some((k, j)) => {
+                k.clear();
+                k.push_str(key);
+                *j = i;
+            }
+            None => self.last = Some((key.to_string(), i)),
+        }
+        i
+    }
+
+    /// The table's index of a piece's student key (`lower`: its lower case, `None` when the
+    /// same): keys that differ only in case are one student, under the first spelling (the
+    /// merge noted once per other spelling).
+    fn table_student(&mut self, key: String, lower: Option<String>) -> u32 {
+        if let Some(&i) = self.exact.get(&key) {
             return i;
         }
-        if self.piece {
-            let i = self.students.len() as u32;
-            self.students.push(key.to_string());
-            self.exact.insert(key.to_string(), i);
-            return i;
-        }
-        let folded = key.to_lowercase();
-        let i = match self.folded.get(&folded) {
+        let i = match self.folded.get(lower.as_deref().unwrap_or(&key)) {
             Some(&i) => {
                 self.merged
-                    .push((self.students[i as usize].clone(), key.to_string()));
+                    .push((self.students[i as usize].clone(), key.clone()));
                 i
             }
             None => {
                 let i = self.students.len() as u32;
-                self.students.push(key.to_string());
-                self.folded.insert(folded, i);
+                self.students.push(key.clone());
+                self.folded.insert(lower.unwrap_or_else(|| key.clone()), i);
                 i
             }
         };
-        self.exact.insert(key.to_string(), i);
+        self.exact.insert(key, i);
         i
     }
 
-    /// Appends a piece read after everything so far: its text interned here in its order of
-    /// first appearance, so the indices are those a single pass would have given.
-    fn absorb(&mut self, p: Builder) {
-        let students: Vec<u32> = p.students.iter().map(|s| self.student(s)).collect();
-        let names: Vec<u32> = (0..p.names.len() as u32)
-            .map(|i| self.names.intern(p.names.get(i)))
-            .collect();
-        let answers: Vec<u32> = (0..p.answers.len() as u32)
-            .map(|i| self.answers.intern(p.answers.get(i)))
-            .collect();
-        let first_error = self.errors.len() as u32;
-        self.errors.extend(p.errors);
+    /// Joins the pieces, read in file order: their text interned here in its order of first
+    /// appearance, so the indices are those a single pass would have given. The text is
+    /// joined in order (a small part of the work); the rows, renumbered, in parallel.
+    fn absorb(&mut self, pieces: Vec<Builder>, phases: &mut super::phases::Phases) {
+        let keys: usize = pieces.iter().map(|p| p.students.len()).sum();
+        self.exact.reserve(keys);
+        self.folded.reserve(keys);
+        self.students.reserve(keys);
+        let mut maps = Vec::with_capacity(pieces.len());
+        let mut piece_rows = Vec::with_capacity(pieces.len());
+        for p in pieces {
+            let students: Vec<u32> = (p.students.into_iter().zip(p.lower))
+                .map(|(s, l)| self.table_student(s, l))
+                .collect();
+            let names: Vec<u32> = (0..p.names.len() as u32)
+                .map(|i| self.names.intern(p.names.get(i)))
+                .collect();
+            let answers: Vec<u32> = (0..p.answers.len() as u32)
+                .map(|i| self.answers.intern(p.answers.get(i)))
+                .collect();
+            let first_error = self.errors.len() as u32;
+            self.errors.extend(p.errors);
+            maps.push((students, names, answers, first_error));
+            piece_rows.push(p.rows);
+        }
+        phases.end("join text");
         let shift = |i: u32, to: &[u32]| to.get(i as usize).copied().unwrap_or(NONE);
-        self.rows.extend(p.rows.iter().map(|r| Row {
-            line: r.line,
-            student: shift(r.student, &students),
-            problem: shift(r.problem, &names),
-            part: shift(r.part, &names),
-            answer: shift(r.answer, &answers),
-            error: if r.error == NONE {
-                NONE
-            } else {
-                first_error + r.error
+        let start = self.rows.len();
+        let total: usize = piece_rows.iter().map(Vec::len).sum();
+        self.rows.resize(start + total, Row::default());
+        let mut slices = Vec::with_capacity(piece_rows.len());
+        let mut rest = &mut self.rows[start..];
+        for r in &piece_rows {
+            let (head, tail) = rest.split_at_mut(r.len());
+            slices.push(head);
+            rest = tail;
+        }
+        (slices.into_par_iter().zip(&piece_rows).zip(&maps)).for_each(
+            |((to, from), (students, names, answers, first_error))| {
+                for (t, r) in to.iter_mut().zip(from) {
+                    *t = Row {
+                        line: r.line,
+                        student: shift(r.student, students),
+                        problem: shift(r.problem, names),
+                        part: shift(r.part, names),
+                        answer: shift(r.answer, answers),
+                        error: if r.error == NONE {
+                            NONE
+                        } else {
+                            first_error + r.error
+                        },
+                    };
+                }
             },
-        }));
+        );
     }
 
     /// Adds a row; `error` is why it cannot be graded.
@@ -217,8 +276,18 @@ enum Layout {
 
 /// Parses a whole class file. Only an unusable header (or none) is an error; every other
 /// problem is recorded on the row it concerns.
-pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
-    let decoded = super::decode::decode(bytes).map_err(BadFile)?;
+pub fn parse(bytes: &[u8], phases: &mut super::phases::Phases) -> Result<Table, BadFile> {
+    parse_cut(bytes, super::decode::CUT_BYTES, phases)
+}
+
+/// [`parse`], the file read in pieces of about `cut` bytes (small in tests, to cut often).
+fn parse_cut(
+    bytes: &[u8],
+    cut: usize,
+    phases: &mut super::phases::Phases,
+) -> Result<Table, BadFile> {
+    let decoded = super::decode::decode_cut(bytes, cut).map_err(BadFile)?;
+    phases.end("decode");
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
@@ -236,18 +305,16 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
     // The body in pieces that start at record starts (found by the quote check), read in
     // parallel, then joined in file order.
     let body = reader.position().byte() as usize;
-    let mut bounds = vec![body];
-    bounds.extend(decoded.cuts.iter().copied().filter(|&c| c > body));
-    bounds.push(decoded.text.len().max(body));
+    let mut bounds = vec![(body, decoded.line(body))];
+    bounds.extend(decoded.cuts.iter().copied().filter(|&(c, _)| c > body));
+    bounds.push((decoded.text.len().max(body), 0));
     let pieces = bounds
         .par_windows(2)
-        .map(|w| read_piece(&decoded, (w[0], w[1]), &layout, width))
+        .map(|w| read_piece(&decoded, w[0], w[1].0, &layout, width))
         .collect::<Result<Vec<Builder>, BadFile>>()?;
+    phases.end("pieces");
     let mut b = Builder::default();
-    b.rows.reserve(pieces.iter().map(|p| p.rows.len()).sum());
-    for p in pieces {
-        b.absorb(p);
-    }
+    b.absorb(pieces, phases);
     let (format, columns) = match layout {
         Layout::Long { .. } => (Format::Long, Vec::new()),
         Layout::Wide { parts, .. } => (
@@ -267,24 +334,23 @@ pub fn parse(bytes: &[u8]) -> Result<Table, BadFile> {
     })
 }
 
-/// The rows of the records in `text[start..end]` (which starts at a record), with their
-/// lines in the whole file.
+/// The rows of the records in `text[start..end]` (which starts at a record, on line
+/// `line`), with their lines in the whole file.
 fn read_piece(
     decoded: &Decoded,
-    (start, end): (usize, usize),
+    (start, line): (usize, u64),
+    end: usize,
     layout: &Layout,
     width: usize,
 ) -> Result<Builder, BadFile> {
+    let mut lines = super::decode::Lines::new(&decoded.text, (start, line));
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
         .delimiter(decoded.delimiter)
         .from_reader(&decoded.text[start..end]);
     let mut record = csv::ByteRecord::new();
-    let mut b = Builder {
-        piece: true,
-        ..Builder::default()
-    };
+    let mut b = Builder::default();
     loop {
         match reader.read_byte_record(&mut record) {
             Ok(true) => {}
@@ -296,7 +362,7 @@ fn read_piece(
         // The file's own line (the reader's count misses CR-only and CRLF endings).
         let line = record
             .position()
-            .map_or(0, |p| decoded.record_line(start + p.byte() as usize));
+            .map_or(0, |p| lines.record(start + p.byte() as usize));
         push_rows(layout, width, line as u32, &record, &mut b);
     }
     Ok(b)
@@ -433,7 +499,10 @@ mod tests {
 
     #[test]
     fn headers_ignore_case_spaces_and_a_byte_order_mark() {
-        let t = parse("\u{feff} Student ,PROBLEM, Part,Answer,extra\na,p,q,x,y\n".as_bytes());
+        let t = parse(
+            "\u{feff} Student ,PROBLEM, Part,Answer,extra\na,p,q,x,y\n".as_bytes(),
+            &mut Default::default(),
+        );
         let t = t.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Long);
         assert_eq!(t.rows[0].line, 2);
@@ -443,7 +512,7 @@ mod tests {
 
     #[test]
     fn wide_rows_are_the_non_empty_cells() {
-        let t = parse(b"student,a/b,c/d\ns1,x,\ns2,,y\n").map_err(|e| e.0);
+        let t = parse(b"student,a/b,c/d\ns1,x,\ns2,,y\n", &mut Default::default()).map_err(|e| e.0);
         let t = t.unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(t.format, Format::Wide);
         let got: Vec<(u32, &str, &str)> = t
@@ -478,7 +547,7 @@ mod tests {
             }
         }
         assert!(csv.len() > 2 * super::super::decode::CUT_BYTES);
-        let t = parse(csv.as_bytes()).map_err(|e| e.0);
+        let t = parse(csv.as_bytes(), &mut Default::default()).map_err(|e| e.0);
         let t = t.unwrap_or_else(|e| panic!("{e}"));
         let lines: Vec<u32> = t.rows.iter().map(|r| r.line).collect();
         assert_eq!(lines, want);
@@ -492,9 +561,42 @@ mod tests {
         assert!(t.rows.iter().all(|r| t.error(r).is_none()));
     }
 
+    /// Everything a table holds, as text, row by row.
+    fn shown(t: &Table) -> Vec<String> {
+        let mut out: Vec<String> = (t.rows.iter())
+            .map(|r| {
+                let e = t.error(r).unwrap_or("-");
+                let ids = (r.student, r.problem, r.part, r.answer);
+                let text = (t.student(r), t.problem(r), t.part(r), t.answer(r));
+                format!("{} {ids:?} {text:?} {e}", r.line)
+            })
+            .collect();
+        out.push(format!("{:?} {:?}", t.merged, t.students));
+        out
+    }
+
+    /// Long and wide files with CR, LF and CRLF endings, quoted answers over several lines,
+    /// keys differing in case and bad rows, cut every few bytes: each reads as one pass.
+    #[test]
+    fn a_file_cut_anywhere_reads_as_one_pass() {
+        let files = [
+            "student,problem,part,answer\r\nA,p,q,x\r\na,p,q,\"y\r\nz\"\r\nb,p,q,\"\"\"w\"\"\"\rB,p,r,1\n,p,q,2\nc,p\nC,p,q,\"3\n\n4\"\r\n",
+            "student,a/b,c/d\ns1,x,\"y\r\n1\"\rS1,,z\r\ns2,\"\",\",\"\n\ns3,1,2,3\n",
+        ];
+        for f in files {
+            let whole = parse_cut(f.as_bytes(), 1 << 30, &mut Default::default());
+            let whole = whole.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+            for cut in 1..12 {
+                let t = parse_cut(f.as_bytes(), cut, &mut Default::default());
+                let t = t.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+                assert_eq!(shown(&t), shown(&whole), "cut {cut}");
+            }
+        }
+    }
+
     #[test]
     fn a_header_of_neither_format_names_the_expected_columns() {
-        let e = parse(b"name,score\n")
+        let e = parse(b"name,score\n", &mut Default::default())
             .err()
             .map(|e| e.0)
             .unwrap_or_default();

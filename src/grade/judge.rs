@@ -10,7 +10,7 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Diagnosis, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
@@ -60,7 +60,8 @@ pub struct Rep {
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
-    /// The verdict, or why the part could not be checked.
+    /// The verdict ([`slim`]: what grading reads of it), or why the part could not be
+    /// checked.
     pub verdict: Result<Verdict, String>,
     /// Equal for answers equal at the sample points: the summary's grouping key.
     pub fingerprint: Option<String>,
@@ -75,9 +76,12 @@ pub struct Outcome {
     /// The verdict's score times the part's points (follow-through credit included).
     pub score: f64,
     /// The diagnosis codes, most specific first (`follows-from-earlier` leading).
-    pub codes: Vec<String>,
-    /// The first diagnosis, or why the row is an error or unread.
-    pub message: String,
+    pub codes: Vec<Code>,
+    /// The first diagnosis, or why the row is an error or unread; `None`: the first
+    /// diagnosis of the representative's verdict, or why it could not be checked (not copied:
+    /// a class of all-different answers has as many outcomes as rows). See
+    /// [`Judged::message`].
+    pub message: Option<String>,
     /// `(problem, part)` indices into the bank, for rows that name a real part.
     pub target: Option<(usize, usize)>,
     /// The representative whose verdict this is.
@@ -109,6 +113,18 @@ impl Judged {
         &self.outcomes[self.rows[i].outcome as usize]
     }
 
+    /// An outcome's message (results.csv's `message`).
+    pub fn message<'s>(&'s self, o: &'s Outcome) -> &'s str {
+        match (&o.message, o.rep) {
+            (Some(m), _) => m,
+            (None, Some(r)) => match &self.reps[r].verdict {
+                Ok(v) => v.diagnoses.first().map_or("", |d| d.message.as_str()),
+                Err(e) => e,
+            },
+            (None, None) => "",
+        }
+    }
+
     /// Adds an outcome; its index.
     fn add(&mut self, o: Outcome) -> u32 {
         self.outcomes.push(o);
@@ -130,6 +146,7 @@ pub fn judge(
     bank: &Bank,
     settings: Settings,
     progress: &mut (dyn Progress + Send),
+    phases: &mut super::phases::Phases,
 ) -> Result<Judged, Interrupted> {
     let rows = &table.rows;
     let mut judged = Judged {
@@ -174,6 +191,7 @@ pub fn judge(
         };
         row_distinct.push(slot);
     }
+    phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
     let canon = par_map(bank, &distinct, |c, part, text| {
@@ -186,6 +204,7 @@ pub fn judge(
         (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
+    phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
     }
@@ -200,11 +219,12 @@ pub fn judge(
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
             .flatten();
-        (verdict, fingerprint)
+        (verdict.map(slim), fingerprint)
     });
     if bar.stopped() {
         return Err(Interrupted);
     }
+    phases.end("check");
     judged.reps = rep_inputs
         .iter()
         .zip(checked)
@@ -233,11 +253,42 @@ pub fn judge(
         })
         .collect();
     drop(row_distinct);
+    phases.end("outcomes");
     if let Some(credit) = settings.follow_through {
-        follow_through(rows, &mut judged, bank, credit, settings.best);
+        follow_through(
+            rows,
+            &mut judged,
+            bank,
+            credit,
+            table.students.len(),
+            settings.best,
+        );
+        phases.end("follow-through");
     }
-    mark_counted(rows, &mut judged, settings.best);
+    mark_counted(rows, &mut judged, table.students.len(), settings.best);
+    phases.end("counted");
     Ok(judged)
+}
+
+/// A verdict with only what grading reads of it: the status, the score, every code, the
+/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer) and
+/// the Unicode reading (the summary). Kept for every representative until the summary is
+/// made, so a class of all-different answers keeps no other message or reading.
+fn slim(mut v: Verdict) -> Verdict {
+    v.problem = String::new();
+    v.part = String::new();
+    v.reading.plain = String::new();
+    v.reading.note = None;
+    v.reading.unicode.shrink_to_fit();
+    v.parse_error = None;
+    for d in v.diagnoses.iter_mut().skip(1) {
+        d.message = String::new();
+    }
+    if let Some(d) = v.diagnoses.first_mut() {
+        d.message.shrink_to_fit();
+    }
+    v.diagnoses.shrink_to_fit();
+    v
 }
 
 /// The outcome of a row that is not checked.
@@ -246,7 +297,7 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
         status,
         score: 0.0,
         codes: Vec::new(),
-        message,
+        message: Some(message),
         target,
         rep: None,
     }
@@ -335,7 +386,7 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
 fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
     let points = bank.problems[p].parts[q].points;
-    let (status, score, codes, message) = match &rep.verdict {
+    let (status, score, codes) = match &rep.verdict {
         Ok(v) => (
             match v.status {
                 Checked::Correct => Status::Correct,
@@ -343,45 +394,132 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Invalid => Status::Invalid,
             },
             v.score * points,
-            v.diagnoses.iter().map(|d| d.code.to_string()).collect(),
-            v.diagnoses
-                .first()
-                .map(|d| d.message.clone())
-                .unwrap_or_default(),
+            v.diagnoses.iter().map(|d| d.code).collect(),
         ),
-        Err(e) => (Status::Error, 0.0, Vec::new(), e.clone()),
+        Err(_) => (Status::Error, 0.0, Vec::new()),
     };
     Outcome {
         status,
         score,
         codes,
-        message,
+        // The verdict's first message (or the error), read through `Judged::message`.
+        message: None,
         target: Some((p, q)),
         rep: Some(r),
     }
 }
 
 /// The row that counts for each (student, problem, part): the last graded attempt, or with
-/// `best` the highest-scoring one (the later of equals). Error rows never count.
-fn final_rows(rows: &[Row], judged: &Judged, best: bool) -> FxHashMap<(u32, usize, usize), usize> {
-    let mut chosen: FxHashMap<(u32, usize, usize), usize> = FxHashMap::default();
-    for (i, row) in rows.iter().enumerate() {
-        let g = judged.outcome(i);
-        let (Some((p, q)), false) = (g.target, g.status == Status::Error) else {
-            continue;
+/// `best` the highest-scoring one (the later of equals). Error rows never count. Rows are
+/// bucketed by student (a counting sort: no hash map, memory of one index per row), then each
+/// student's rows are sorted by part and chosen from, students in parallel.
+struct Finals {
+    /// Where each student's rows start in `order` (the last bucket: rows without a student),
+    /// one more entry than buckets.
+    start: Vec<u32>,
+    /// How many of each bucket's rows count (they come first in the bucket).
+    count: Vec<u32>,
+    /// Row indices per bucket: first the rows that count, sorted by (problem, part).
+    order: Vec<u32>,
+}
+
+impl Finals {
+    /// The rows that count, per student.
+    fn new(rows: &[Row], judged: &Judged, students: usize, best: bool) -> Finals {
+        let bucket = |row: &Row| (row.student as usize).min(students);
+        let target = |i: u32| judged.outcome(i as usize).target;
+        let graded = |i: usize| {
+            let g = judged.outcome(i);
+            g.target.is_some() && g.status != Status::Error
         };
-        let slot = chosen.entry((row.student, p, q)).or_insert(i);
-        if !best || judged.outcome(*slot).score <= g.score {
-            *slot = i;
+        let mut start = vec![0u32; students + 3];
+        for (i, row) in rows.iter().enumerate() {
+            if graded(i) {
+                start[bucket(row) + 2] += 1;
+            }
+        }
+        for b in 2..start.len() {
+            start[b] += start[b - 1];
+        }
+        // `start[b + 1]` is now where bucket b starts; filling moves it to where b ends.
+        let mut order = vec![0u32; start[students + 2] as usize];
+        for (i, row) in rows.iter().enumerate() {
+            if graded(i) {
+                let at = &mut start[bucket(row) + 1];
+                order[*at as usize] = i as u32;
+                *at += 1;
+            }
+        }
+        start.pop();
+        let mut slices: Vec<&mut [u32]> = Vec::with_capacity(students + 1);
+        let mut rest: &mut [u32] = &mut order;
+        for w in start.windows(2) {
+            let (head, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            slices.push(head);
+            rest = tail;
+        }
+        let count: Vec<u32> = slices
+            .into_par_iter()
+            .with_min_len(256)
+            .map(|rows| {
+                // A stable sort: each part's rows stay in input order.
+                rows.sort_by_key(|&i| target(i));
+                let mut kept = 0;
+                let mut i = 0;
+                while i < rows.len() {
+                    let t = target(rows[i]);
+                    let mut slot = rows[i];
+                    let mut j = i + 1;
+                    while j < rows.len() && target(rows[j]) == t {
+                        let score = judged.outcome(rows[j] as usize).score;
+                        if !best || judged.outcome(slot as usize).score <= score {
+                            slot = rows[j];
+                        }
+                        j += 1;
+                    }
+                    rows[kept] = slot;
+                    kept += 1;
+                    i = j;
+                }
+                kept as u32
+            })
+            .collect();
+        Finals {
+            start,
+            count,
+            order,
         }
     }
-    chosen
+
+    /// The rows that count, in no particular order.
+    fn rows(&self) -> impl Iterator<Item = usize> + '_ {
+        (self.count.iter().enumerate())
+            .flat_map(|(b, &n)| self.chosen(b, n))
+            .map(|&i| i as usize)
+    }
+
+    /// Bucket `b`'s first `n` rows.
+    fn chosen(&self, b: usize, n: u32) -> &[u32] {
+        let s = self.start[b] as usize;
+        &self.order[s..s + n as usize]
+    }
+
+    /// The row that counts for `student` (an index of [`Table::students`], or `NONE`) on
+    /// part `(p, q)`.
+    fn get(&self, judged: &Judged, student: u32, target: (usize, usize)) -> Option<usize> {
+        let b = (student as usize).min(self.count.len() - 1);
+        let rows = self.chosen(b, self.count[b]);
+        let k = rows
+            .binary_search_by_key(&Some(target), |&i| judged.outcome(i as usize).target)
+            .ok()?;
+        Some(rows[k] as usize)
+    }
 }
 
 /// Sets `counts` on the rows that count.
-fn mark_counted(rows: &[Row], judged: &mut Judged, best: bool) {
-    let chosen = final_rows(rows, judged, best);
-    for i in chosen.into_values() {
+fn mark_counted(rows: &[Row], judged: &mut Judged, students: usize, best: bool) {
+    let finals = Finals::new(rows, judged, students, best);
+    for i in finals.rows() {
         judged.rows[i].counts = true;
     }
 }
@@ -393,8 +531,15 @@ type FollowKey = (usize, Vec<usize>);
 /// Gives credit to incorrect answers that follow from the same student's own wrong answers to
 /// the other parts. Each distinct question is asked once, in parallel; the rows asking one
 /// share its outcome.
-fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, best: bool) {
-    let finals = final_rows(rows, judged, best);
+fn follow_through(
+    rows: &[Row],
+    judged: &mut Judged,
+    bank: &Bank,
+    credit: f64,
+    students: usize,
+    best: bool,
+) {
+    let finals = Finals::new(rows, judged, students, best);
     // An earlier answer follow-through can start from: a wrong one, or a Lagrangian accepted
     // though it is not T − V (`accepts`). `follows_from_earlier` passes over every other one
     // without looking further, so leaving them out of a question changes no answer, and
@@ -419,8 +564,8 @@ fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, b
         };
         let earlier: Vec<usize> = (0..bank.problems[p].parts.len())
             .filter(|&o| o != q)
-            .filter_map(|o| finals.get(&(row.student, p, o)))
-            .filter_map(|&j| judged.outcome(j).rep)
+            .filter_map(|o| finals.get(judged, row.student, (p, o)))
+            .filter_map(|j| judged.outcome(j).rep)
             .filter(|&r| source[r])
             .collect();
         if earlier.is_empty() {
@@ -473,13 +618,13 @@ fn follow_through(rows: &[Row], judged: &mut Judged, bank: &Bank, credit: f64, b
             if accepts(d) {
                 g.status = Status::Correct;
                 g.score = points;
-                g.codes = vec![d.code.to_string()];
+                g.codes = vec![d.code];
             } else {
                 // A list already partly right keeps the larger of its own score and the credit.
                 g.score = g.score.max(credit * points);
-                g.codes.insert(0, d.code.to_string());
+                g.codes.insert(0, d.code);
             }
-            g.message = d.message.clone();
+            g.message = Some(d.message.clone());
             Some(judged.add(g))
         })
         .collect();

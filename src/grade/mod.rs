@@ -12,6 +12,7 @@ mod input;
 mod intern;
 mod judge;
 mod output;
+mod phases;
 mod summary;
 
 use std::io::Read;
@@ -58,6 +59,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("error: {message}");
         return Ok(ExitCode::from(2));
     }
+    let mut phases = phases::Phases::from_env();
     let bytes = match read_input(&opts.input) {
         Ok(b) => b,
         Err(message) => {
@@ -65,8 +67,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("read");
     // The file's hash (one serial pass) beside the parallel reading.
-    let (table, hash) = rayon::join(|| input::parse(&bytes), || file_hash(&bytes));
+    let (table, hash) = rayon::join(|| input::parse(&bytes, &mut phases), || file_hash(&bytes));
     let table = match table {
         Ok(t) => t,
         Err(input::BadFile(message)) => {
@@ -74,6 +77,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("renumber");
     let bank =
         crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
     let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
@@ -104,27 +108,35 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         best: opts.best,
     };
     let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
-    let judged = judge::judge(&table, &bank, settings, &mut bar);
+    phases.end("bank");
+    let judged = judge::judge(&table, &bank, settings, &mut bar, &mut phases);
     bar.finish();
     let judged = judged?;
-    let mut summary = summary::summarise(&table, &judged, &bank);
-    summary.run = run.clone();
-    let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
-    let results = |w: &mut dyn std::io::Write| output::results(w, &table, &judged, &run);
-    let mut files: Vec<(&str, Vec<u8>)> = vec![("gradebook.csv", output::gradebook_csv(&book)?)];
-    if let Some(lms) = opts.lms {
-        let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
-        files.push((lms_name(lms), bytes));
-    }
-    files.push(("summary.md", summary::markdown(&summary).into_bytes()));
-    files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
-    let written = match write_outputs(&dir, &names, results, files) {
-        Ok(w) => w,
+    let results = |w: &mut (dyn std::io::Write + Send)| output::results(w, &table, &judged, &run);
+    // The summary, the gradebook and the small files are made while results.csv is
+    // formatted and written (on another core when there is one).
+    let others = || -> anyhow::Result<(summary::Summary, Files)> {
+        let mut summary = summary::summarise(&table, &judged, &bank);
+        summary.run = run.clone();
+        let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
+        let mut files = vec![("gradebook.csv", output::gradebook_csv(&book)?)];
+        if let Some(lms) = opts.lms {
+            let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
+            files.push((lms_name(lms), bytes));
+        }
+        files.push(("summary.md", summary::markdown(&summary).into_bytes()));
+        files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
+        Ok((summary, files))
+    };
+    let (summary, written) = match write_outputs(&dir, &names, results, others)? {
+        Ok(done) => done,
         Err(message) => {
             eprintln!("error: {message}");
             return Ok(ExitCode::from(2));
         }
     };
+    phases.end("outputs");
+    phases.threads();
     let text = if opts.json {
         output::summary_json(&summary)?
     } else {
@@ -262,21 +274,33 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     }
 }
 
-/// Writes every output whole under a temporary name — results.csv streamed by `results`,
-/// then `files` — and renames them all into place (the folder locked meanwhile; stale
-/// temporary files of a killed run removed): the paths written.
-fn write_outputs(
+/// The outputs other than results.csv, by name.
+type Files<'n> = Vec<(&'n str, Vec<u8>)>;
+
+/// Writes every output whole under a temporary name — results.csv streamed by `results`
+/// while `others` makes the summary and the other files — and renames them all into place
+/// (the folder locked meanwhile; stale temporary files of a killed run removed): the summary
+/// and the paths written, or why they could not be written.
+fn write_outputs<'n>(
     dir: &Path,
     names: &[&str],
-    mut results: impl FnMut(&mut dyn std::io::Write) -> std::io::Result<()>,
-    files: Vec<(&str, Vec<u8>)>,
-) -> Result<Vec<PathBuf>, String> {
-    let folder = crate::outfile::Folder::open(dir, names)?;
-    let mut staged = vec![folder.stage_with("results.csv", &mut results)?];
-    for (name, bytes) in &files {
-        staged.push(folder.stage(name, bytes)?);
-    }
-    crate::outfile::commit(staged)
+    mut results: impl FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()> + Send,
+    others: impl FnOnce() -> anyhow::Result<(summary::Summary, Files<'n>)> + Send,
+) -> anyhow::Result<Result<(summary::Summary, Vec<PathBuf>), String>> {
+    let folder = match crate::outfile::Folder::open(dir, names) {
+        Ok(f) => f,
+        Err(e) => return Ok(Err(e)),
+    };
+    let (staged, made) = rayon::join(|| folder.stage_with("results.csv", &mut results), others);
+    let (summary, files) = made?;
+    let written = (|| {
+        let mut staged = vec![staged?];
+        for (name, bytes) in &files {
+            staged.push(folder.stage(name, bytes)?);
+        }
+        crate::outfile::commit(staged)
+    })();
+    Ok(written.map(|w| (summary, w)))
 }
 
 /// The run's id: 16 hex digits of a hash of everything the outputs depend on (the class

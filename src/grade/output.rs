@@ -2,7 +2,6 @@
 //! row per student), summary.md / summary.json, and an LMS import file, as bytes (written by
 //! [`crate::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
 
-use std::borrow::Cow;
 use std::io::Write;
 
 use rayon::prelude::*;
@@ -10,7 +9,7 @@ use rayon::prelude::*;
 use lagrange::bank::Bank;
 
 use super::input::{Row, Table};
-use super::judge::Judged;
+use super::judge::{Judged, Outcome};
 use super::summary::{Summary, num, students};
 
 /// The learning-management systems an import file can be written for.
@@ -35,12 +34,14 @@ fn needs_quote(s: &str) -> bool {
 
 /// A text cell a spreadsheet will show rather than run: a leading `'` before `=`, `+`, `-`,
 /// `@`, a tab or a carriage return (`=HYPERLINK(…)` → `'=HYPERLINK(…)`). [`unquote_cell`]
-/// gives the text back.
-pub fn quote_cell(s: &str) -> Cow<'_, str> {
+/// gives the text back. The writers append it directly ([`push_cell`]); this is the
+/// reference their tests compare with.
+#[cfg(test)]
+fn quote_cell(s: &str) -> std::borrow::Cow<'_, str> {
     if needs_quote(s) {
-        Cow::Owned(format!("'{s}"))
+        std::borrow::Cow::Owned(format!("'{s}"))
     } else {
-        Cow::Borrowed(s)
+        std::borrow::Cow::Borrowed(s)
     }
 }
 
@@ -66,15 +67,72 @@ fn csv_bytes(
     w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))
 }
 
-/// The rows formatted at once (in parallel), then written in order: memory stays bounded by
-/// a batch, whatever the number of rows.
-const BATCH: usize = 16 * 1024;
+/// Rows per chunk formatted by one worker; a round of chunks (two per thread) is formatted
+/// while the previous round is written, so memory stays bounded by two rounds whatever the
+/// number of rows.
+const BATCH: usize = 2 * 1024;
+
+/// Whether the csv crate's writer (`QuoteStyle::Necessary`, `\n` records) quotes a field: it
+/// holds the delimiter, a quote or a line break.
+fn csv_quotes(s: &str) -> bool {
+    s.bytes().any(|c| matches!(c, b',' | b'"' | b'\n' | b'\r'))
+}
+
+/// Appends a field as the csv crate writes it, after a `'` when `formula` (see
+/// [`quote_cell`]): quoted when needed, quotes doubled. Bytes equal to the csv writer's (a
+/// unit test compares them), without its per-record cost.
+fn push_csv(out: &mut Vec<u8>, s: &str, formula: bool) {
+    let quoted = csv_quotes(s);
+    if quoted {
+        out.push(b'"');
+    }
+    if formula {
+        out.push(b'\'');
+    }
+    if quoted {
+        for part in s.split_inclusive('"') {
+            out.extend_from_slice(part.as_bytes());
+            if part.ends_with('"') {
+                out.push(b'"');
+            }
+        }
+        out.push(b'"');
+    } else {
+        out.extend_from_slice(s.as_bytes());
+    }
+}
+
+/// Appends a text cell: neutralised ([`quote_cell`]), then as the csv writer writes it.
+fn push_cell(out: &mut Vec<u8>, s: &str) {
+    push_csv(out, s, needs_quote(s));
+}
+
+/// Appends a field that is never neutralised (codes, numbers, the run id).
+fn push_plain(out: &mut Vec<u8>, s: &str) {
+    push_csv(out, s, false);
+}
+
+/// Appends a number in decimal.
+fn push_u32(out: &mut Vec<u8>, mut n: u32) {
+    let mut digits = [0u8; 10];
+    let mut i = digits.len();
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&digits[i..]);
+}
 
 /// results.csv, streamed into `out`: every input answer, in input order, each row with the
 /// run's id. Text cells are neutralised ([`quote_cell`]). Rows are formatted in parallel
-/// batches; the bytes do not depend on the thread count.
+/// chunks while the chunks before them are written; the bytes do not depend on the thread
+/// count.
 pub fn results(
-    out: &mut dyn Write,
+    out: &mut (dyn Write + Send),
     table: &Table,
     judged: &Judged,
     run: &str,
@@ -83,53 +141,71 @@ pub fn results(
         "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
     ];
     out.write_all(&csv_bytes(&header, std::iter::empty()).map_err(std::io::Error::other)?)?;
-    // What an outcome writes, formatted once: score, codes, message.
-    let shown: Vec<[String; 3]> = judged
-        .outcomes
-        .iter()
-        .map(|o| {
-            [
-                num(o.score),
-                o.codes.join(";"),
-                quote_cell(&o.message).into_owned(),
-            ]
-        })
-        .collect();
-    let rows: Vec<(usize, &Row)> = table.rows.iter().enumerate().collect();
-    for batch in rows.chunks(BATCH * rayon::current_num_threads().max(1)) {
-        let parts: Vec<std::io::Result<Vec<u8>>> = batch
-            .par_chunks(BATCH)
-            .map(|chunk| {
-                let mut w = csv::WriterBuilder::new()
-                    .has_headers(false)
-                    .from_writer(Vec::with_capacity(chunk.len() * 128));
-                for &(i, r) in chunk {
-                    let g = judged.rows[i];
-                    let o = &judged.outcomes[g.outcome as usize];
-                    let [score, codes, message] = &shown[g.outcome as usize];
-                    let line = r.line.to_string();
-                    w.write_record([
-                        line.as_str(),
-                        &quote_cell(table.student(r)),
-                        &quote_cell(table.problem(r)),
-                        &quote_cell(table.part(r)),
-                        &quote_cell(table.answer(r)),
-                        o.status.name(),
-                        score,
-                        codes,
-                        message,
-                        run,
-                    ])?;
-                }
-                w.into_inner()
-                    .map_err(|e| std::io::Error::other(e.to_string()))
+    // What an outcome writes after the answer: status, score, codes, message, run and the
+    // line's end. Formatted once per outcome when rows share outcomes; when nearly every row
+    // has its own (all-different answers), formatted per row instead of kept.
+    let tail = |o: &Outcome, t: &mut Vec<u8>| {
+        t.push(b',');
+        push_plain(t, o.status.name());
+        t.push(b',');
+        push_plain(t, &num(o.score));
+        t.push(b',');
+        let codes: Vec<&str> = o.codes.iter().map(|c| c.as_str()).collect();
+        push_plain(t, &codes.join(";"));
+        t.push(b',');
+        push_cell(t, judged.message(o));
+        t.push(b',');
+        push_plain(t, run);
+        t.push(b'\n');
+    };
+    let shared = judged.outcomes.len() * 4 <= table.rows.len();
+    let tails: Vec<Vec<u8>> = if shared {
+        (judged.outcomes.par_iter())
+            .map(|o| {
+                let mut t = Vec::with_capacity(judged.message(o).len() + 48);
+                tail(o, &mut t);
+                t
             })
-            .collect();
-        for part in parts {
-            out.write_all(&part?)?;
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let format = |chunk: &[Row], first: usize| {
+        let mut w = Vec::with_capacity(chunk.len() * 128);
+        for (k, r) in chunk.iter().enumerate() {
+            push_u32(&mut w, r.line);
+            w.push(b',');
+            push_cell(&mut w, table.student(r));
+            w.push(b',');
+            push_cell(&mut w, table.problem(r));
+            w.push(b',');
+            push_cell(&mut w, table.part(r));
+            w.push(b',');
+            push_cell(&mut w, table.answer(r));
+            let o = judged.rows[first + k].outcome as usize;
+            match tails.get(o) {
+                Some(t) => w.extend_from_slice(t),
+                None => tail(&judged.outcomes[o], &mut w),
+            }
         }
+        w
+    };
+    let round = BATCH * 2 * rayon::current_num_threads().max(1);
+    let mut written: Vec<Vec<u8>> = Vec::new();
+    for (n, rows) in table.rows.chunks(round).enumerate() {
+        let start = n * round;
+        let (done, next) = rayon::join(
+            || written.iter().try_for_each(|w| out.write_all(w)),
+            || {
+                (rows.par_chunks(BATCH).enumerate())
+                    .map(|(k, chunk)| format(chunk, start + k * BATCH))
+                    .collect::<Vec<Vec<u8>>>()
+            },
+        );
+        done?;
+        written = next;
     }
-    Ok(())
+    written.iter().try_for_each(|w| out.write_all(w))
 }
 
 /// The gradebook: students in order of first appearance, one column per part answered by
@@ -169,16 +245,21 @@ pub fn gradebook(
             t
         }
     };
-    let column: std::collections::HashMap<(usize, usize), usize> =
+    let column: rustc_hash::FxHashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+    // Each outcome's column, looked up once.
+    let columns: Vec<Option<usize>> = (judged.outcomes.iter())
+        .map(|o| column.get(&o.target?).copied())
+        .collect();
     let names = students(table);
     let mut scores = vec![vec![None; targets.len()]; names.len()];
-    for (i, (r, g)) in table.rows.iter().zip(&judged.rows).enumerate() {
-        let o = judged.outcome(i);
-        if let (true, Some(t), Some(s)) = (g.counts, o.target, scores.get_mut(r.student as usize))
-            && let Some(&c) = column.get(&t)
-        {
-            s[c] = Some(o.score);
+    for (r, g) in table.rows.iter().zip(&judged.rows) {
+        if let (true, Some(c), Some(s)) = (
+            g.counts,
+            columns[g.outcome as usize],
+            scores.get_mut(r.student as usize),
+        ) {
+            s[c] = Some(judged.outcomes[g.outcome as usize].score);
         }
     }
     Gradebook {
@@ -208,28 +289,69 @@ fn percent(total: f64, max: f64) -> String {
     }
 }
 
+/// A number as [`num`] writes it, formatted once per value (a class has few distinct scores
+/// and totals).
+#[derive(Default)]
+struct Numbers(rustc_hash::FxHashMap<u64, String>);
+
+impl Numbers {
+    fn get(&mut self, x: f64, show: impl FnOnce(f64) -> String) -> &str {
+        self.0.entry(x.to_bits()).or_insert_with(|| show(x))
+    }
+}
+
+/// Students per chunk of an output formatted by one worker.
+const STUDENTS: usize = 4 * 1024;
+
+/// `out` (the lines before the students'), then `line(student, scores, out)` for every student, formatted in
+/// parallel chunks and joined in order.
+fn per_student(
+    mut out: Vec<u8>,
+    book: &Gradebook,
+    line: impl Fn(&str, &[Option<f64>], &mut Numbers, &mut Vec<u8>) + Sync,
+) -> anyhow::Result<Vec<u8>> {
+    let chunks: Vec<Vec<u8>> = (book.students.par_chunks(STUDENTS))
+        .map(|chunk| {
+            let (mut w, mut numbers) = (Vec::with_capacity(chunk.len() * 64), Numbers::default());
+            for (s, scores) in chunk {
+                line(s, scores, &mut numbers, &mut w);
+            }
+            w
+        })
+        .collect();
+    out.reserve(chunks.iter().map(Vec::len).sum());
+    chunks.iter().for_each(|c| out.extend_from_slice(c));
+    Ok(out)
+}
+
 /// gradebook.csv.
 pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
     let mut header: Vec<&str> = vec!["student"];
     header.extend(book.columns.iter().map(String::as_str));
     header.extend(["total", "max", "percent"]);
     let max = book.max();
-    // A class has few distinct scores and totals: each is formatted once.
-    let mut shown: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
-    let mut num = |x: f64| shown.entry(x.to_bits()).or_insert_with(|| num(x)).clone();
-    let mut percents: rustc_hash::FxHashMap<u64, String> = rustc_hash::FxHashMap::default();
-    let mut percent = |t: f64| {
-        let p = percents.entry(t.to_bits());
-        p.or_insert_with(|| percent(t, max)).clone()
-    };
-    let lines = book.students.iter().map(|(s, scores)| {
-        let mut line = vec![quote_cell(s).into_owned()];
-        line.extend(scores.iter().map(|x| x.map_or(String::new(), &mut num)));
-        let t = total(scores);
-        line.extend([num(t), num(max), percent(t)]);
-        line
-    });
-    csv_bytes(&header, lines)
+    per_student(
+        csv_bytes(&header, std::iter::empty())?,
+        book,
+        |s, scores, numbers, w| {
+            push_cell(w, s);
+            for x in scores {
+                w.push(b',');
+                if let Some(x) = x {
+                    push_plain(w, numbers.get(*x, num));
+                }
+            }
+            let t = total(scores);
+            w.push(b',');
+            push_plain(w, numbers.get(t, num));
+            w.push(b',');
+            push_plain(w, numbers.get(max, num));
+            w.push(b',');
+            // Percents keyed apart from scores: the same value shows differently.
+            push_plain(w, &percent(t, max));
+            w.push(b'\n');
+        },
+    )
 }
 
 /// Whether every student key looks like an email address (Moodle then matches on email
@@ -267,10 +389,6 @@ pub fn moodle_keys(students: &[&str]) -> Result<(), String> {
 /// The LMS import file's name and contents; `assignment` names the total column.
 pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<(String, Vec<u8>)> {
     let max = book.max();
-    let totals = book
-        .students
-        .iter()
-        .map(|(s, scores)| (quote_cell(s).into_owned(), num(total(scores))));
     let bytes = match lms {
         // Canvas matches a student on SIS Login ID (among its ID columns) and reads the
         // optional "Points Possible" row right under the header.
@@ -291,9 +409,15 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
                 String::new(),
                 num(max),
             ];
-            let rows = totals
-                .map(|(s, t)| vec![s.clone(), String::new(), String::new(), s, String::new(), t]);
-            csv_bytes(&header, std::iter::once(points).chain(rows))?
+            let out = csv_bytes(&header, std::iter::once(points))?;
+            per_student(out, book, |s, scores, numbers, w| {
+                push_cell(w, s);
+                w.extend_from_slice(b",,,");
+                push_cell(w, s);
+                w.extend_from_slice(b",,");
+                push_plain(w, numbers.get(total(scores), num));
+                w.push(b'\n');
+            })?
         }
         // Moodle's CSV import maps one identifier column to a user field and each other
         // column to a grade item, chosen in its import form.
@@ -303,20 +427,39 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
             } else {
                 "ID number"
             };
-            csv_bytes(&[id, assignment], totals.map(|(s, t)| vec![s, t]))?
+            per_student(
+                csv_bytes(&[id, assignment], std::iter::empty())?,
+                book,
+                |s, scores, numbers, w| {
+                    push_cell(w, s);
+                    w.push(b',');
+                    push_plain(w, numbers.get(total(scores), num));
+                    w.push(b'\n');
+                },
+            )?
         }
         // Gradescope's score upload matches on SID or Email, with the score and its maximum.
         // Each row on its own key: an email address in Email, anything else in SID.
         Lms::Gradescope => {
-            let rows = totals.map(|(s, t)| {
-                let (sid, email) = if s.contains('@') {
-                    (String::new(), s)
-                } else {
-                    (s, String::new())
-                };
-                vec![sid, email, t, num(max)]
-            });
-            csv_bytes(&["SID", "Email", "Score", "Max Points"], rows)?
+            let header = ["SID", "Email", "Score", "Max Points"];
+            per_student(
+                csv_bytes(&header, std::iter::empty())?,
+                book,
+                |s, scores, numbers, w| {
+                    if s.contains('@') {
+                        w.push(b',');
+                        push_cell(w, s);
+                    } else {
+                        push_cell(w, s);
+                        w.push(b',');
+                    }
+                    w.push(b',');
+                    push_plain(w, numbers.get(total(scores), num));
+                    w.push(b',');
+                    push_plain(w, numbers.get(max, num));
+                    w.push(b'\n');
+                },
+            )?
         }
     };
     let name = match lms {
@@ -330,4 +473,76 @@ pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<
 /// summary.json, pretty, ending in a newline.
 pub fn summary_json(s: &Summary) -> anyhow::Result<String> {
     Ok(serde_json::to_string_pretty(s)? + "\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The csv crate's bytes for one record.
+    fn csv_record(fields: &[&str]) -> Vec<u8> {
+        let mut w = csv::WriterBuilder::new()
+            .has_headers(false)
+            .from_writer(Vec::new());
+        w.write_record(fields).unwrap_or_else(|e| panic!("{e}"));
+        w.into_inner().unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The writers append fields themselves: the bytes must be the csv crate's, with the
+    /// formula `'` where `quote_cell` puts it, for every kind of text a class file holds.
+    #[test]
+    fn fields_are_written_as_the_csv_crate_writes_them() {
+        let texts = [
+            "",
+            " ",
+            "x",
+            "-m g l cos θ",
+            "=HYPERLINK(\"x\")",
+            "'=1",
+            "''-a",
+            "a,b",
+            "a;b",
+            "say \"hi\"",
+            "\"",
+            "\"\"",
+            "line\nbreak",
+            "cr\rhere",
+            "\tstart",
+            "\rstart",
+            "+1",
+            "@me",
+            "#comment",
+            "a\u{0}b",
+            "ünïcödé, \"quoted\"\r\n",
+            " lead",
+            "trail ",
+        ];
+        for a in texts {
+            for b in texts {
+                let (qa, qb) = (quote_cell(a), quote_cell(b));
+                let want = csv_record(&[&qa, b, &qb]);
+                let mut got = Vec::new();
+                push_cell(&mut got, a);
+                got.push(b',');
+                push_plain(&mut got, b);
+                got.push(b',');
+                push_cell(&mut got, b);
+                got.push(b'\n');
+                assert_eq!(
+                    String::from_utf8_lossy(&got),
+                    String::from_utf8_lossy(&want),
+                    "{a:?} {b:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn numbers_are_written_in_decimal() {
+        for n in [0, 7, 10, 99, 12_345, u32::MAX] {
+            let mut w = Vec::new();
+            push_u32(&mut w, n);
+            assert_eq!(w, n.to_string().into_bytes());
+        }
+    }
 }

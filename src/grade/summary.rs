@@ -5,7 +5,8 @@
 
 use std::collections::BTreeMap;
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -84,20 +85,45 @@ pub struct Group {
     pub diagnosis: String,
     /// Up to two spellings as typed, most common first.
     pub examples: Vec<String>,
-    /// The reading and spellings uncut: ties in the order are broken by the full text, never
-    /// by the cut one.
-    #[serde(skip)]
-    full: (String, Vec<String>),
 }
 
-/// A group being counted: rows per representative and per spelling.
-#[derive(Default)]
+/// A group of wrong answers: its part, its status and its meaning (an index).
+type GroupKey = ((usize, usize), Status, usize);
+
+/// A group counted: rows, distinct students, rows per representative and per spelling (an
+/// interned answer), each list sorted.
 struct Tally {
     count: usize,
-    students: FxHashSet<u32>,
-    by_rep: FxHashMap<usize, usize>,
-    /// Rows per answer as typed (an interned index).
-    by_answer: FxHashMap<u32, usize>,
+    students: usize,
+    by_rep: Vec<(usize, usize)>,
+    by_answer: Vec<(u32, usize)>,
+}
+
+/// Runs of equal values in a sorted list, with their lengths.
+fn runs<T: PartialEq + Copy>(sorted: impl IntoIterator<Item = T>) -> Vec<(T, usize)> {
+    let mut out: Vec<(T, usize)> = Vec::new();
+    for x in sorted {
+        match out.last_mut() {
+            Some((y, n)) if *y == x => *n += 1,
+            _ => out.push((x, 1)),
+        }
+    }
+    out
+}
+
+/// Counts each group from its rows' (student, representative, answer), sorted.
+fn tally(rows: &[(u32, u32, u32, u32)]) -> Tally {
+    let students = runs(rows.iter().map(|r| r.1)).len();
+    let mut reps: Vec<u32> = rows.iter().map(|r| r.2).collect();
+    reps.sort_unstable();
+    let mut answers: Vec<u32> = rows.iter().map(|r| r.3).collect();
+    answers.sort_unstable();
+    Tally {
+        count: rows.len(),
+        students,
+        by_rep: runs(reps.into_iter().map(|r| r as usize)),
+        by_answer: runs(answers),
+    }
 }
 
 /// The summary of a judged class: counted per outcome and per group, never per row's text.
@@ -108,20 +134,37 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative, interned: a group is (part, status, meaning).
-    let mut meanings: FxHashMap<String, usize> = FxHashMap::default();
+    let mut meanings: FxHashMap<std::borrow::Cow<str>, usize> = FxHashMap::default();
     let meaning: Vec<usize> = judged
         .reps
         .iter()
         .map(|r| {
-            let m = r
-                .fingerprint
-                .clone()
-                .unwrap_or_else(|| format!("text:{}", r.answer.trim()));
+            let m = r.fingerprint.as_deref().map_or_else(
+                || format!("text:{}", r.answer.trim()).into(),
+                std::borrow::Cow::Borrowed,
+            );
             let n = meanings.len();
             *meanings.entry(m).or_insert(n)
         })
         .collect();
-    let mut tallies: FxHashMap<((usize, usize), Status, usize), Tally> = FxHashMap::default();
+    // Each outcome's group (wrong and unreadable answers only), numbered once.
+    let mut group_ids: FxHashMap<GroupKey, u32> = FxHashMap::default();
+    let mut groups: Vec<GroupKey> = Vec::new();
+    let group_of: Vec<u32> = (judged.outcomes.iter())
+        .map(|o| match (o.target, o.rep, o.status) {
+            (Some(t), Some(rep), Status::Incorrect | Status::Invalid) => *group_ids
+                .entry((t, o.status, meaning[rep]))
+                .or_insert_with(|| {
+                    groups.push((t, o.status, meaning[rep]));
+                    groups.len() as u32 - 1
+                }),
+            _ => u32::MAX,
+        })
+        .collect();
+    drop(group_ids);
+    // Per row of a group: (group, student, representative, answer), sorted in parallel and
+    // counted per group: no set or map per group.
+    let mut members: Vec<(u32, u32, u32, u32)> = Vec::new();
     for (i, (row, g)) in rows.iter().zip(&judged.rows).enumerate() {
         per_outcome[g.outcome as usize] += 1;
         let o = judged.outcome(i);
@@ -133,15 +176,17 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
                 .students += 1;
             *sums.entry((p, q)).or_insert(0.0) += o.score;
         }
-        let (Some(rep), Status::Incorrect | Status::Invalid) = (o.rep, o.status) else {
-            continue;
-        };
-        let t = tallies.entry(((p, q), o.status, meaning[rep])).or_default();
-        t.count += 1;
-        t.students.insert(row.student);
-        *t.by_rep.entry(rep).or_insert(0) += 1;
-        *t.by_answer.entry(row.answer).or_insert(0) += 1;
+        let group = group_of[g.outcome as usize];
+        if let (true, Some(rep)) = (group != u32::MAX, o.rep) {
+            members.push((group, row.student, rep as u32, row.answer));
+        }
     }
+    members.par_sort_unstable();
+    let tallies: Vec<(GroupKey, Tally)> = members
+        .par_chunk_by(|a, b| a.0 == b.0)
+        .map(|rows| (groups[rows[0].0 as usize], tally(rows)))
+        .collect();
+    drop(members);
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
     for (o, &n) in judged.outcomes.iter().zip(&per_outcome) {
@@ -150,7 +195,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
         *status.entry(o.status.name().to_string()).or_insert(0) += n;
         for c in &o.codes {
-            *codes.entry(c.clone()).or_insert(0) += n;
+            *codes.entry(c.to_string()).or_insert(0) += n;
         }
         let Some((p, q)) = o.target else { continue };
         let s = parts
@@ -181,7 +226,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         parts.into_iter().map(|(t, s)| (key(t), s)).collect();
     let tallies = tallies
         .into_iter()
-        .map(|((t, status, m), tally)| ((key(t), status, m), tally))
+        .map(|((t, status, _), tally)| ((key(t), status), tally))
         .collect();
     add_groups(&mut parts, tallies, table, judged);
     Summary {
@@ -216,45 +261,67 @@ fn empty(points: f64) -> PartSummary {
     }
 }
 
-/// Turns the tallies into each part's sorted, truncated group list.
+/// Turns the tallies into each part's sorted, truncated group list. Groups are ordered by
+/// their counts and full text ([`Shown`]); only the listed ones are made whole (codes,
+/// diagnosis, cut spellings), so a class of all-different answers keeps no more than the
+/// text each is sorted by.
 fn add_groups(
     parts: &mut BTreeMap<String, PartSummary>,
-    tallies: Vec<((String, Status, usize), Tally)>,
+    tallies: Vec<((String, Status), Tally)>,
     table: &Table,
     judged: &Judged,
 ) {
-    let mut per_part: BTreeMap<String, Vec<Group>> = BTreeMap::new();
-    for ((key, status, _), t) in tallies {
-        per_part
-            .entry(key)
-            .or_default()
-            .push(group(status, &t, table, judged));
+    // Per part and kind (wrong, unreadable): the best groups so far and the rows of all.
+    // Cut back to the listed few whenever many have gathered, so a class of all-different
+    // answers never holds every group's text at once (the order is total up to ties, which
+    // a stable sort keeps in order of first appearance, as one sort of all would).
+    let order = |a: &Shown, b: &Shown| {
+        b.students
+            .cmp(&a.students)
+            .then_with(|| b.count.cmp(&a.count))
+            .then_with(|| a.full.cmp(&b.full))
+    };
+    let mut per_part: BTreeMap<(String, bool), (Vec<Shown>, usize)> = BTreeMap::new();
+    for ((key, status), t) in tallies {
+        let (best, rows) = per_part
+            .entry((key, status == Status::Invalid))
+            .or_default();
+        *rows += t.count;
+        best.push(shown(status, t, table, judged));
+        if best.len() >= 8 * MAX_GROUPS {
+            best.sort_by(order);
+            best.truncate(MAX_GROUPS);
+        }
     }
-    for (key, mut groups) in per_part {
-        groups.sort_by(|a, b| {
-            b.students
-                .cmp(&a.students)
-                .then_with(|| b.count.cmp(&a.count))
-                .then_with(|| a.full.cmp(&b.full))
-                .then_with(|| a.status.cmp(&b.status))
-        });
-        let (mut wrong, mut unreadable): (Vec<Group>, Vec<Group>) =
-            groups.into_iter().partition(|g| g.status != "invalid");
-        let other = |g: &[Group]| g.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
-        let (other_wrong, other_unreadable) = (other(&wrong), other(&unreadable));
-        wrong.truncate(MAX_GROUPS);
-        unreadable.truncate(MAX_GROUPS);
+    for ((key, unreadable), (mut best, rows)) in per_part {
+        best.sort_by(order);
+        best.truncate(MAX_GROUPS);
+        let other = rows - best.iter().map(|g| g.count).sum::<usize>();
+        let listed: Vec<Group> = best.into_iter().map(|g| group(g, judged)).collect();
         if let Some(s) = parts.get_mut(&key) {
-            s.wrong = wrong;
-            s.other_wrong = other_wrong;
-            s.unreadable = unreadable;
-            s.other_unreadable = other_unreadable;
+            if unreadable {
+                (s.unreadable, s.other_unreadable) = (listed, other);
+            } else {
+                (s.wrong, s.other_wrong) = (listed, other);
+            }
         }
     }
 }
 
-/// One group: shown as its most common reading (ties: the smaller text).
-fn group(status: Status, t: &Tally, table: &Table, judged: &Judged) -> Group {
+/// A group as it is sorted: its counts, its most common reading (ties: the smaller text) and
+/// the representative giving it, and its spellings as typed (trimmed), most common first.
+struct Shown {
+    students: usize,
+    count: usize,
+    status: Status,
+    rep: Option<usize>,
+    /// The reading and spellings uncut: ties in the order are broken by the full text,
+    /// never by the cut one.
+    full: (String, Vec<String>),
+}
+
+/// How a tallied group is sorted and shown.
+fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
     let shown_of = |rep: usize| {
         let r = &judged.reps[rep];
         match &r.verdict {
@@ -262,36 +329,45 @@ fn group(status: Status, t: &Tally, table: &Table, judged: &Judged) -> Group {
             _ => r.answer.trim().to_string(),
         }
     };
-    let mut reps: Vec<(usize, String, usize)> = t
-        .by_rep
-        .iter()
-        .map(|(&r, &n)| (n, shown_of(r), r))
-        .collect();
+    let mut reps: Vec<(usize, String, usize)> =
+        t.by_rep.iter().map(|&(r, n)| (n, shown_of(r), r)).collect();
     reps.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(&b.1)));
     let (answer, rep) = reps
-        .first()
-        .map(|(_, s, r)| (s.clone(), Some(*r)))
+        .into_iter()
+        .next()
+        .map(|(_, s, r)| (s, Some(r)))
         .unwrap_or_default();
-    let verdict = rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
     let mut by_text: FxHashMap<&str, usize> = FxHashMap::default();
-    for (&a, &n) in &t.by_answer {
+    for &(a, n) in &t.by_answer {
         *by_text.entry(table.answers.get(a).trim()).or_insert(0) += n;
     }
     let mut texts: Vec<(&str, usize)> = by_text.into_iter().collect();
     texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
-    Group {
-        students: t.students.len(),
+    Shown {
+        students: t.students,
         count: t.count,
-        status: status.name().to_string(),
-        answer: cut(&answer),
+        status,
+        rep,
+        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
+    }
+}
+
+/// One listed group: shown as its most common reading, with that reading's codes and first
+/// diagnosis and its two most common spellings.
+fn group(g: Shown, judged: &Judged) -> Group {
+    let verdict = g.rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
+    Group {
+        students: g.students,
+        count: g.count,
+        status: g.status.name().to_string(),
+        answer: cut(&g.full.0),
         codes: verdict.map_or(Vec::new(), |v| {
             v.diagnoses.iter().map(|d| d.code.to_string()).collect()
         }),
         diagnosis: verdict
             .and_then(|v| v.diagnoses.first())
             .map_or(String::new(), |d| d.message.clone()),
-        examples: texts.iter().take(2).map(|(s, _)| cut(s)).collect(),
-        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
+        examples: g.full.1.iter().take(2).map(|s| cut(s)).collect(),
     }
 }
 
@@ -434,5 +510,78 @@ fn groups_table(out: &mut String, key: &str, groups: &[Group], other: usize, wha
     }
     if other > 0 {
         let _ = writeln!(out, "\n{other} more {what} answers in smaller groups.");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grade::judge::Rep;
+
+    /// Many wrong-answer groups in one part, most of them tied (one student, one attempt
+    /// each, as in a class of all-different answers): the groups listed and the count of the
+    /// others are those one sort of every group gives, though only the best few are kept
+    /// while counting.
+    #[test]
+    fn the_listed_groups_are_the_best_of_all_however_many() {
+        let mut csv = String::from("student,problem,part,answer\n");
+        let n = 500;
+        for i in 0..n {
+            csv.push_str(&format!("s{i},p,q,answer {:03}\n", (i * 7919) % n));
+        }
+        let table = super::super::input::parse(csv.as_bytes(), &mut Default::default());
+        let table = table.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+        let reps: Vec<Rep> = (0..n)
+            .map(|a| Rep {
+                problem: 0,
+                part: 0,
+                answer: table.answers.get(a as u32).to_string(),
+                verdict: Err(String::new()),
+                fingerprint: None,
+            })
+            .collect();
+        let judged = Judged {
+            rows: Vec::new(),
+            outcomes: Vec::new(),
+            reps,
+        };
+        // Group g holds representative g; a few groups have more students and attempts.
+        let tallies = |k: usize| -> Vec<((String, Status), Tally)> {
+            (0..k)
+                .map(|g| {
+                    let extra = usize::from(g % 97 == 3) * (g % 5 + 1);
+                    let tally = Tally {
+                        count: 1 + extra,
+                        students: 1 + extra / 2,
+                        by_rep: vec![(g, 1 + extra)],
+                        by_answer: vec![(g as u32, 1 + extra)],
+                    };
+                    (("p/q".to_string(), Status::Incorrect), tally)
+                })
+                .collect()
+        };
+        let mut parts = BTreeMap::from([("p/q".to_string(), empty(1.0))]);
+        add_groups(&mut parts, tallies(n), &table, &judged);
+        // The reference: every group shown, one stable sort, the first ten.
+        let mut all: Vec<Shown> = (tallies(n).into_iter())
+            .map(|((_, status), t)| shown(status, t, &table, &judged))
+            .collect();
+        all.sort_by(|a, b| {
+            b.students
+                .cmp(&a.students)
+                .then_with(|| b.count.cmp(&a.count))
+                .then_with(|| a.full.cmp(&b.full))
+        });
+        let want: Vec<(usize, usize, String)> = (all.iter().take(MAX_GROUPS))
+            .map(|g| (g.students, g.count, g.full.0.clone()))
+            .collect();
+        let other: usize = all.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
+        let p = &parts["p/q"];
+        let got: Vec<(usize, usize, String)> = (p.wrong.iter())
+            .map(|g| (g.students, g.count, g.answer.clone()))
+            .collect();
+        assert_eq!(got, want);
+        assert_eq!(p.other_wrong, other);
+        assert!(want[0].0 > 1 && want[MAX_GROUPS - 1].0 == 1, "{want:?}");
     }
 }
