@@ -129,6 +129,8 @@ pub(crate) fn any_as_marker(p: &Prepared, input: &str) -> String {
     if p.system.parameters.iter().any(|q| q.name == "any") {
         return input.to_string();
     }
+    let arbitrary = arbitrary_as_any(input);
+    let input = arbitrary.as_str();
     let mut out = String::with_capacity(input.len() + 8);
     let mut rest = input;
     while let Some(k) = rest.find("any") {
@@ -142,6 +144,42 @@ pub(crate) fn any_as_marker(p: &Prepared, input: &str) -> String {
         } else {
             "any"
         });
+        rest = tail;
+    }
+    out.push_str(rest);
+    out
+}
+
+/// `x arbitrary`, `x is arbitrary` and `x = arbitrary` (how `modes` words a continuum) as
+/// `x = any`; text without the word `arbitrary` is returned unchanged.
+pub(crate) fn arbitrary_as_any(input: &str) -> String {
+    const WORD: &str = "arbitrary";
+    if !input.contains(WORD) {
+        return input.to_string();
+    }
+    let mut out = String::with_capacity(input.len() + 8);
+    let mut rest = input;
+    while let Some(k) = rest.find(WORD) {
+        let (before, after) = rest.split_at(k);
+        let tail = &after[WORD.len()..];
+        let name_char = |c: char| c.is_alphanumeric() || c == '_' || c == '\'';
+        let whole = !before.ends_with(name_char) && !tail.starts_with(name_char);
+        let lead = before.trim_end();
+        // `x is arbitrary`: the `is` goes with the word.
+        let lead = match lead.strip_suffix("is") {
+            Some(l) if l.ends_with(char::is_whitespace) => l.trim_end(),
+            _ => lead,
+        };
+        if whole && lead.ends_with('=') {
+            out.push_str(before);
+            out.push_str("any");
+        } else if whole && lead.ends_with(|c: char| !"(,;".contains(c)) {
+            out.push_str(lead);
+            out.push_str(" = any");
+        } else {
+            out.push_str(before);
+            out.push_str(WORD);
+        }
         rest = tail;
     }
     out.push_str(rest);

@@ -191,6 +191,13 @@ pub fn normalize(name: &str) -> String {
     out
 }
 
+/// A plain name (`theta0`, `omega0`, `m`) as the Unicode printer writes it (`θ₀`, `ω₀`, `m`).
+pub fn unicode_name(name: &str) -> String {
+    let (letters, digits) = split_digits(name);
+    let base = greek_letter(letters).map_or_else(|| letters.to_string(), |g| g.to_string());
+    format!("{base}{}", subscript(digits))
+}
+
 /// A name as typed in a flag or an option (`θ₁`, `θ̇₁`, `ẋ`, `m_1`) in its spelled ASCII form
 /// (`theta1`, `theta1'`, `x'`, `m1`): Greek letters spelled, subscript digits as digits, and
 /// dots above (U+0307, U+0308, precomposed) as primes at the end. Other text is kept.

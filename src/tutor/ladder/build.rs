@@ -383,10 +383,18 @@ pub fn frequency_symbol(sys: &System) -> &'static str {
         .chain(sys.coordinates.iter().map(|c| c.sym))
         .map(|s| sys.pool.var_name(s, 0, Style::Unicode))
         .collect();
-    ["ω", "Ω", "ω₀", "ν"]
-        .into_iter()
-        .find(|w| !names.iter().any(|n| n == w))
-        .unwrap_or("ν")
+    // A name the problem defines (ω₀ = √(k/m) in the rotating traps) is taken too.
+    [
+        ("ω", "omega"),
+        ("Ω", "Omega"),
+        ("ω₀", "omega0"),
+        ("ν", "nu"),
+    ]
+    .into_iter()
+    .find(|(w, plain)| {
+        !names.iter().any(|n| n == w) && !sys.definitions.iter().any(|(d, _)| d == plain)
+    })
+    .map_or("ν", |(w, _)| w)
 }
 
 /// q − q₀ (just q when q₀ is 0).
