@@ -125,7 +125,9 @@ fn fold_definitions(p: &Prepared, input: &str, v: &mut Verdict) {
     if p.system.definitions.is_empty() {
         return;
     }
-    let named: Vec<String> = crate::expr::lexer::lex(input)
+    // `±` does not lex on its own (it is read by the list reader): blanked for this.
+    let input = input.replace(['±', '∓'], " ");
+    let named: Vec<String> = crate::expr::lexer::lex(&input)
         .map(|toks| {
             toks.into_iter()
                 .filter_map(|t| match t.tok {
@@ -162,6 +164,10 @@ fn fold_definitions(p: &Prepared, input: &str, v: &mut Verdict) {
 fn drop_superseded(v: &mut Verdict) {
     const SUPERSEDES: &[(Code, Code)] = &[
         (Code::HVsE, Code::TPlusV),
+        // T + V names the sign of V's terms: a term-level sign or factor finding on V says it
+        // again, worse (the factor cos θ − 1 called wrong).
+        (Code::TPlusV, Code::SignError),
+        (Code::TPlusV, Code::WrongFactor),
         (Code::LostRoot, Code::SwappedSymbols),
     ];
     for &(by, gone) in SUPERSEDES {
@@ -403,6 +409,12 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
             v.status = Status::Correct;
             v.diagnoses.extend(j.details(p));
         }
+        Judgement::Unexplained if negated_up_to_constant(part, p, s, reference) => v
+            .diagnoses
+            .push(Diagnosis::new(
+                Code::SignError,
+                "sign error: your answer is the negative of the right one (up to a constant, which is free here)",
+            )),
         Judgement::Unexplained => diagnose_expression(part, p, s, reference, rel, &mut v),
         j => v.diagnoses.extend(j.details(p)),
     }
@@ -416,6 +428,20 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         });
     }
     v
+}
+
+/// Whether `s` is −`reference` plus a constant on a part that allows a constant (V, h):
+/// `−m g l (1 − cos θ)` for V = −m g l cos θ is the sign, not a factor, that is wrong.
+fn negated_up_to_constant(part: &Part, p: &mut Prepared, s: Id, reference: Id) -> bool {
+    let free = part.up_to_constant || part.quantity == Quantity::EnergyFunction;
+    if !free {
+        return false;
+    }
+    let minus = p.system.pool.neg(reference);
+    matches!(
+        relate(&p.system, s, minus, &p.points, part.tolerance),
+        Ok(Relation::Equal | Relation::UpToConstant(_))
+    )
 }
 
 /// Whether `lhs` is what a steady-motion part asks for, the moving coordinate's rate (or

@@ -215,9 +215,12 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     let (matched_ref, mut matched_stu) = match_items(part, p, &lists, &blocked);
     // An angle the part's range leaves out is the right position written outside the range
     // asked for: said so, and not credited.
-    let outside = outside_stated_range(part, p, &sv);
+    let outside: Vec<usize> = outside_stated_range(part, p, &sv)
+        .into_iter()
+        .filter(|&i| matched_stu[i])
+        .collect();
     for &i in &outside {
-        if matched_stu[i] {
+        {
             matched_stu[i] = false;
             let shown = show_item(part, p, &coords, &items[i], Style::Unicode);
             v.diagnoses.push(Diagnosis::new(
@@ -385,6 +388,7 @@ fn stated_stability(
     (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
 ) -> Vec<Diagnosis> {
     let mut out = Vec::new();
+    let gyroscopic = stated.iter().any(Option::is_some) && velocity_linear(p);
     for (i, said) in stated.iter().enumerate() {
         let Some(said) = *said else { continue };
         let matched = (0..lists.reference.len()).find(|&j| {
@@ -400,10 +404,25 @@ fn stated_stability(
             let label = show_item(part, p, coords, &items[i], Style::Unicode);
             let engine =
                 |p: &mut Prepared| super::stability::engine_stability(p, &lists.student[i]);
+            let said = (said, gyroscopic);
             out.extend(super::stability::judge(part, &label, said, j, || engine(p)));
         }
     }
     out
+}
+
+/// Whether L has terms linear in the velocities (Coriolis, gyroscopic): L(q, q̇) and
+/// L(q, −q̇) differ. Stability is then not read off the potential alone.
+fn velocity_linear(p: &mut Prepared) -> bool {
+    let l = p.system.lagrangian;
+    let mut map = rustc_hash::FxHashMap::default();
+    for c in p.system.coordinate_syms() {
+        let v = p.system.pool.var(c, 1);
+        map.insert((c, 1), p.system.pool.neg(v));
+    }
+    let reversed = p.system.pool.substitute(l, &map);
+    let odd = p.system.pool.sub(l, reversed);
+    !p.system.is_zero(odd)
 }
 
 /// The stability the student stated, as read (`stated: θ = 0 stable, θ = π unstable`).

@@ -23,6 +23,10 @@ pub struct Prepared {
     pub context: Context,
     /// The part's relative tolerance (the documented one unless the part sets its own).
     pub tolerance: f64,
+    /// Whether a product of two velocities in the answer comes from squaring a sum of
+    /// velocities (T, L, h, a speed²), so that a missing one is the cross term of that square;
+    /// not in a generalized force or a d/dt(∂L/∂q̇), where such products come otherwise.
+    pub squares_velocities: bool,
     /// The true accelerations at each point, computed once (None where undefined).
     pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
     /// For an `equation` part whose reference has no accelerations: its residual (decided once).
@@ -80,6 +84,14 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         points,
         context,
         tolerance: part.tolerance,
+        squares_velocities: !part.id.starts_with("generalized-force")
+            && !part.id.starts_with("momentum-rate")
+            && !matches!(
+                part.quantity,
+                crate::problem::Quantity::Momentum(_)
+                    | crate::problem::Quantity::Acceleration(_)
+                    | crate::problem::Quantity::Multiplier(_)
+            ),
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),

@@ -221,7 +221,7 @@ impl ParseErrorKind {
 fn word_hint(name: &str) -> Option<&'static str> {
     Some(match name {
         "rad" | "rads" | "radian" | "radians" | "Hz" | "rpm" | "sec" | "deg" | "degrees" => {
-            "no units needed: write the value in the problem's symbols alone (`sqrt(g/l)`, not `sqrt(g/l) rad/s`)"
+            "no units needed: write the value alone, e.g. `sqrt(g/l)`"
         }
         "and" | "or" => "separate the items with commas: `theta = 0, theta = pi`",
         "const" | "constant" | "conserved" | "C" => {

@@ -163,7 +163,21 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
         statement: terminal_math(p.statement.trim()),
         coordinates,
         parameters,
-        assumptions: p.assumptions.iter().map(|a| a.text.clone()).collect(),
+        // In Unicode, as everything else on the sheet (R ω² > g, not R*omega^2 > g).
+        assumptions: p
+            .assumptions
+            .iter()
+            .map(|a| {
+                let or_equal = a.text.contains(['=', '≥', '≤']);
+                let op = match (a.greater, or_equal) {
+                    (true, false) => ">",
+                    (true, true) => "≥",
+                    (false, false) => "<",
+                    (false, true) => "≤",
+                };
+                format!("{} {op} {}", pool.unicode(a.lhs), pool.unicode(a.rhs))
+            })
+            .collect(),
         parts: p
             .parts
             .iter()

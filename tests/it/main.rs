@@ -29,6 +29,7 @@ mod laws;
 mod literature;
 mod mechanics;
 mod modes13;
+mod natural_answers;
 mod notation;
 mod notation_lists;
 mod plot;
