@@ -82,6 +82,8 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         .check_first_order()
         .map_err(|e| b.fail(lagrangian_line, e.code(), e.to_string()))?;
     let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
+    // Before the parts, whose answers and hints may use the defined names.
+    b.definitions(&pf, &mut system, &dims)?;
     // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
     reader.point_forces(&pf, &mut system)?;
     let parts = b.parts(&pf, &mut system)?;

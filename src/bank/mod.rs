@@ -3,6 +3,7 @@
 //! bank embedded in the binary.
 
 pub(crate) mod build;
+mod build_definitions;
 mod build_domain;
 mod build_part;
 mod build_reader;

@@ -27,6 +27,10 @@ pub struct ProblemFile {
     pub lagrangian: Option<Spanned<String>>,
     #[serde(default)]
     pub assume: Vec<String>,
+    /// Named quantities of the parameters (`theta0 = "acos(g/(R*omega^2))"`): an answer may
+    /// use the name, read as its value.
+    #[serde(default)]
+    pub definitions: BTreeMap<String, Spanned<String>>,
     /// Generalized non-conservative forces, one per coordinate.
     #[serde(default)]
     pub forces: Vec<String>,

@@ -114,8 +114,48 @@ pub(crate) fn check_prepared(
     }
     never_correct_with_unlike_dimensions(&mut v);
     drop_superseded(&mut v);
+    fold_definitions(p, input, &mut v);
     v.sort();
     v
+}
+
+/// A defined quantity the answer names (`ω sin θ₀`) is shown by its name, not its value,
+/// in the reading and the diagnoses: the student reads back what they wrote.
+fn fold_definitions(p: &Prepared, input: &str, v: &mut Verdict) {
+    if p.system.definitions.is_empty() {
+        return;
+    }
+    // `±` does not lex on its own (it is read by the list reader): blanked for this.
+    let input = input.replace(['±', '∓'], " ");
+    let named: Vec<String> = crate::expr::lexer::lex(&input)
+        .map(|toks| {
+            toks.into_iter()
+                .filter_map(|t| match t.tok {
+                    crate::expr::lexer::Tok::Name { text, .. } => {
+                        Some(crate::expr::names::normalize(&text))
+                    }
+                    _ => None,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let pool = &p.system.pool;
+    for (name, value) in &p.system.definitions {
+        if !named.contains(name) {
+            continue;
+        }
+        let (plain, unicode) = (pool.plain(*value), pool.unicode(*value));
+        let greek = crate::expr::names::unicode_name(name);
+        let r = &mut v.reading;
+        r.plain = r.plain.replace(&plain, name);
+        r.unicode = r.unicode.replace(&unicode, &greek);
+        if let Some(n) = &mut r.note {
+            *n = n.replace(&unicode, &greek);
+        }
+        for d in &mut v.diagnoses {
+            d.message = d.message.replace(&unicode, &greek);
+        }
+    }
 }
 
 /// Diagnoses a more principled one makes redundant or misleading: `h-vs-e` says all that
@@ -124,6 +164,10 @@ pub(crate) fn check_prepared(
 fn drop_superseded(v: &mut Verdict) {
     const SUPERSEDES: &[(Code, Code)] = &[
         (Code::HVsE, Code::TPlusV),
+        // T + V names the sign of V's terms: a term-level sign or factor finding on V says it
+        // again, worse (the factor cos θ − 1 called wrong).
+        (Code::TPlusV, Code::SignError),
+        (Code::TPlusV, Code::WrongFactor),
         (Code::LostRoot, Code::SwappedSymbols),
     ];
     for &(by, gone) in SUPERSEDES {
@@ -308,6 +352,13 @@ fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) ->
 }
 
 fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading) -> Verdict {
+    // `φ̇² = g/(l cos α)` for a part asking φ̇²: the value after the asked quantity.
+    let r = match r {
+        Reading::Equation { lhs, rhs, span } if names_the_rate(part, p, lhs) => {
+            Reading::Expr(rhs, span)
+        }
+        r => r,
+    };
     let s = match expression_of(r) {
         Ok(s) => s,
         Err(why) => {
@@ -358,6 +409,12 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
             v.status = Status::Correct;
             v.diagnoses.extend(j.details(p));
         }
+        Judgement::Unexplained if negated_up_to_constant(part, p, s, reference) => v
+            .diagnoses
+            .push(Diagnosis::new(
+                Code::SignError,
+                "sign error: your answer is the negative of the right one (up to a constant, which is free here)",
+            )),
         Judgement::Unexplained => diagnose_expression(part, p, s, reference, rel, &mut v),
         j => v.diagnoses.extend(j.details(p)),
     }
@@ -371,6 +428,48 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
         });
     }
     v
+}
+
+/// Whether `s` is −`reference` plus a constant on a part that allows a constant (V, h):
+/// `−m g l (1 − cos θ)` for V = −m g l cos θ is the sign, not a factor, that is wrong.
+fn negated_up_to_constant(part: &Part, p: &mut Prepared, s: Id, reference: Id) -> bool {
+    let free = part.up_to_constant || part.quantity == Quantity::EnergyFunction;
+    if !free {
+        return false;
+    }
+    let minus = p.system.pool.neg(reference);
+    matches!(
+        relate(&p.system, s, minus, &p.points, part.tolerance),
+        Ok(Relation::Equal | Relation::UpToConstant(_))
+    )
+}
+
+/// Whether `lhs` is what a steady-motion part asks for, the moving coordinate's rate (or
+/// its square, where the part asks for that): `φ̇² = …` then states the answer. The rate
+/// itself on a part asking its square is taken too, so the value is told to be squared.
+fn names_the_rate(part: &Part, p: &mut Prepared, lhs: Id) -> bool {
+    if part.kind != PartKind::SteadyMotion {
+        return false;
+    }
+    let stays = |name: &str| {
+        part.at
+            .iter()
+            .any(|(k, _)| crate::expr::names::normalize(k.trim()) == name)
+    };
+    let moving: Vec<_> = p
+        .system
+        .coordinates
+        .iter()
+        .filter(|c| !stays(&c.name))
+        .map(|c| c.sym)
+        .collect();
+    let [sym] = moving[..] else {
+        return false;
+    };
+    let rate = p.system.pool.var(sym, 1);
+    let square = p.system.pool.powi(rate, 2);
+    let asked = if part.squared { square } else { rate };
+    lhs == asked || lhs == rate
 }
 
 /// A steady-motion part asking for the rate squared (φ'²) answered with the rate: the

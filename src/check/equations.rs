@@ -17,7 +17,7 @@ use super::residual::{Miss, affine, holds, miss};
 use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
-use crate::expr::{Id, Reading, Style};
+use crate::expr::{Id, Node, Reading, Style};
 use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
 
@@ -203,6 +203,7 @@ fn judge_condition(
     match relate(&p.system, r0, reference, &p.points, part.tolerance) {
         Ok(Relation::Equal | Relation::Factor(_)) => ConditionFinding::Equivalent,
         _ if eq(p, r0) => ConditionFinding::Equivalent,
+        _ if equivalent_under_assumptions(p, r0, reference) => ConditionFinding::Equivalent,
         Ok(Relation::Undefined { point }) => ConditionFinding::Undefined { point },
         // One term as the student wrote it first; the whole-residual searches after.
         _ => {
@@ -214,6 +215,46 @@ fn judge_condition(
                 .map_or(ConditionFinding::NotEquivalent, ConditionFinding::Found)
         }
     }
+}
+
+/// Whether `r0` is the reference without some of its factors, each a function of the
+/// parameters alone that the problem's assumptions keep away from zero (`r = 0` for
+/// `r (2ga − ω²) = 0` where 2ga > ω²): the two conditions then hold at the same states. A
+/// factor the reference does not have (`r (2ga + ω²) = 0`) is not this, even where it cannot
+/// vanish either: it is the sign slip the part is about.
+fn equivalent_under_assumptions(p: &mut Prepared, r0: Id, reference: Id) -> bool {
+    let factors: Vec<Id> = match p.system.pool.node(reference) {
+        Node::Mul(f) => f.to_vec(),
+        _ => return false,
+    };
+    let time = p.system.pool.time();
+    let coords = p.system.coordinate_syms();
+    let constant = |p: &Prepared, f: Id| {
+        !p.system
+            .pool
+            .variables(f)
+            .iter()
+            .any(|(s, _)| *s == time || coords.contains(s))
+    };
+    let (dropped, kept): (Vec<Id>, Vec<Id>) = factors
+        .into_iter()
+        .partition(|&f| constant(p, f) && p.system.pool.as_num(f).is_none());
+    if dropped.is_empty() || kept.is_empty() {
+        return false;
+    }
+    let rest = p.system.pool.product(kept);
+    let proportional = matches!(
+        relate(&p.system, r0, rest, &p.points, p.tolerance),
+        Ok(Relation::Equal | Relation::Factor(_))
+    );
+    // Nonzero and finite at every sample, whose parameters satisfy the assumptions.
+    proportional
+        && dropped.iter().all(|&f| {
+            super::compare::values(&p.system, &[f], &p.points).is_ok_and(|vals| {
+                vals.iter()
+                    .all(|v| v.as_ref().is_some_and(|v| v[0].is_finite() && v[0] != 0.0))
+            })
+        })
 }
 
 /// Checks an answer to an `equation` or `equations` part.

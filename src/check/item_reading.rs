@@ -141,7 +141,7 @@ pub(crate) fn read_stated_items(
             *last = said;
             continue;
         }
-        for variant in plus_minus(text) {
+        for variant in plus_minus(text, off)? {
             let point = if tuples {
                 read_tuple(p, &variant, off)?
             } else {
@@ -171,7 +171,7 @@ fn read_values(part: &Part, p: &mut Prepared, input: &str) -> Result<LabelledVal
         let said = label
             .filter(|_| part.kind == PartKind::Frequencies)
             .and_then(freq_label::said);
-        for variant in plus_minus(body) {
+        for variant in plus_minus(body, off + k)? {
             let id = read_expr(&variant, &p.context, &mut p.system.pool)
                 .map_err(|e| shifted(e, off + k))?;
             items.push(vec![id]);
@@ -181,15 +181,56 @@ fn read_values(part: &Part, p: &mut Prepared, input: &str) -> Result<LabelledVal
     Ok((items, labels))
 }
 
+/// Most `±` signs expanded in one item (2³ = 8 values).
+const MAX_SIGN_CHOICES: usize = 3;
+
 /// `±a` as `+ a` and `- a` (each `±` two bytes wide, like its replacements, so offsets
-/// hold); `∓` takes the other sign. Text without either is itself.
-fn plus_minus(text: &str) -> Vec<String> {
-    if !text.contains(['±', '∓']) {
-        return vec![text.to_string()];
+/// hold); `∓` takes the other sign of the one `±`. Several `±` are independent choices, each
+/// combination an item (`±√((2 ± √2) g/l)` is four values), never paired silently; a `∓`
+/// beside several `±`, or more than [`MAX_SIGN_CHOICES`] of them, is refused (`off` places
+/// the error). Text without either is itself.
+fn plus_minus(text: &str, off: usize) -> Result<Vec<String>, ParseError> {
+    let pm = text.matches('±').count();
+    let mp = text.matches('∓').count();
+    if pm + mp == 0 {
+        return Ok(vec![text.to_string()]);
     }
-    // `∓` is three bytes: padded to keep offsets.
-    let with = |pm: &str, mp: &str| text.replace('±', pm).replace('∓', mp);
-    vec![with("+ ", "-  "), with("- ", "+  ")]
+    let refuse = |reason: String| {
+        let at = text.find(['±', '∓']).unwrap_or(0);
+        Err(ParseError::new(
+            ParseErrorKind::SignChoices { reason },
+            off + at..off + text.len(),
+        ))
+    };
+    if pm + mp > 1 && mp > 0 {
+        return refuse("`∓` beside more than one `±`: which signs go together is not clear".into());
+    }
+    if pm > MAX_SIGN_CHOICES {
+        return refuse(format!(
+            "{pm} signs `±` in one item: at most {MAX_SIGN_CHOICES} are expanded"
+        ));
+    }
+    if pm <= 1 {
+        // `∓` is three bytes: padded to keep offsets.
+        let with = |pm: &str, mp: &str| text.replace('±', pm).replace('∓', mp);
+        return Ok(vec![with("+ ", "-  "), with("- ", "+  ")]);
+    }
+    // Each `±` chosen on its own: the combination's k-th bit is the k-th sign.
+    Ok((0..1usize << pm)
+        .map(|choice| {
+            let mut k = 0;
+            let mut out = String::with_capacity(text.len());
+            for c in text.chars() {
+                if c == '±' {
+                    out.push_str(if choice >> k & 1 == 0 { "+ " } else { "- " });
+                    k += 1;
+                } else {
+                    out.push(c);
+                }
+            }
+            out
+        })
+        .collect())
 }
 
 /// Whether a point is written as a tuple `(a, b)`: a top-level bracket holding a `,`.

@@ -88,13 +88,15 @@ impl ItemFinding {
                 if squared {
                     format!("{label} is the square of an ω²: this part asks for ω², square it back")
                 } else {
-                    format!("{label} is ω², but this part asks for ω: take the square root")
+                    format!(
+                        "{label} is the square of a frequency, but this part asks for the frequency itself: take the square root"
+                    )
                 },
             ),
             ItemFinding::Root { label, squared } => Diagnosis::new(
                 Code::OmegaRoot,
                 if squared {
-                    format!("{label} is ω, but this part asks for ω²: square it")
+                    format!("{label} is a frequency, but this part asks for its square: square it")
                 } else {
                     format!("{label} is √ω: square it")
                 },

@@ -212,10 +212,29 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         reference: &rv,
         reference_ids: &refs,
     };
-    let (matched_ref, matched_stu) = match_items(part, p, &lists, &blocked);
+    let (matched_ref, mut matched_stu) = match_items(part, p, &lists, &blocked);
+    // An angle the part's range leaves out is the right position written outside the range
+    // asked for: said so, and not credited.
+    let outside: Vec<usize> = outside_stated_range(part, p, &sv)
+        .into_iter()
+        .filter(|&i| matched_stu[i])
+        .collect();
+    for &i in &outside {
+        {
+            matched_stu[i] = false;
+            let shown = show_item(part, p, &coords, &items[i], Style::Unicode);
+            v.diagnoses.push(Diagnosis::new(
+                Code::WrongItem,
+                format!(
+                    "item {} ({shown}) is an equilibrium, but this part asks for the angles in (−π, π]: give each angle in that range (add or subtract 2π)",
+                    i + 1
+                ),
+            ));
+        }
+    }
     let matched = matched_stu.iter().filter(|m| **m).count();
     let mut free: Vec<usize> = (0..refs.len()).filter(|&j| !matched_ref[j]).collect();
-    for i in (0..items.len()).filter(|&i| !matched_stu[i]) {
+    for i in (0..items.len()).filter(|&i| !matched_stu[i] && !outside.contains(&i)) {
         if let Some(l) = labels[i].as_ref().filter(|_| blocked[i]) {
             let value = show_item(part, p, &coords, &items[i], Style::Unicode);
             let shown = format!("{} = {value}", l.said.symbol());
@@ -280,6 +299,31 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
     v
 }
 
+/// The student items (equilibria) with a periodic coordinate outside (−π, π] at some
+/// sample point, where the part's prompt states that range; none otherwise. −π itself is
+/// let pass: it is π, and which end a range keeps is notation, not physics.
+fn outside_stated_range(part: &Part, p: &Prepared, values: &[Vec<Option<Vec<f64>>>]) -> Vec<usize> {
+    let stated = ["(−π, π]", "(-π, π]", "(-pi, pi]"]
+        .iter()
+        .any(|r| part.prompt.contains(r));
+    if part.kind != PartKind::Equilibria || !stated {
+        return Vec::new();
+    }
+    let periodic: Vec<usize> = (0..p.system.n())
+        .filter(|&c| p.system.coordinates[c].periodic)
+        .collect();
+    let beyond = |x: f64| x.abs() > std::f64::consts::PI * (1.0 + 1e-9);
+    (0..values.len())
+        .filter(|&i| {
+            values[i].iter().flatten().any(|at| {
+                periodic
+                    .iter()
+                    .any(|&c| at.get(c).is_some_and(|&x| beyond(x)))
+            })
+        })
+        .collect()
+}
+
 /// A coordinate left arbitrary is shown as `any` (it is read as a marker value), and a
 /// student who gave one point of a continuum is told which coordinate is free.
 fn show_any(part: &Part, input: &str, v: &mut Verdict) {
@@ -304,7 +348,11 @@ fn show_any(part: &Part, input: &str, v: &mut Verdict) {
         .filter(|(_, r)| r.trim() == "any")
         .map(|(l, _)| l.trim())
         .collect();
-    if v.status != Status::Correct && !free.is_empty() && !input.contains("any") {
+    if v.status != Status::Correct
+        && !free.is_empty()
+        && !input.contains("any")
+        && !input.contains("arbitrary")
+    {
         v.diagnoses.push(Diagnosis::new(
             Code::WrongItem,
             format!(
@@ -340,6 +388,7 @@ fn stated_stability(
     (items, stated): (&[Vec<Id>], &[Option<super::stability::Stated>]),
 ) -> Vec<Diagnosis> {
     let mut out = Vec::new();
+    let gyroscopic = stated.iter().any(Option::is_some) && velocity_linear(p);
     for (i, said) in stated.iter().enumerate() {
         let Some(said) = *said else { continue };
         let matched = (0..lists.reference.len()).find(|&j| {
@@ -355,10 +404,25 @@ fn stated_stability(
             let label = show_item(part, p, coords, &items[i], Style::Unicode);
             let engine =
                 |p: &mut Prepared| super::stability::engine_stability(p, &lists.student[i]);
+            let said = (said, gyroscopic);
             out.extend(super::stability::judge(part, &label, said, j, || engine(p)));
         }
     }
     out
+}
+
+/// Whether L has terms linear in the velocities (Coriolis, gyroscopic): L(q, q̇) and
+/// L(q, −q̇) differ. Stability is then not read off the potential alone.
+fn velocity_linear(p: &mut Prepared) -> bool {
+    let l = p.system.lagrangian;
+    let mut map = rustc_hash::FxHashMap::default();
+    for c in p.system.coordinate_syms() {
+        let v = p.system.pool.var(c, 1);
+        map.insert((c, 1), p.system.pool.neg(v));
+    }
+    let reversed = p.system.pool.substitute(l, &map);
+    let odd = p.system.pool.sub(l, reversed);
+    !p.system.is_zero(odd)
 }
 
 /// The stability the student stated, as read (`stated: θ = 0 stable, θ = π unstable`).

@@ -23,6 +23,10 @@ pub struct Prepared {
     pub context: Context,
     /// The part's relative tolerance (the documented one unless the part sets its own).
     pub tolerance: f64,
+    /// Whether a product of two velocities in the answer comes from squaring a sum of
+    /// velocities (T, L, h, a speed²), so that a missing one is the cross term of that square;
+    /// not in a generalized force or a d/dt(∂L/∂q̇), where such products come otherwise.
+    pub squares_velocities: bool,
     /// The true accelerations at each point, computed once (None where undefined).
     pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
     /// For an `equation` part whose reference has no accelerations: its residual (decided once).
@@ -80,6 +84,14 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         points,
         context,
         tolerance: part.tolerance,
+        squares_velocities: !part.id.starts_with("generalized-force")
+            && !part.id.starts_with("momentum-rate")
+            && !matches!(
+                part.quantity,
+                crate::problem::Quantity::Momentum(_)
+                    | crate::problem::Quantity::Acceleration(_)
+                    | crate::problem::Quantity::Multiplier(_)
+            ),
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
@@ -129,6 +141,8 @@ pub(crate) fn any_as_marker(p: &Prepared, input: &str) -> String {
     if p.system.parameters.iter().any(|q| q.name == "any") {
         return input.to_string();
     }
+    let arbitrary = arbitrary_as_any(input);
+    let input = arbitrary.as_str();
     let mut out = String::with_capacity(input.len() + 8);
     let mut rest = input;
     while let Some(k) = rest.find("any") {
@@ -142,6 +156,42 @@ pub(crate) fn any_as_marker(p: &Prepared, input: &str) -> String {
         } else {
             "any"
         });
+        rest = tail;
+    }
+    out.push_str(rest);
+    out
+}
+
+/// `x arbitrary`, `x is arbitrary` and `x = arbitrary` (how `modes` words a continuum) as
+/// `x = any`; text without the word `arbitrary` is returned unchanged.
+pub(crate) fn arbitrary_as_any(input: &str) -> String {
+    const WORD: &str = "arbitrary";
+    if !input.contains(WORD) {
+        return input.to_string();
+    }
+    let mut out = String::with_capacity(input.len() + 8);
+    let mut rest = input;
+    while let Some(k) = rest.find(WORD) {
+        let (before, after) = rest.split_at(k);
+        let tail = &after[WORD.len()..];
+        let name_char = |c: char| c.is_alphanumeric() || c == '_' || c == '\'';
+        let whole = !before.ends_with(name_char) && !tail.starts_with(name_char);
+        let lead = before.trim_end();
+        // `x is arbitrary`: the `is` goes with the word.
+        let lead = match lead.strip_suffix("is") {
+            Some(l) if l.ends_with(char::is_whitespace) => l.trim_end(),
+            _ => lead,
+        };
+        if whole && lead.ends_with('=') {
+            out.push_str(before);
+            out.push_str("any");
+        } else if whole && lead.ends_with(|c: char| !"(,;".contains(c)) {
+            out.push_str(lead);
+            out.push_str(" = any");
+        } else {
+            out.push_str(before);
+            out.push_str(WORD);
+        }
         rest = tail;
     }
     out.push_str(rest);

@@ -184,11 +184,14 @@ pub(crate) fn engine_stability(p: &mut Prepared, point: &[Option<Vec<f64>>]) -> 
 }
 
 /// A wrong statement about student item `label`, which matched reference item `j`; where
-/// the part gives no stability, `engine` (computed on demand) decides.
+/// the part gives no stability, `engine` (computed on demand) decides. `said` carries
+/// whether L has terms linear in the velocities: a maximum of the effective potential may
+/// then be stable (the fast rotating trap), so the reason is the linearised equations, not
+/// the potential's minimum.
 pub(crate) fn judge(
     part: &crate::problem::Part,
     label: &str,
-    said: Stated,
+    (said, gyroscopic): (Stated, bool),
     j: usize,
     engine: impl FnOnce() -> Option<Stated>,
 ) -> Option<Diagnosis> {
@@ -198,12 +201,14 @@ pub(crate) fn judge(
         None => return None,
     };
     (is != said).then(|| {
+        let why = if gyroscopic {
+            "the terms linear in the velocities (Coriolis, gyroscopic) act here, so the potential alone does not decide: linearise the equations of motion about the point, those terms included, and see whether the small motions stay bounded (every frequency real) or grow"
+        } else {
+            "an equilibrium is stable where the (effective) potential has a minimum, so look at the sign of its second derivative there"
+        };
         Diagnosis::new(
             Code::WrongStability,
-            format!(
-                "you said {label} is {}, but it is not: an equilibrium is stable where the (effective) potential has a minimum, so look at the sign of its second derivative there",
-                said.word()
-            ),
+            format!("you said {label} is {}, but it is not: {why}", said.word()),
         )
     })
 }

@@ -322,7 +322,9 @@ fn describe(
                     ),
                 ),
                 Some(what)
-                    if which == "your answer" && cross_velocities(p, reference.signed[j]) =>
+                    if which == "your answer"
+                        && p.squares_velocities
+                        && cross_velocities(p, reference.signed[j]) =>
                 {
                     Diagnosis::new(
                         Code::MissingTerm,
@@ -485,6 +487,18 @@ fn wrong_factor(
     let wrong: Vec<Id> = fs.iter().copied().filter(|x| !fr.contains(x)).collect();
     let lacking: Vec<Id> = fr.iter().copied().filter(|x| !fs.contains(x)).collect();
     let pool = &p.system.pool;
+    // (1 − cos θ) where (cos θ − 1) belongs: the factor is right but for its sign.
+    if let ([w], [l]) = (wrong.as_slice(), lacking.as_slice())
+        && negatives(p, *w, *l)
+    {
+        return Some((
+            Diagnosis::new(
+                Code::SignError,
+                format!("sign error: your term {yours} should have the opposite sign"),
+            ),
+            true,
+        ));
+    }
     let (message, named) = match (wrong.as_slice(), lacking.as_slice()) {
         ([w], _) => {
             // A power of a function (1/sin α, cos²θ) is judged by the function inside.
@@ -535,6 +549,18 @@ fn wrong_factor(
         _ => (format!("your term {yours} has a wrong factor"), false),
     };
     Some((Diagnosis::new(Code::WrongFactor, message), named))
+}
+
+/// Whether `a` is −`b` at every sample point where both are defined (and at one at least).
+fn negatives(p: &Prepared, a: Id, b: Id) -> bool {
+    let Ok(vals) = super::compare::values(&p.system, &[a, b], &p.points) else {
+        return false;
+    };
+    let defined: Vec<&Vec<f64>> = vals.iter().flatten().collect();
+    !defined.is_empty()
+        && defined
+            .iter()
+            .all(|v| super::compare::close(v[0], -v[1], 0.0, p.tolerance) && v[0] != 0.0)
 }
 
 /// What a reference term contains, without its coefficient: the product of its factors that

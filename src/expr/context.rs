@@ -59,6 +59,9 @@ pub struct Context {
     /// The longest input read in this context, in bytes (`None`: the default limit, sized
     /// for answers; a system's own text may be larger).
     max_input: Option<usize>,
+    /// Named quantities a problem defines (`theta0` = `acos(g/(R*omega^2))`), normalized
+    /// name and text in the parameters: a definition's name reads as its value.
+    definitions: Vec<(String, String)>,
 }
 
 impl Context {
@@ -95,6 +98,43 @@ impl Context {
             }
         }
         self
+    }
+
+    /// Declares named quantities: each name reads as its text's value (the text is read in
+    /// this context without the definitions, so one definition never refers to another).
+    pub fn with_definitions<S: AsRef<str>, T: AsRef<str>>(
+        mut self,
+        definitions: impl IntoIterator<Item = (S, T)>,
+    ) -> Self {
+        for (n, text) in definitions {
+            let n = names::normalize(n.as_ref());
+            if !self.definitions.iter().any(|(d, _)| *d == n) {
+                self.definitions.push((n, text.as_ref().to_string()));
+            }
+        }
+        self
+    }
+
+    /// The text a defined name stands for (`None` when `raw` names no definition).
+    pub(crate) fn definition(&self, raw: &str) -> Option<&str> {
+        let name = names::normalize(raw);
+        self.definitions
+            .iter()
+            .find(|(d, _)| *d == name)
+            .map(|(_, t)| t.as_str())
+    }
+
+    /// This context without its definitions: where a definition's own text is read.
+    pub(crate) fn without_definitions(&self) -> Context {
+        Context {
+            definitions: Vec::new(),
+            ..self.clone()
+        }
+    }
+
+    /// The defined names, normalized, in order.
+    pub fn defined_names(&self) -> impl Iterator<Item = &str> {
+        self.definitions.iter().map(|(n, _)| n.as_str())
     }
 
     /// Raises (or lowers) the input limit: a system's Lagrangian may be far larger than an

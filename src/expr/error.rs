@@ -80,6 +80,10 @@ pub enum ParseErrorKind {
     /// `sin⁻¹`, `sin^-1`: arcsin to some, 1/sin to others.
     #[error("`{name}` with a negative power can mean the inverse function or one over `{name}`")]
     InversePower { name: String },
+    /// An item with several `±` whose pairing is unclear (a `∓` among them) or with too many
+    /// to expand.
+    #[error("{reason}")]
+    SignChoices { reason: String },
     /// A tuple point `(a, b)` with the wrong number of values.
     #[error("a point needs {want} values, one per coordinate ({names})")]
     PointSize { want: usize, names: String },
@@ -114,6 +118,7 @@ impl ParseErrorKind {
             Self::AmbiguousArgument { .. } => "ambiguous",
             Self::InversePower { .. } => "ambiguous",
             Self::PointSize { .. } => "point-size",
+            Self::SignChoices { .. } => "ambiguous-signs",
         }
     }
 
@@ -150,6 +155,9 @@ impl ParseErrorKind {
                 ),
             },
             Self::FunctionWithoutArgs { name } => format!("write `{name}(x)`"),
+            Self::UnknownName { name, .. } if word_hint(name).is_some() => {
+                word_hint(name).unwrap_or_default().into()
+            }
             Self::UnknownName { name, .. } if quantity_name(name).is_some() => format!(
                 "`{name}` ({}) is not a symbol here: write it out in the coordinates and parameters",
                 quantity_name(name).unwrap_or_default()
@@ -186,6 +194,9 @@ impl ParseErrorKind {
                 "add parentheses to say which: a function's argument without `(` is only the number and name right after it".into()
             }
             Self::PointSize { names, .. } => format!("write each point as ({names})"),
+            Self::SignChoices { .. } => {
+                "write each value as its own item, separated by commas".into()
+            }
             Self::InversePower { name } => {
                 format!("write `a{name}(x)` for the inverse, or `1/{name}(x)`")
             }
@@ -202,6 +213,25 @@ impl ParseErrorKind {
             _ => "here".into(),
         }
     }
+}
+
+/// The help for an ordinary word a student writes in an answer: a unit (`rad/s`), a
+/// conjunction between items (`θ = 0 and θ = π`), a statement that something is constant
+/// (`p = const`). Each says what kind of answer is read instead.
+fn word_hint(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "rad" | "rads" | "radian" | "radians" | "Hz" | "rpm" | "sec" | "deg" | "degrees" => {
+            "no units needed: write the value alone, e.g. `sqrt(g/l)`"
+        }
+        "and" | "or" => "separate the items with commas: `theta = 0, theta = pi`",
+        "const" | "constant" | "conserved" | "C" => {
+            "write the quantity itself as an expression (what stays constant), not the word that it is constant"
+        }
+        "d" | "dt" => {
+            "write time derivatives with primes: `theta'` for dθ/dt, `theta''` for d²θ/dt²"
+        }
+        _ => return None,
+    })
 }
 
 /// What `T`, `V`, `U` and `L` stand for when a student uses them undeclared (`L = T − V`).

@@ -191,6 +191,34 @@ pub fn normalize(name: &str) -> String {
     out
 }
 
+/// A plain name (`theta0`, `omega0`, `m`) as the Unicode printer writes it (`θ₀`, `ω₀`, `m`).
+pub fn unicode_name(name: &str) -> String {
+    let (letters, digits) = split_digits(name);
+    let base = greek_letter(letters).map_or_else(|| letters.to_string(), |g| g.to_string());
+    format!("{base}{}", subscript(digits))
+}
+
+/// A state's name as typed (`theta1`, `theta1'`, `x''`) in Unicode (`θ₁`, `θ̇₁`, `ẍ`): the
+/// primes become dots over a one-letter name, and stay primes otherwise.
+pub fn unicode_state_name(name: &str) -> String {
+    let base = name.trim_end_matches('\'');
+    let primes = name.len() - base.len();
+    let (letters, digits) = split_digits(base);
+    let letter = greek_letter(letters).map_or_else(|| letters.to_string(), |g| g.to_string());
+    let dot = match primes {
+        0 => Some(""),
+        1 => Some("\u{0307}"),
+        2 => Some("\u{0308}"),
+        _ => None,
+    };
+    match dot {
+        Some(d) if letter.chars().count() == 1 || primes == 0 => {
+            format!("{letter}{d}{}", subscript(digits))
+        }
+        _ => format!("{letter}{}{}", subscript(digits), "'".repeat(primes)),
+    }
+}
+
 /// A name as typed in a flag or an option (`θ₁`, `θ̇₁`, `ẋ`, `m_1`) in its spelled ASCII form
 /// (`theta1`, `theta1'`, `x'`, `m1`): Greek letters spelled, subscript digits as digits, and
 /// dots above (U+0307, U+0308, precomposed) as primes at the end. Other text is kept.
@@ -230,6 +258,23 @@ pub(crate) fn split_digits(name: &str) -> (&str, &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn state_names_in_unicode() {
+        // The REPL's :simulate summary printed `theta1` (issue 21).
+        for (input, want) in [
+            ("theta1", "θ₁"),
+            ("theta1'", "θ̇₁"),
+            ("x''", "x\u{308}"),
+            ("phi", "φ"),
+            ("x'''", "x'''"),
+            ("m2", "m₂"),
+            ("theta0", "θ₀"),
+        ] {
+            assert_eq!(unicode_state_name(input), want, "{input}");
+        }
+        assert_eq!(unicode_name("omega0"), "ω₀");
+    }
 
     #[test]
     fn normal_names() {

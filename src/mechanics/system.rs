@@ -46,6 +46,9 @@ pub struct System {
     /// The bodies T and V were built from (empty when L was given directly); the tutor's
     /// derivation ladder starts from their positions.
     pub bodies: Vec<Body>,
+    /// Named quantities of the parameters the problem defines (`theta0`, cos θ₀ = g/(R ω²)):
+    /// an answer may use the name, read as its value.
+    pub definitions: Vec<(String, Id)>,
 }
 
 /// Sampling range of velocities and accelerations.
@@ -123,6 +126,7 @@ impl System {
             forces: vec![zero; n],
             constraints: Vec::new(),
             bodies: Vec::new(),
+            definitions: Vec::new(),
         };
         sys.collect_parameters();
         sys
@@ -159,6 +163,7 @@ impl System {
             forces: vec![zero; n],
             constraints: Vec::new(),
             bodies: Vec::new(),
+            definitions: Vec::new(),
         }
     }
 
@@ -170,11 +175,17 @@ impl System {
             .with_max_input(MAX_SYSTEM_INPUT_BYTES)
     }
 
-    /// The closed context: only this system's names.
+    /// The closed context: only this system's names (and the quantities it defines, each
+    /// read as its value).
     pub fn context(&self) -> Context {
         Context::new()
             .with_coordinates(self.coordinates.iter().map(|c| c.name.as_str()))
             .with_parameters(self.parameters.iter().map(|p| p.name.as_str()))
+            .with_definitions(
+                self.definitions
+                    .iter()
+                    .map(|(n, v)| (n.as_str(), self.pool.plain(*v))),
+            )
     }
 
     /// Reads text in `ctx` into this system's pool.
@@ -510,6 +521,12 @@ impl System {
                 expr: self.pool.substitute(c.expr, &map),
                 kind: c.kind,
             })
+            .collect();
+        self.definitions = self
+            .definitions
+            .clone()
+            .into_iter()
+            .map(|(n, v)| (n, self.pool.substitute(v, &map)))
             .collect();
         self.parameters.retain(|p| !map.contains_key(&(p.sym, 0)));
         let bound = |pool: &mut Pool, d: Domain| Domain {

@@ -99,6 +99,9 @@ pub struct ProblemSheet {
     pub parameters: Vec<String>,
     /// The stated assumptions.
     pub assumptions: Vec<String>,
+    /// The named quantities the problem defines, each `θ₀ = acos(g/(R·ω²))` in Unicode.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub definitions: Vec<String>,
     /// The parts.
     pub parts: Vec<SheetPart>,
 }
@@ -142,14 +145,39 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
             }
         })
         .collect();
+    let definitions = p
+        .system
+        .definitions
+        .iter()
+        .map(|(name, value)| {
+            let named = pool.symbol(name);
+            let named = pool.var(named, 0);
+            format!("{} = {}", pool.unicode(named), pool.unicode(*value))
+        })
+        .collect();
     ProblemSheet {
+        definitions,
         id: p.id.clone(),
         title: p.title.clone(),
         source: p.source.clone(),
         statement: terminal_math(p.statement.trim()),
         coordinates,
         parameters,
-        assumptions: p.assumptions.iter().map(|a| a.text.clone()).collect(),
+        // In Unicode, as everything else on the sheet (R ω² > g, not R*omega^2 > g).
+        assumptions: p
+            .assumptions
+            .iter()
+            .map(|a| {
+                let or_equal = a.text.contains(['=', '≥', '≤']);
+                let op = match (a.greater, or_equal) {
+                    (true, false) => ">",
+                    (true, true) => "≥",
+                    (false, false) => "<",
+                    (false, true) => "≤",
+                };
+                format!("{} {op} {}", pool.unicode(a.lhs), pool.unicode(a.rhs))
+            })
+            .collect(),
         parts: p
             .parts
             .iter()
@@ -184,6 +212,9 @@ impl ProblemSheet {
         if !self.assumptions.is_empty() {
             let shown = visible(&self.assumptions.join(", "));
             writeln!(o, "{} {shown}", h("assuming:   "))?;
+        }
+        if !self.definitions.is_empty() {
+            writeln!(o, "{} {}", h("defined:    "), self.definitions.join(", "))?;
         }
         for (i, part) in self.parts.iter().enumerate() {
             writeln!(

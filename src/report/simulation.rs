@@ -374,8 +374,20 @@ pub fn initial_state(
 }
 
 impl SimulationReport {
-    /// The summary as text.
+    /// The summary as text, names as typed (`theta1'`): what the command line prints.
     pub fn render(&self, paint: &dyn Paint) -> String {
+        self.render_named(paint, &|n: &str| n.to_string())
+    }
+
+    /// The summary with names in Unicode (`θ̇₁`), as the REPL shows everything else.
+    pub fn render_unicode(&self, paint: &dyn Paint) -> String {
+        self.render_named(paint, &crate::expr::names::unicode_state_name)
+    }
+
+    fn render_named(&self, paint: &dyn Paint, name: &dyn Fn(&str) -> String) -> String {
+        let named = |s: &State| State(s.0.iter().map(|(n, v)| (name(n), *v)).collect());
+        let given_line = |s: &State| given_line(&named(s));
+        let line = |s: &State| line(&named(s));
         text(|o| {
             let method = match self.method {
                 Method::Dop853 => "dop853",

@@ -137,7 +137,11 @@ fn typical_wrong_steps_of_the_simple_pendulum_are_diagnosed() {
     assert!(w("speed-squared:1", "l*theta'^2").contains(&Code::Dimension));
     assert!(w("kinetic", "m*l^2*theta'^2").contains(&Code::ConstantFactor));
     assert!(w("potential", "m*g*l*cos(theta)").contains(&Code::SignError));
-    assert!(w("lagrangian", "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)").contains(&Code::SignError));
+    // T + V is named once: no sign error or wrong factor on V's term beside it.
+    assert_eq!(
+        w("lagrangian", "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)"),
+        [Code::TPlusV]
+    );
     assert!(w("momentum:theta", "m*l*theta'").contains(&Code::Dimension));
     assert!(w("momentum-rate:theta", "-m*l^2*theta''").contains(&Code::SignError));
     assert!(w("generalized-force:theta", "m*g*l*sin(theta)").contains(&Code::SignError));

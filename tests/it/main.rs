@@ -29,6 +29,7 @@ mod lagrangian_meaning;
 mod laws;
 mod literature;
 mod mechanics;
+mod natural_answers;
 mod normal_modes;
 mod notation;
 mod notation_lists;

@@ -36,7 +36,7 @@ fn functions_without_parentheses() {
         ("cos θ₁ cos θ₂", "cos(theta1)*cos(theta2)"),
         ("sin θ'", "sin(theta')"),
         ("-m g l cos θ", "-m*g*l*cos(theta)"),
-        ("m g l (1 − cos θ)", "-m*g*l*(cos(theta) - 1)"),
+        ("m g l (1 − cos θ)", "m*g*l*(1 - cos(theta))"),
         ("sqrt 2", "sqrt(2)"),
         ("exp x", "exp(x)"),
     ]);

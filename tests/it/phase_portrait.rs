@@ -268,7 +268,7 @@ fn repl_simulate_draws_the_chart_and_comes_back_after_one_period() {
     let (code, out) = repl(&input);
     assert_eq!(code, 0, "{out}");
     // The first run takes the problem's suggested values (m = l = 1, g = 9.81).
-    assert_eq!(out.matches("Final: theta = ").count(), 2, "{out}");
+    assert_eq!(out.matches("Final: θ = ").count(), 2, "{out}");
     assert!(out.contains("θ(t) (θ / rad against t / s)"), "{out}");
     assert!(
         out.contains('⠀') || out.contains('⡀'),
@@ -276,7 +276,7 @@ fn repl_simulate_draws_the_chart_and_comes_back_after_one_period() {
     );
     let last = out
         .lines()
-        .filter_map(|l| l.strip_prefix("Final: theta = "))
+        .filter_map(|l| l.strip_prefix("Final: θ = "))
         .next_back()
         .unwrap();
     let theta: f64 = last.split(',').next().unwrap().trim().parse().unwrap();

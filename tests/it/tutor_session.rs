@@ -111,10 +111,11 @@ fn a_wrong_answer_per_step_of_the_simple_pendulum_is_diagnosed() {
         ("speed-squared:1", "l*theta'^2", Code::Dimension),
         ("kinetic", "m*l^2*theta'^2", Code::ConstantFactor),
         ("potential", "m*g*l*cos(theta)", Code::SignError),
+        // T + V: told once, without a sign error on V's term beside it (issue 21 §1).
         (
             "lagrangian",
             "1/2*m*l^2*theta'^2 - m*g*l*cos(theta)",
-            Code::SignError,
+            Code::TPlusV,
         ),
         ("momentum:theta", "m*l*theta'", Code::Dimension),
         ("momentum-rate:theta", "-m*l^2*theta''", Code::SignError),

@@ -176,7 +176,7 @@ fn premature_substitution(p: &mut Prepared) -> Vec<Candidate<Vec<Id>>> {
         out.push(Candidate::new(
             Code::PrematureSubstitution,
             format!(
-                "premature substitution: you put the conserved momentum p_{name} into L before differentiating; ∂/∂q must be taken with {rate} held fixed, not p_{name}, and substituting first flips the sign of the term it gives (for an angle, the centrifugal term). Substitute p_{name} only into the finished equations (or use the Routhian R = L − p_{name}·{rate})"
+                "the term that comes from {rate} has the wrong sign, which is what putting the conserved momentum p_{name} into L before differentiating gives (a premature substitution), if that is what you did: ∂/∂q must be taken with {rate} held fixed, not p_{name}. Substitute p_{name} only into the finished equations (or use the Routhian R = L − p_{name}·{rate})"
             ),
             sys,
         ));

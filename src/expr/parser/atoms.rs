@@ -147,8 +147,14 @@ impl Parser<'_> {
             if text == "d" && self.at_time_derivative() {
                 return self.time_derivative(span);
             }
+            if let Some(a) = self.leibniz(&text, &span) {
+                return Ok(a);
+            }
             if let Some(root) = self.sqrt_of_digits(&text, &span) {
                 return Ok(root);
+            }
+            if let Some(value) = self.defined(&text, &span) {
+                return value;
             }
         }
         let resolved = self.ctx.resolve(&text);
@@ -188,6 +194,34 @@ impl Parser<'_> {
         };
         let end = span.end;
         self.with_dots(Ast { kind, span }, dots, end)
+    }
+
+    /// A name the problem defines (`θ₀`), read as its value in parentheses, every node
+    /// placed at the name (its text is the problem's, not the student's). `None` for a name
+    /// that is not a definition.
+    fn defined(&mut self, text: &str, span: &Span) -> Option<Result<Ast, ParseError>> {
+        let value = self.ctx.definition(text)?;
+        let inner = self.ctx.without_definitions();
+        let parsed = match super::parse(value, &inner) {
+            Ok(p) => p,
+            // A definition that does not read here (a part substituted a parameter it uses
+            // away): the name is unknown in this part.
+            Err(_) => {
+                return Some(Err(ParseError::new(
+                    ParseErrorKind::UnknownName {
+                        name: text.to_string(),
+                        suggestion: None,
+                        split: None,
+                    },
+                    span.clone(),
+                )));
+            }
+        };
+        let crate::expr::ast::Statement::Expr(mut a) = parsed.statement else {
+            return None;
+        };
+        place_at(&mut a, span);
+        Some(Ok(a))
     }
 
     /// `a` differentiated `dots` times (combining dots over a name), or `a` itself.
@@ -237,5 +271,27 @@ impl Parser<'_> {
             ));
         }
         Ok(())
+    }
+}
+
+/// Places every node of `a` at `span` (a definition's value read where its name stands).
+fn place_at(a: &mut Ast, span: &Span) {
+    a.span = span.clone();
+    match &mut a.kind {
+        AstKind::Neg(x) | AstKind::Call(_, x) | AstKind::Dt(x) => place_at(x, span),
+        AstKind::Pow(x, y) => {
+            place_at(x, span);
+            place_at(y, span);
+        }
+        AstKind::Sum(xs) | AstKind::Product(xs) => {
+            for (_, x) in xs {
+                place_at(x, span);
+            }
+        }
+        AstKind::Num(_)
+        | AstKind::Pi
+        | AstKind::Time
+        | AstKind::Coordinate { .. }
+        | AstKind::Parameter(_) => {}
     }
 }

@@ -176,6 +176,70 @@ impl Parser<'_> {
             && self.peek_at(2) == Some(&Tok::LParen)
     }
 
+    /// Leibniz notation for a coordinate's derivative: `dθ/dt` (also `dx/dt`, one name
+    /// `dx`), `d²θ/dt²` and `d^2θ/dt^2` are θ' and θ'' (`text` is the name just read, a `d`
+    /// that no symbol of the problem is called). `None` when what follows is not that form,
+    /// so the name is read as before (a parameter's `dm/dt` stays an unknown name).
+    pub(super) fn leibniz(&mut self, text: &str, span: &Span) -> Option<Ast> {
+        if self.ctx.is_declared("dt") {
+            return None;
+        }
+        // The order written after the `d` (`²`, `^2`), and how many tokens it takes.
+        let order_at = |p: &Self, k: usize| -> Option<(u32, usize)> {
+            let small =
+                |n: &num_bigint::BigInt| u32::try_from(n).ok().filter(|&o| (1..=4).contains(&o));
+            match (p.peek_at(k), p.peek_at(k + 1)) {
+                (Some(Tok::Super(n)), _) => Some((small(n)?, 1)),
+                (Some(Tok::Caret), Some(Tok::Num(r))) if r.is_integer() => {
+                    Some((small(r.numer())?, 2))
+                }
+                _ => None,
+            }
+        };
+        // `d` then the coordinate as its own token, or `dx` as one name.
+        let (order, name, mut k) = if text == "d" {
+            let (order, used) = order_at(self, 0).unwrap_or((1, 0));
+            match self.peek_at(used) {
+                Some(Tok::Name { text: q, dots: 0 }) => (order, q.clone(), used + 1),
+                _ => return None,
+            }
+        } else {
+            (1, text.strip_prefix('d')?.to_string(), 0)
+        };
+        if !matches!(self.ctx.resolve(&name), Some(Resolved::Coordinate(_, 0))) {
+            return None;
+        }
+        if self.peek_at(k) != Some(&Tok::Slash)
+            || !matches!(self.peek_at(k + 1), Some(Tok::Name { text, dots: 0 }) if text == "dt")
+        {
+            return None;
+        }
+        k += 2;
+        let below = match order_at(self, k) {
+            Some((o, used)) => {
+                k += used;
+                o
+            }
+            None => 1,
+        };
+        if below != order {
+            return None;
+        }
+        self.pos += k;
+        let end = self.prev_end();
+        let name = match self.ctx.resolve(&name) {
+            Some(Resolved::Coordinate(n, _)) => n,
+            _ => return None,
+        };
+        Some(Ast {
+            kind: AstKind::Coordinate {
+                name,
+                order: u8::try_from(order).unwrap_or(1),
+            },
+            span: span.start..end,
+        })
+    }
+
     /// `d/dt(…)`: the total time derivative of the bracket (`span` is the `d`'s).
     pub(super) fn time_derivative(&mut self, span: Span) -> Result<Ast, ParseError> {
         self.pos += 2;

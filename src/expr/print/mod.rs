@@ -73,7 +73,7 @@ impl Pool {
             ),
             _ => (BigRational::one(), parts.clone()),
         };
-        let (neg, mag, _) = printer.product_term(&coeff, factors);
+        let (neg, mag, _) = printer.product_term(&coeff, factors, true);
         if neg {
             format!("{}{mag}", printer.minus())
         } else {

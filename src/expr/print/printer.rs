@@ -105,7 +105,7 @@ impl Printer<'_> {
                 (out, SUM)
             }
             _ => {
-                let (neg, mag, prec) = self.term(id);
+                let (neg, mag, prec) = self.term_with(id, true);
                 if neg {
                     (format!("{}{mag}", self.minus()), PRODUCT.min(prec))
                 } else {
@@ -125,8 +125,14 @@ impl Printer<'_> {
         }
     }
 
-    /// A term as (negative?, magnitude text, precedence of the magnitude).
+    /// A term of a sum as (negative?, magnitude text, precedence of the magnitude).
     fn term(&self, id: Id) -> (bool, String, u8) {
+        self.term_with(id, false)
+    }
+
+    /// A term; `alone` when it is not inside a sum, where a difference among its factors
+    /// may take its sign (see [`Self::product_term`]).
+    fn term_with(&self, id: Id, alone: bool) -> (bool, String, u8) {
         let pool = self.pool;
         let (coeff, factors): (BigRational, Vec<Id>) = match pool.node(id) {
             Node::Num(v) => (v.clone(), Vec::new()),
@@ -136,11 +142,18 @@ impl Printer<'_> {
             },
             _ => (BigRational::one(), vec![id]),
         };
-        self.product_term(&coeff, factors)
+        self.product_term(&coeff, factors, alone)
     }
 
     /// The product `coeff · factors` as a term: (negative?, magnitude text, precedence).
-    pub(super) fn product_term(&self, coeff: &BigRational, factors: Vec<Id>) -> (bool, String, u8) {
+    /// `alone`: the product stands by itself (a side, a quoted term, an argument), not as a
+    /// term of a sum, whose sign the sum's text already shows as the student's `−`.
+    pub(super) fn product_term(
+        &self,
+        coeff: &BigRational,
+        factors: Vec<Id>,
+        alone: bool,
+    ) -> (bool, String, u8) {
         let pool = self.pool;
         let neg = coeff.is_negative();
         let coeff = coeff.abs();
@@ -158,7 +171,19 @@ impl Printer<'_> {
         }
         num.sort_by(|&a, &b| pool.display_cmp_factors(a, b));
         den.sort_by(|a, b| pool.display_cmp_factors(a.0, b.0));
-        let (num_items, den_from_coeff) = self.numerator_items(&coeff, &num, den.is_empty());
+        let (mut num_items, den_from_coeff) = self.numerator_items(&coeff, &num, den.is_empty());
+        // −m g l (cos θ − 1) is shown m g l (1 − cos θ), −(m₁ − m₂) g as (m₂ − m₁) g: a
+        // negative product standing alone with one difference among its factors takes the
+        // sign into it, as a student writes it.
+        let mut neg = neg;
+        if neg
+            && alone
+            && let Some((k, flipped)) = self.flipped_difference(&num)
+        {
+            let at = num_items.len() - num.len() + k;
+            num_items[at] = (flipped, ATOM);
+            neg = false;
+        }
         let mut den_items: Vec<(String, u8)> = Vec::new();
         if den_from_coeff {
             den_items.push((coeff.denom().to_string(), ATOM));
@@ -168,6 +193,40 @@ impl Printer<'_> {
         }
         let (text, prec) = self.fraction(&num_items, &den_items, &den);
         (neg, text, prec)
+    }
+
+    /// The one factor of `num` that is a difference `a − b` (two terms, one negative), as
+    /// `(b − a)`, and its index; `None` when there is no such factor or more than one (which
+    /// one would take the sign is then a matter of taste), and in LaTeX.
+    fn flipped_difference(&self, num: &[Id]) -> Option<(usize, String)> {
+        if self.style == Style::Latex {
+            return None;
+        }
+        let mut found = None;
+        for (k, &f) in num.iter().enumerate() {
+            let Node::Add(ch) = self.pool.node(f) else {
+                continue;
+            };
+            let [x, y] = ch[..] else {
+                continue;
+            };
+            let (tx, ty) = (self.term(x), self.term(y));
+            let (pos, negative) = match (tx.0, ty.0) {
+                (false, true) => (tx, ty),
+                (true, false) => (ty, tx),
+                _ => continue,
+            };
+            if found.is_some() {
+                return None;
+            }
+            let minus = if self.style == Style::Unicode {
+                " − "
+            } else {
+                " - "
+            };
+            found = Some((k, format!("({}{minus}{})", negative.1, pos.1)));
+        }
+        found
     }
 
     /// The numerator's items (the coefficient's numerator, or the whole coefficient as a

@@ -22,6 +22,16 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
     b.coordinates()?;
     b.statics()?;
     b.hints();
+    // A quantity the problem defines is named in the prompts as the statement names it (the
+    // hoop's linearize step says θ = θ₀, not θ = acos(g/(R·ω²))).
+    let pool = &problem.system.pool;
+    for (name, value) in &problem.system.definitions {
+        let (value, name) = (pool.unicode(*value), crate::expr::names::unicode_name(name));
+        for s in &mut b.steps {
+            s.prompt = s.prompt.replace(&value, &name);
+            s.part.prompt = s.prompt.clone();
+        }
+    }
     Ok(b.steps)
 }
 
@@ -213,11 +223,10 @@ impl Builder<'_> {
             .find(|p| p.kind == PartKind::Equilibria)
         {
             // The checker reads the points only; stability is not typed by the student (yet).
-            let q = self
-                .sys
-                .coordinates
-                .first()
-                .map_or("q", |c| c.name.as_str());
+            let q = self.sys.coordinates.first().map_or_else(
+                || "q".to_string(),
+                |c| crate::expr::names::unicode_name(&c.name),
+            );
             let form = if self.sys.n() > 1 {
                 format!("`{q} = …, …`, the points separated by `;`")
             } else {
@@ -383,10 +392,18 @@ pub fn frequency_symbol(sys: &System) -> &'static str {
         .chain(sys.coordinates.iter().map(|c| c.sym))
         .map(|s| sys.pool.var_name(s, 0, Style::Unicode))
         .collect();
-    ["ω", "Ω", "ω₀", "ν"]
-        .into_iter()
-        .find(|w| !names.iter().any(|n| n == w))
-        .unwrap_or("ν")
+    // A name the problem defines (ω₀ = √(k/m) in the rotating traps) is taken too.
+    [
+        ("ω", "omega"),
+        ("Ω", "Omega"),
+        ("ω₀", "omega0"),
+        ("ν", "nu"),
+    ]
+    .into_iter()
+    .find(|(w, plain)| {
+        !names.iter().any(|n| n == w) && !sys.definitions.iter().any(|(d, _)| d == plain)
+    })
+    .map_or("ν", |(w, _)| w)
 }
 
 /// q − q₀ (just q when q₀ is 0).
