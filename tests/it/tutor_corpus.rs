@@ -99,3 +99,39 @@ fn kebab(c: Code) -> String {
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
 }
+
+#[test]
+fn the_speed_for_its_square_and_l_for_the_momentum_are_named() {
+    // Issue 21: these got a sample-point dump or a vague "wrong factor" before.
+    let p = embedded::problem("simple-pendulum").unwrap();
+    let steps = ladder(&p).unwrap();
+    let mut checker = StepChecker::owned(p);
+    let step = |id: &str| steps.iter().find(|s| s.id == id).unwrap().clone();
+    let v = checker.check(&step("speed-squared:1"), "l*theta'").unwrap();
+    assert_eq!(v.status, Status::Incorrect);
+    assert_eq!(
+        v.diagnoses[0].message,
+        "that is the speed; this step asks for its square"
+    );
+    let v = checker
+        .check(
+            &step("momentum:theta"),
+            "m*l^2*theta'^2/2 + m*g*l*cos(theta)",
+        )
+        .unwrap();
+    assert_eq!(v.diagnoses[0].code, Code::GaveLagrangian);
+    assert!(
+        v.diagnoses[0].message.contains("p = ∂L/∂θ̇"),
+        "{:?}",
+        v.diagnoses
+    );
+    // The right answers are still right.
+    let v = checker
+        .check(&step("speed-squared:1"), "l^2*theta'^2")
+        .unwrap();
+    assert_eq!(v.status, Status::Correct);
+    let v = checker
+        .check(&step("momentum:theta"), "m l^2 theta'")
+        .unwrap();
+    assert_eq!(v.status, Status::Correct);
+}

@@ -2,7 +2,8 @@
 //! coordinate's Euler–Lagrange steps and the statics (equilibria, linearized equations,
 //! characteristic roots, frequencies), with the engine's results as reference answers.
 
-use super::step::{LadderError, Step};
+use super::step::{LadderError, Pitfall, Step};
+use crate::check::Code;
 use crate::expr::{Id, Style, Sym, read_expr};
 use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Problem, Quantity};
@@ -171,6 +172,14 @@ impl Builder<'_> {
                 vec![answer],
             );
             p.quantity = Quantity::Momentum(i);
+            let l = self.plain(self.sys.lagrangian);
+            self.last_mut().pitfalls = vec![Pitfall {
+                answers: vec![l],
+                code: Code::GaveLagrangian,
+                message: format!(
+                    "that is the Lagrangian L itself; the momentum is its derivative with respect to the velocity, p = ∂L/∂{v}"
+                ),
+            }];
             let answer = self.plain(s.momentum_dt);
             self.push(
                 format!("momentum-rate:{q}"),

@@ -85,6 +85,22 @@ impl<'a> StepChecker<'a> {
             v.score = 0.0;
             v.diagnoses = vec![Diagnosis::new(f.code, f.message.clone())];
         }
+        let kind = step.id.split(':').next().unwrap_or_default();
+        if v.status == Status::Incorrect
+            && matches!(kind, "speed-squared" | "angular-speed-squared")
+            && reasons::is_root_of_reference(prepared, step, input)
+        {
+            let what = if kind == "speed-squared" {
+                "the speed"
+            } else {
+                "the angular speed"
+            };
+            v.score = 0.0;
+            v.diagnoses = vec![Diagnosis::new(
+                Code::WrongFactor,
+                format!("that is {what}; this step asks for its square"),
+            )];
+        }
         if step.id.starts_with("position:") {
             if v.status == Status::Correct {
                 order_of_components(problem, step, input, &mut v)?;

@@ -20,6 +20,26 @@ pub(super) fn asks_to_differentiate(step: &Step) -> bool {
     )
 }
 
+/// Whether `input`, squared, is the step's reference: the speed given where its square is
+/// asked (`l θ'` for l²θ̇²).
+pub(super) fn is_root_of_reference(p: &mut Prepared, step: &Step, input: &str) -> bool {
+    let ctx = p.context.clone();
+    let (Ok(a), Some(Ok(b))) = (
+        read_expr(input, &ctx, &mut p.system.pool),
+        step.part
+            .answers
+            .first()
+            .map(|t| read_expr(t, &ctx, &mut p.system.pool)),
+    ) else {
+        return false;
+    };
+    let square = p.system.pool.mul(a, a);
+    matches!(
+        relate(&p.system, square, b, &p.points, tolerance::SAME),
+        Ok(Relation::Equal)
+    )
+}
+
 /// Whether `input` writes a time derivative with the `d/dt(…)` operator.
 pub(super) fn uses_dt(input: &str) -> bool {
     let flat: String = input.chars().filter(|c| !c.is_whitespace()).collect();
