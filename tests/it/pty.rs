@@ -90,8 +90,11 @@ fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
         .env("NO_COLOR", "1")
         .env("COLUMNS", "80")
         .env("TERM", "xterm");
-    let mut p = spawn_command(cmd, Some(10_000)).expect("the REPL starts in a pty");
+    let mut p = spawn_command(cmd, Some(30_000)).expect("the REPL starts in a pty");
     p.exp_string("Ctrl-D quits").expect("the banner");
+    // Keys typed before the line editor takes the terminal (raw mode, drawn with its prompt)
+    // can be lost: wait for the prompt, as a person would.
+    p.exp_string("> ").expect("the prompt");
     // `:op` + Tab is `:open ` (with its space): the id typed next follows it directly.
     p.send(":op").unwrap();
     p.send("\t").unwrap();
