@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::decode::Decoded;
+use super::header::{EXPECTED, Layout, header_name, layout};
 use super::intern::Interner;
 use super::output::unquote_cell;
 
@@ -255,25 +256,6 @@ pub struct BadFile(
     pub String,
 );
 
-/// The columns the header must have, for the error message.
-const EXPECTED: &str = "expected the columns `student,problem,part,answer` (long format) or \
-                        `student` plus one `PROBLEM/PART` column per part (wide format)";
-
-/// Where each needed column is in a header.
-enum Layout {
-    Long {
-        student: usize,
-        problem: usize,
-        part: usize,
-        answer: usize,
-    },
-    /// The student column and each part column with its problem and part ids.
-    Wide {
-        student: usize,
-        parts: Vec<(usize, String, String)>,
-    },
-}
-
 /// Parses a whole class file. Only an unusable header (or none) is an error; every other
 /// problem is recorded on the row it concerns.
 pub fn parse(bytes: &[u8], phases: &mut super::phases::Phases) -> Result<Table, BadFile> {
@@ -366,52 +348,6 @@ fn read_piece(
         push_rows(layout, width, line as u32, &record, &mut b);
     }
     Ok(b)
-}
-
-/// A header cell as compared: trimmed, lower-case, without a byte-order mark.
-fn header_name(field: &[u8]) -> String {
-    let text = String::from_utf8_lossy(field);
-    text.trim_start_matches('\u{feff}').trim().to_lowercase()
-}
-
-/// The layout a header describes, or the error naming the expected columns.
-fn layout(names: &[String]) -> Result<Layout, BadFile> {
-    let find = |n: &str| names.iter().position(|h| h == n);
-    let found = || {
-        // Control characters shown escaped, and a binary file's "header" cut short.
-        let shown: String = lagrange::expr::error::visible(&names.join(","))
-            .chars()
-            .take(200)
-            .collect();
-        format!("found `{shown}`")
-    };
-    let Some(student) = find("student") else {
-        return Err(BadFile(format!("bad header: {EXPECTED}; {}", found())));
-    };
-    if let (Some(problem), Some(part), Some(answer)) =
-        (find("problem"), find("part"), find("answer"))
-    {
-        return Ok(Layout::Long {
-            student,
-            problem,
-            part,
-            answer,
-        });
-    }
-    let parts: Vec<(usize, String, String)> = names
-        .iter()
-        .enumerate()
-        .filter_map(|(i, n)| {
-            let (problem, part) = n.split_once('/')?;
-            let (problem, part) = (problem.trim(), part.trim());
-            (!problem.is_empty() && !part.is_empty())
-                .then(|| (i, problem.to_string(), part.to_string()))
-        })
-        .collect();
-    if parts.is_empty() {
-        return Err(BadFile(format!("bad header: {EXPECTED}; {}", found())));
-    }
-    Ok(Layout::Wide { student, parts })
 }
 
 /// A field's text, and whether it had to be decoded lossily. A cell lagrange neutralised for

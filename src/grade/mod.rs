@@ -8,6 +8,7 @@
 //! file cannot be read at all, its header is neither format, or an option is bad.
 
 mod decode;
+mod header;
 mod input;
 mod intern;
 mod judge;
