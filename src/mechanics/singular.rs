@@ -112,14 +112,22 @@ fn condition_bracket(n: usize, m: &[f64]) -> Bracket {
         return Bracket::Singular;
     }
     let mut inv_norm2 = 0.0;
-    let mut lu = m.to_vec();
-    let mut col = vec![0.0; n];
+    // The simulator calls this at every step: no allocation up to 8 coordinates.
+    let (mut lu_stack, mut col_stack) = ([0.0f64; 64], [0.0f64; 8]);
+    let (mut lu_heap, mut col_heap) = (Vec::new(), Vec::new());
+    let (lu, col): (&mut [f64], &mut [f64]) = if n <= 8 {
+        (&mut lu_stack[..n * n], &mut col_stack[..n])
+    } else {
+        lu_heap.resize(n * n, 0.0);
+        col_heap.resize(n, 0.0);
+        (&mut lu_heap, &mut col_heap)
+    };
     // One elimination per column of M⁻¹ keeps this simple; n ≥ 3 systems are rare and small.
     for j in 0..n {
         lu.copy_from_slice(m);
         col.fill(0.0);
         col[j] = 1.0;
-        if !eliminate(n, &mut lu, &mut col) || !col.iter().all(|v| v.is_finite()) {
+        if !eliminate(n, lu, col) || !col.iter().all(|v| v.is_finite()) {
             return Bracket::Unsure;
         }
         inv_norm2 += col.iter().map(|v| v * v).sum::<f64>();
