@@ -17,7 +17,7 @@ pub struct Assumption {
 
 impl Assumption {
     /// Reads `lhs > rhs`, `lhs < rhs`, `>=`, `<=` (also `≥`, `≤`).
-    pub fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
+    pub(crate) fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
         let ops: [(&str, bool); 6] = [
             (">=", true),
             ("<=", false),

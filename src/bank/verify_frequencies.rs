@@ -1,6 +1,7 @@
 //! Verification of frequencies parts: for every parameter sample, the stated frequencies (or
 //! their squares) against the eigen-solver's at the part's equilibrium.
 
+use super::FindingCode;
 use super::verify_failed::{Check, Failed, check_dimension};
 use crate::check::compare::{close, parameter_text, values};
 use crate::check::points::PointSet;
@@ -35,22 +36,22 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
         seed_from(&[&problem.id, &part.id, "frequencies"]),
         FREQUENCY_SAMPLES,
     )
-    .map_err(|e| Failed::new("sampling", e.to_string()))?;
+    .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let mut roots = stated.clone();
     roots.extend(at.iter().copied());
-    let vals =
-        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
+    let vals = values(&p.system, &roots, &samples)
+        .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
         let q0 = &v[stated.len()..];
         p.system
             .check_equilibrium(&p.derivation, &params, q0)
-            .map_err(|e| Failed::new("not-an-equilibrium", e.to_string()))?;
+            .map_err(|e| Failed::new(FindingCode::NotAnEquilibrium, e.to_string()))?;
         let modes = p
             .system
             .modes_at(&p.derivation, &params, q0)
-            .map_err(|e| Failed::new("unusable", e.to_string()))?;
+            .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?;
         let mut want: Vec<f64> = if part.squared {
             modes.frequencies.iter().map(|w| w * w).collect()
         } else {
@@ -68,7 +69,7 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
         {
             let pstr = parameter_text(&p.system, &params);
             return Err(Failed::new(
-                "wrong-frequency",
+                FindingCode::WrongFrequency,
                 format!(
                     "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}{}",
                     why_differ(&modes, &got)

@@ -13,7 +13,7 @@ mod degenerate;
 mod diagnose;
 mod equation_diagnosis;
 pub(crate) mod equations;
-pub mod error;
+pub(crate) mod error;
 mod expression_diagnosis;
 mod fingerprint;
 mod freq_label;
@@ -29,7 +29,7 @@ pub(crate) mod prepare;
 mod residual;
 mod stability;
 mod terms;
-pub mod tolerance;
+pub(crate) mod tolerance;
 pub mod verdict;
 
 pub use crate::problem::Assumption;

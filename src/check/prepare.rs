@@ -6,6 +6,7 @@ use super::error::CheckError;
 use super::points::PointSet;
 use super::tolerance;
 use crate::expr::{Context, Id, Node, Reading, read, read_equation, read_expr};
+use crate::mechanics::accel::Dynamics;
 use crate::mechanics::equilibria::wrap_angle;
 use crate::mechanics::sample::seed_from;
 use crate::mechanics::{Derivation, System};
@@ -356,6 +357,42 @@ pub(crate) fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, C
         at[i] = read_one(p, v)?;
     }
     Ok(at)
+}
+
+/// True accelerations at every point, computed once per prepared part (the equation
+/// checks and the misconceptions about motion share them).
+pub(crate) fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
+    if let Some(a) = p.accelerations.get() {
+        return Ok(a.clone());
+    }
+    let a = compute_accelerations(p)?;
+    Ok(p.accelerations.get_or_init(|| a).clone())
+}
+
+fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
+    let sys = &p.system;
+    if !sys.constraints.is_empty() {
+        let mut s = sys.clone();
+        let rows = s.constraint_rows();
+        return Ok(p
+            .points
+            .points
+            .iter()
+            .map(|x| {
+                s.multipliers_at(&p.derivation, &rows, x)
+                    .ok()
+                    .map(|(a, _)| a)
+            })
+            .collect());
+    }
+    let dynamics =
+        Dynamics::new(sys, &p.derivation).map_err(|error| CheckError::Dynamics { error })?;
+    let mut scratch = dynamics.scratch();
+    Ok(p.points
+        .points
+        .iter()
+        .map(|x| dynamics.accelerations(x, &mut scratch).ok())
+        .collect())
 }
 
 #[cfg(test)]

@@ -36,6 +36,7 @@ pub struct ReadAs {
 /// Serialised (and displayed) in kebab-case, the strings the documentation and JSON use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum Code {
     /// The answer names a symbol the problem does not declare.
     UnknownSymbol,
@@ -269,6 +270,7 @@ impl From<&Diagnosis> for crate::diagnostic::Diagnostic {
 
 /// The verdict on one answer.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct Verdict {
     pub problem: String,
     pub part: String,

@@ -5,8 +5,9 @@ use std::process::ExitCode;
 
 use clap::Subcommand;
 
-use super::system_args::Terminal;
-use lagrange::bank::load::{DUPLICATE_ID, load_one, read_file};
+use crate::face::{Terminal, load_bank, load_bank_with_findings};
+use lagrange::bank::FindingCode;
+use lagrange::bank::load::{load_one, read_file};
 use lagrange::bank::{Bank, Problem, embedded, load_dir, load_str};
 use lagrange::report::{problem_list, problem_sheet, verification};
 
@@ -29,30 +30,11 @@ pub enum ProblemsCommand {
     },
 }
 
-/// The bank from `dir`, or the embedded one, refused whole when two files define one
-/// problem id (a grade and a check would otherwise judge by different files).
-pub fn load_bank(dir: Option<&Path>) -> Result<Bank, String> {
-    let bank = load_bank_with_findings(dir)?;
-    match bank.failures.iter().find(|f| f.code == DUPLICATE_ID) {
-        Some(f) => Err(f.message.clone()),
-        None => Ok(bank),
-    }
-}
-
-/// The bank from `dir`, or the embedded one, with every file that failed to load (a
-/// duplicate id among them) as a finding: what `problems verify` reports.
-fn load_bank_with_findings(dir: Option<&Path>) -> Result<Bank, String> {
-    match dir {
-        Some(d) => load_dir(d),
-        None => Ok(embedded::bank()),
-    }
-}
-
 /// The one problem a command is about, from `dir` or the embedded bank, building only that
 /// problem (a folder of 30,000 files is not loaded whole to check one answer).
 pub fn find_problem(dir: Option<&Path>, id: &str) -> Result<Option<Problem>, String> {
     match dir {
-        Some(d) => load_one(d, id),
+        Some(d) => load_one(d, id).map_err(|e| e.to_string()),
         None => Ok(embedded::problem(id)),
     }
 }
@@ -124,7 +106,7 @@ fn load_paths(paths: &[PathBuf]) -> anyhow::Result<Result<Bank, String>> {
                 Ok(p) => b.add(p, name),
                 Err(f) => b.failures.push(f),
             },
-            Err(f) if f.code == "unreadable-file" => {
+            Err(f) if f.code == FindingCode::UnreadableFile => {
                 return Ok(Err(format!("cannot read {name}: {}", f.message)));
             }
             Err(f) => b.failures.push(f),

@@ -73,7 +73,7 @@ impl Dimension {
     /// Reads `"M L^2 T^-2"`, `"L T^-2"`, `"Q"` (charge), `"1"`, `""`, `"rad"` or `"angle"`
     /// (dimensionless). Also accepts `*` between factors, `/` before a factor, and Unicode
     /// superscripts.
-    pub fn parse(src: &str) -> Result<Dimension, String> {
+    pub fn parse(src: &str) -> Result<Dimension, DimensionSyntax> {
         let text: String = src
             .chars()
             .map(|c| match c {
@@ -103,7 +103,7 @@ impl Dimension {
                 continue;
             }
             let mut chars = rest.chars();
-            let base = chars.next().ok_or("empty dimension")?;
+            let base = chars.next().ok_or(DimensionSyntax::Empty)?;
             rest = chars.as_str();
             let mut exp = Rational32::from(1);
             let tail = rest.trim_start_matches('^');
@@ -130,10 +130,15 @@ impl Dimension {
             }
             if digits_end > 0 {
                 let e = &tail[..digits_end];
-                exp = parse_ratio(e).ok_or_else(|| format!("bad exponent `{e}` in `{src}`"))?;
+                exp = parse_ratio(e).ok_or_else(|| DimensionSyntax::BadExponent {
+                    exponent: e.to_string(),
+                    input: src.to_string(),
+                })?;
                 rest = &tail[digits_end..];
             } else if has_caret {
-                return Err(format!("missing exponent after `^` in `{src}`"));
+                return Err(DimensionSyntax::MissingExponent {
+                    input: src.to_string(),
+                });
             }
             let unit = match base {
                 'M' => Dimension::new(1, 0, 0),
@@ -141,9 +146,10 @@ impl Dimension {
                 'T' => Dimension::new(0, 0, 1),
                 'Q' => Dimension::charge(),
                 other => {
-                    return Err(format!(
-                        "unknown dimension `{other}` in `{src}`: use M, L, T and Q (charge), e.g. \"L T^-2\""
-                    ));
+                    return Err(DimensionSyntax::UnknownBase {
+                        base: other,
+                        input: src.to_string(),
+                    });
                 }
             };
             d = d * unit.pow(exp * Rational32::from(sign));
@@ -274,6 +280,37 @@ impl Dimensions {
             None => None,
         }
     }
+}
+
+/// Why a written dimension (`"M L^2 T^-2"`) cannot be read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DimensionSyntax {
+    /// Nothing where a base dimension was expected.
+    #[error("empty dimension")]
+    Empty,
+    /// An exponent that is not an integer or a ratio of integers.
+    #[error("bad exponent `{exponent}` in `{input}`")]
+    BadExponent {
+        /// The exponent as written.
+        exponent: String,
+        /// The whole dimension as written.
+        input: String,
+    },
+    /// `^` with no exponent after it.
+    #[error("missing exponent after `^` in `{input}`")]
+    MissingExponent {
+        /// The whole dimension as written.
+        input: String,
+    },
+    /// A base other than M, L, T and Q.
+    #[error("unknown dimension `{base}` in `{input}`: use M, L, T and Q (charge), e.g. \"L T^-2\"")]
+    UnknownBase {
+        /// The base as written.
+        base: char,
+        /// The whole dimension as written.
+        input: String,
+    },
 }
 
 /// A dimension error, naming the offending parts (printed in Unicode).
@@ -507,8 +544,18 @@ mod tests {
         for (src, want) in cases {
             assert_eq!(Dimension::parse(src), Ok(want), "{src}");
         }
-        assert!(Dimension::parse("K").is_err());
-        assert!(Dimension::parse("L^").is_err());
+        assert!(matches!(
+            Dimension::parse("K"),
+            Err(DimensionSyntax::UnknownBase { base: 'K', .. })
+        ));
+        assert!(matches!(
+            Dimension::parse("L^"),
+            Err(DimensionSyntax::MissingExponent { .. })
+        ));
+        assert_eq!(
+            Dimension::parse("L^").map_err(|e| e.to_string()),
+            Err("missing exponent after `^` in `L^`".to_string())
+        );
         assert_eq!(
             Dimension::parse("L^1/2").map(|d| d.l),
             Ok(Rational32::new(1, 2))

@@ -19,7 +19,7 @@ use lagrange::tutor::command::did_you_mean;
 use super::input::Table;
 
 mod counted;
-use crate::bar::Shared;
+use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
 
 /// The status column of results.csv.

@@ -7,6 +7,8 @@
 //! Exit codes: 0 graded (even when rows are wrong or errors: they are in results.csv), 2 the
 //! file cannot be read at all, its header is neither format, or an option is bad.
 
+mod args;
+mod cell;
 mod decode;
 mod header;
 mod input;
@@ -20,6 +22,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+pub use args::GradeArgs;
 pub use output::Lms;
 
 /// The largest class file read (a larger one is refused with exit 2).
@@ -79,8 +82,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
     };
     phases.end("renumber");
-    let bank =
-        crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let bank = crate::face::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
     let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
         Ok(c) => c,
         Err(message) => {
@@ -108,7 +110,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         follow_through: opts.follow_through,
         best: opts.best,
     };
-    let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
+    let mut bar = crate::face::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
     phases.end("bank");
     let judged = judge::judge(&table, &bank, settings, &mut bar, &mut phases);
     bar.finish();
@@ -143,7 +145,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     } else {
         table_text(&summary, table.format, &written)
     };
-    crate::cli::emit(&text)?;
+    crate::face::emit(&text)?;
     let errors = summary.status.get("error").copied().unwrap_or(0);
     if errors > 0 {
         let what = if errors == 1 {
@@ -245,7 +247,7 @@ fn check_outputs(dir: &Path, names: &[&str], input: &Path) -> Result<(), String>
         .flatten();
     for name in names {
         let path = dir.join(name);
-        crate::outfile::check(&path, false).map_err(|e| {
+        crate::face::outfile::check(&path, false).map_err(|e| {
             format!("{e}; grade writes only regular files it names (choose another --out)")
         })?;
         if let (Some(a), Ok(b)) = (&input_id, std::fs::metadata(&path))
@@ -288,7 +290,7 @@ fn write_outputs<'n>(
     mut results: impl FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()> + Send,
     others: impl FnOnce() -> anyhow::Result<(summary::Summary, Files<'n>)> + Send,
 ) -> anyhow::Result<Result<(summary::Summary, Vec<PathBuf>), String>> {
-    let folder = match crate::outfile::Folder::open(dir, names) {
+    let folder = match crate::face::outfile::Folder::open(dir, names) {
         Ok(f) => f,
         Err(e) => return Ok(Err(e)),
     };
@@ -299,7 +301,7 @@ fn write_outputs<'n>(
         for (name, bytes) in &files {
             staged.push(folder.stage(name, bytes)?);
         }
-        crate::outfile::commit(staged)
+        crate::face::outfile::commit(staged)
     })();
     Ok(written.map(|w| (summary, w)))
 }

@@ -1,6 +1,6 @@
 //! The files `lagrange grade` writes: results.csv (one row per answer), gradebook.csv (one
 //! row per student), summary.md / summary.json, and an LMS import file, as bytes (written by
-//! [`crate::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
+//! [`crate::face::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
 
 use std::io::Write;
 
@@ -8,6 +8,9 @@ use rayon::prelude::*;
 
 use lagrange::bank::Bank;
 
+use super::cell::needs_quote;
+#[cfg(test)]
+use super::cell::quote_cell;
 use super::input::{Row, Table};
 use super::judge::{Judged, Outcome};
 use super::summary::{Summary, num, students};
@@ -21,37 +24,6 @@ pub enum Lms {
     Moodle,
     /// `gradescope.csv`: Gradescope's score upload.
     Gradescope,
-}
-
-/// What a spreadsheet would run as a formula at the start of a cell.
-const FORMULA_START: [char; 6] = ['=', '+', '-', '@', '\t', '\r'];
-
-/// Whether a cell must be neutralised: it starts like a formula, or it is a neutralised cell
-/// already (a `'` before such a start), so that reading back strips exactly one `'`.
-fn needs_quote(s: &str) -> bool {
-    s.starts_with(FORMULA_START) || s.strip_prefix('\'').is_some_and(needs_quote)
-}
-
-/// A text cell a spreadsheet will show rather than run: a leading `'` before `=`, `+`, `-`,
-/// `@`, a tab or a carriage return (`=HYPERLINK(…)` → `'=HYPERLINK(…)`). [`unquote_cell`]
-/// gives the text back. The writers append it directly ([`push_cell`]); this is the
-/// reference their tests compare with.
-#[cfg(test)]
-fn quote_cell(s: &str) -> std::borrow::Cow<'_, str> {
-    if needs_quote(s) {
-        std::borrow::Cow::Owned(format!("'{s}"))
-    } else {
-        std::borrow::Cow::Borrowed(s)
-    }
-}
-
-/// The text of a cell [`quote_cell`] wrote (the class file's own cells are read through it
-/// too, so a results.csv graded again reads `-m g l cos θ` as typed).
-pub fn unquote_cell(s: &str) -> &str {
-    match s.strip_prefix('\'') {
-        Some(rest) if needs_quote(rest) => rest,
-        _ => s,
-    }
 }
 
 /// A CSV document built in memory.

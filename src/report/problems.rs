@@ -340,6 +340,7 @@ fn braces(text: &str) -> String {
 
 /// Every problem of a bank checked against the physics, and the files that failed to load.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct Verification {
     /// One entry per loaded problem, in bank order.
     pub problems: Vec<VerifiedProblem>,
@@ -378,7 +379,7 @@ pub fn verification(bank: &Bank) -> Verification {
                         problem: Some(p.id.clone()),
                         part: None,
                         line: 1,
-                        code: "duplicate-id",
+                        code: crate::bank::FindingCode::DuplicateId,
                         message: format!("{} already defines the problem `{}`", first.file, p.id),
                     };
                     findings.push(f.to_string());

@@ -9,7 +9,7 @@ pub mod follow;
 pub mod ladder;
 pub mod progress;
 pub mod response;
-pub mod session;
+pub(crate) mod session;
 
 pub use command::{Command, CommandError, parse};
 pub use progress::{PartProgress, Progress, ProgressError};

@@ -11,6 +11,7 @@ use crate::problem::{Part, PartKind, Problem, Quantity};
 mod bodies;
 mod statics;
 mod teach;
+mod velocity_terms;
 
 use statics::{at_text, displacement, mass_and_stiffness};
 pub(super) use statics::{point_of, second};
@@ -261,7 +262,7 @@ impl Builder<'_> {
         };
         let with = conditions(freq);
         let w = frequency_symbol(&self.sys);
-        if super::velocity_terms::gyroscopic_at(self.problem, freq)? {
+        if velocity_terms::gyroscopic_at(self.problem, freq)? {
             // M q'' + K q = 0 and det(K − ω² M) would drop the Coriolis terms: ask for ω only.
             self.adopt(
                 freq,

@@ -8,7 +8,7 @@ use lagrange::expr::Id;
 use lagrange::mechanics::bodies::{Anchor, Body, Potential};
 use lagrange::mechanics::{MechError, RigidSpec, System};
 
-use super::system_args::CliError;
+use super::CliError;
 
 /// Splits at top-level occurrences of `sep` (not inside parentheses or brackets), trimmed.
 pub(super) fn split_top(text: &str, sep: char) -> Vec<&str> {

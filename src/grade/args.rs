@@ -1,11 +1,11 @@
-//! `lagrange grade CLASS.csv`: the clap arguments of the grading face (`src/grade/`).
+//! `lagrange grade CLASS.csv`: the clap arguments of the grading face, turned into its
+//! [`Options`].
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use crate::grade::{Lms, Options};
+use super::{Lms, Options};
 
 /// `lagrange grade SUBMISSIONS.csv [--out DIR] [--lms …] [--follow-through] [--best] [--json]`.
 #[derive(Args, Debug)]
@@ -56,25 +56,27 @@ enum LmsArg {
     Gradescope,
 }
 
-/// Runs `lagrange grade`.
-pub fn run(args: &GradeArgs, problems: Option<&Path>) -> anyhow::Result<ExitCode> {
-    let follow_through = match (args.follow_through, args.follow_through_credit) {
-        (_, Some(c)) => Some(c),
-        (true, None) => Some(0.5),
-        (false, None) => None,
-    };
-    crate::grade::run(&Options {
-        input: args.input.clone(),
-        out: args.out.clone(),
-        problems: problems.map(Path::to_path_buf),
-        lms: args.lms.map(|l| match l {
-            LmsArg::Canvas => Lms::Canvas,
-            LmsArg::Moodle => Lms::Moodle,
-            LmsArg::Gradescope => Lms::Gradescope,
-        }),
-        follow_through,
-        best: args.best,
-        json: args.json,
-        parts: args.parts.clone(),
-    })
+impl GradeArgs {
+    /// The options of a grading run: these arguments, with the bank folder of `--problems`.
+    pub fn options(&self, problems: Option<&Path>) -> Options {
+        let follow_through = match (self.follow_through, self.follow_through_credit) {
+            (_, Some(c)) => Some(c),
+            (true, None) => Some(0.5),
+            (false, None) => None,
+        };
+        Options {
+            input: self.input.clone(),
+            out: self.out.clone(),
+            problems: problems.map(Path::to_path_buf),
+            lms: self.lms.map(|l| match l {
+                LmsArg::Canvas => Lms::Canvas,
+                LmsArg::Moodle => Lms::Moodle,
+                LmsArg::Gradescope => Lms::Gradescope,
+            }),
+            follow_through,
+            best: self.best,
+            json: self.json,
+            parts: self.parts.clone(),
+        }
+    }
 }
