@@ -174,6 +174,13 @@ impl fmt::Display for FindingCode {
     }
 }
 
+/// Serialised as its stable name (`"wrong-eom"`), as the checker's codes are.
+impl serde::Serialize for FindingCode {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
+    }
+}
+
 /// A code compares equal to its stable name, so that a test or a tool can ask for `"wrong-eom"`.
 impl PartialEq<&str> for FindingCode {
     fn eq(&self, other: &&str) -> bool {
@@ -200,5 +207,10 @@ mod tests {
         }
         assert_eq!(FindingCode::WrongEom.to_string(), "wrong-eom");
         assert_eq!(FindingCode::Engine("bad-at").to_string(), "bad-at");
+        // In JSON (the browser page's findings) as the same name.
+        assert_eq!(
+            serde_json::to_string(&FindingCode::DuplicateId).ok(),
+            Some("\"duplicate-id\"".to_string())
+        );
     }
 }

@@ -13,8 +13,8 @@ mod statics;
 mod teach;
 mod velocity_terms;
 
+use statics::point_of;
 use statics::{at_text, displacement, mass_and_stiffness};
-pub(super) use statics::{point_of, second};
 
 /// The ladder of `problem`, in the order a student climbs it.
 pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
