@@ -8,6 +8,7 @@ mod derive;
 mod grade;
 mod grid;
 mod modes;
+mod problem_new;
 pub(crate) mod problems;
 mod read;
 mod simulate;
@@ -28,6 +29,10 @@ struct Cli {
     /// Load the problem bank from this folder of TOML files instead of the built-in one.
     #[arg(long, global = true, value_name = "DIR")]
     problems: Option<std::path::PathBuf>,
+    /// Add this folder of TOML files to the built-in problems; a file with a built-in id
+    /// replaces that problem (a note says so).
+    #[arg(long, global = true, value_name = "DIR", conflicts_with = "problems")]
+    add_problems: Option<std::path::PathBuf>,
     /// With no command, the REPL opens when stdin is a terminal (help is printed otherwise).
     #[command(subcommand)]
     command: Option<Command>,
@@ -98,6 +103,9 @@ pub fn run() -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    if let Some(dir) = cli.add_problems {
+        problems::set_added(dir);
+    }
     let mut out = String::new();
     let code = match command {
         Command::Read(args) => read::run(&args, color, &mut out),
