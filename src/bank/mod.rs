@@ -17,6 +17,7 @@ pub mod new;
 mod new_parts;
 mod new_statics;
 mod new_toml;
+mod new_types;
 pub mod schema;
 pub mod verify;
 mod verify_equilibria;

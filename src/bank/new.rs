@@ -10,75 +10,13 @@
 //! `new_toml.rs`.
 
 use super::load::load_str;
-use super::new_parts::{Candidate, candidates};
+use super::new_parts::candidates;
 use super::new_toml::{compose, skeleton};
+use super::new_types::Candidate;
+pub use super::new_types::{Drafted, LeftOut, Param, Spec, Table, Value};
 use super::verify::verify;
 use crate::diagnostic::Diagnostic;
 use crate::expr::{Context, Pool, read_expr};
-
-/// What to draft: the problem's id and title, the coordinates, and the system as the command
-/// line gives it (a Lagrangian, or bodies and potentials in the problem file's fields).
-#[derive(Debug, Clone, Default)]
-pub struct Spec {
-    pub id: String,
-    /// The title; a placeholder to edit when `None`.
-    pub title: Option<String>,
-    pub coordinates: Vec<String>,
-    pub lagrangian: Option<String>,
-    /// `[[bodies]]` tables: `kind` and the fields of the file format.
-    pub bodies: Vec<Table>,
-    /// `[[potentials]]` tables.
-    pub potentials: Vec<Table>,
-    /// Dimensions given for parameters (`k` → `M T^-2`), over the guesses from their names.
-    pub dimensions: Vec<(String, String)>,
-}
-
-/// One `[[bodies]]` or `[[potentials]]` table.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Table {
-    pub kind: String,
-    pub fields: Vec<(String, Value)>,
-}
-
-/// A field's value in a body or potential table.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Value {
-    /// One expression.
-    Text(String),
-    /// A list of expressions (a position, moments, Euler angles, a fixed spring end).
-    List(Vec<String>),
-    /// Rows of expressions (an inertia tensor).
-    Rows(Vec<Vec<String>>),
-    /// A body number, 1-based (a spring's end).
-    Body(usize),
-}
-
-/// A parameter of the drafted file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Param {
-    pub name: String,
-    pub dimension: String,
-    pub range: (f64, f64),
-    pub value: f64,
-}
-
-/// A drafted problem file.
-#[derive(Debug, Clone)]
-pub struct Drafted {
-    /// The whole TOML text: it loads and verifies unedited.
-    pub text: String,
-    /// The ids of the parts stated, in order.
-    pub stated: Vec<String>,
-    /// The parts left out, each with why (also written in the file as comments).
-    pub left_out: Vec<LeftOut>,
-}
-
-/// A part the draft does not state, and why.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LeftOut {
-    pub part: String,
-    pub reason: String,
-}
 
 /// How many times a draft is verified and its failing parts removed before giving up (each
 /// round removes at least one part, and a draft has at most a few dozen).
@@ -97,7 +35,7 @@ pub fn draft(spec: &Spec) -> Result<Drafted, Diagnostic> {
             "name them with --coords, e.g. --coords theta",
         ));
     }
-    if spec.lagrangian.is_some() == !spec.bodies.is_empty() {
+    if spec.lagrangian.is_some() != spec.bodies.is_empty() {
         return Err(Diagnostic::new(
             "usage",
             "give the system by a Lagrangian or by bodies, one of the two",
@@ -235,6 +173,10 @@ fn parameters(spec: &Spec) -> Result<Vec<Param>, Diagnostic> {
                     ));
                 }
             };
+            // Numbered twins get distinct values (m1 = 1, m2 = 1.5): a simulation from the
+            // values of an Atwood machine with equal masses would not move.
+            let n: f64 = crate::expr::names::split_digits(&name).1.parse().unwrap_or(1.0);
+            let value = (value * (1.0 + 0.5 * (n - 1.0).clamp(0.0, 4.0))).clamp(range.0, range.1);
             Ok(Param {
                 name,
                 dimension: dim,

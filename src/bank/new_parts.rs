@@ -5,61 +5,10 @@
 //! with no closed form is left out here with the reason; verification (in `new.rs`) proves the
 //! rest and removes what it cannot prove.
 
-use super::new::LeftOut;
+use super::new_types::{Candidate, Field, LeftOut, Widened};
 use crate::expr::Id;
 use crate::mechanics::System;
 use crate::problem::Problem;
-
-/// A part as drafted: what `new_toml` writes.
-#[derive(Debug, Clone)]
-pub(super) struct Candidate {
-    pub id: String,
-    pub kind: &'static str,
-    /// Extra fields (`quantity`, `coordinate`, `up_to`, `at`, `stability`, …), in order.
-    pub fields: Vec<(&'static str, Field)>,
-    pub prompt: String,
-    /// The reference answer: one string, or (with `many`) a list.
-    pub answer: Vec<String>,
-    pub many: bool,
-    pub hints: Vec<String>,
-}
-
-/// A part field's value.
-#[derive(Debug, Clone)]
-pub(super) enum Field {
-    Str(String),
-    Bool(bool),
-    Strs(Vec<String>),
-    Map(Vec<(String, String)>),
-}
-
-/// A coordinate range widened so that the equilibria's search covers every stated point.
-pub(super) type Widened = (usize, (f64, f64));
-
-impl Candidate {
-    pub(super) fn one(
-        id: &str,
-        kind: &'static str,
-        prompt: &str,
-        answer: String,
-        hints: &[&str],
-    ) -> Self {
-        Candidate {
-            id: id.to_string(),
-            kind,
-            fields: Vec::new(),
-            prompt: prompt.to_string(),
-            answer: vec![answer],
-            many: false,
-            hints: hints.iter().map(|h| h.to_string()).collect(),
-        }
-    }
-
-    pub(super) fn with(mut self, key: &'static str, value: Field) -> Self {
-        self.fields.push((key, value));
-        self
-    }
-}
 
 /// The candidate parts of `problem`, the parts left out with why, and the coordinate ranges
 /// the stated equilibria need.

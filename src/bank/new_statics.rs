@@ -8,8 +8,7 @@
 
 use rustc_hash::FxHashMap;
 
-use super::new::LeftOut;
-use super::new_parts::{Candidate, Field, Widened};
+use super::new_types::{Candidate, Field, LeftOut, Widened};
 use crate::expr::eval::eval_tree;
 use crate::expr::{Id, Sym};
 use crate::mechanics::equilibria::Stability;

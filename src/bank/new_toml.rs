@@ -3,8 +3,7 @@
 //! potentials — and the parts, with a comment for each part left out. Every string is written
 //! as an escaped TOML basic string, so no expression or name can break the file.
 
-use super::new::{LeftOut, Param, Spec, Table, Value};
-use super::new_parts::{Candidate, Field};
+use super::new_types::{Candidate, Field, LeftOut, Param, Spec, Table, Value};
 
 /// The first lines of every drafted file.
 const HEADER: &str = "\

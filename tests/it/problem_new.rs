@@ -11,14 +11,14 @@ fn drafted(dir: &std::path::Path, id: &str, system: &[&str]) -> (String, String)
     let file = dir.join(format!("{id}.toml")).display().to_string();
     let mut args = vec!["problems", "new", "--id", id, "-o", &file];
     args.extend_from_slice(system);
-    let (code, out, err) = lagrange(&args);
-    assert_eq!(code, 0, "{id}: {out}{err}");
+    let (code, out, notes) = lagrange(&args);
+    assert_eq!(code, 0, "{id}: {out}{notes}");
     assert!(out.starts_with(&format!("wrote {file}")), "{out}");
     // Unedited, the file is proved again by the verifier.
     let (code, out, err) = lagrange(&["problems", "verify", &file]);
     assert_eq!(code, 0, "{id}: {out}{err}");
     assert!(out.contains("0 failing"), "{out}");
-    (std::fs::read_to_string(&file).unwrap(), err)
+    (std::fs::read_to_string(&file).unwrap(), notes)
 }
 
 /// `lagrange --problems DIR check ID PART ANSWER` is correct.
@@ -229,7 +229,7 @@ fn a_free_cart_with_a_pendulum_has_a_zero_frequency_and_a_cyclic_x() {
         &dir,
         "cart",
         "equilibria",
-        "x = any, theta = 0 (stable), x = any, theta = pi (unstable)",
+        "x = any, theta = 0 (stable); x = any, theta = pi (unstable)",
     );
     correct(
         &dir,
