@@ -28,6 +28,10 @@ struct Cli {
     /// Load the problem bank from this folder of TOML files instead of the built-in one.
     #[arg(long, global = true, value_name = "DIR")]
     problems: Option<std::path::PathBuf>,
+    /// Add this folder of TOML files to the built-in problems; a file with a built-in id
+    /// replaces that problem (a note says so).
+    #[arg(long, global = true, value_name = "DIR", conflicts_with = "problems")]
+    add_problems: Option<std::path::PathBuf>,
     /// With no command, the REPL opens when stdin is a terminal (help is printed otherwise).
     #[command(subcommand)]
     command: Option<Command>,
@@ -80,6 +84,9 @@ fn run() -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    if let Some(dir) = args.add_problems {
+        face::set_added(dir);
+    }
     match command {
         Command::Cli(c) => cli::run(*c, args.problems.as_deref(), color),
         Command::Grade(g) => grade::run(&g.options(args.problems.as_deref())),

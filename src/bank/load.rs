@@ -61,6 +61,59 @@ impl Bank {
     }
 }
 
+/// A built-in problem that a problem of an added folder replaced (same id).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Replaced {
+    /// The problem id.
+    pub id: String,
+    /// The file of the problem that replaces the built-in one.
+    pub file: String,
+}
+
+impl Replaced {
+    /// The note a face shows (on standard error): which file replaces which problem.
+    pub fn note(&self) -> String {
+        format!(
+            "note: {} replaces the built-in problem `{}`",
+            self.file,
+            crate::expr::error::visible(&self.id)
+        )
+    }
+}
+
+/// The built-in bank `base` with the problems of `added` (a folder the instructor adds,
+/// `--add-problems`): a problem whose id is built in replaces the built-in one, listed in the
+/// second value so that the face can say so. The folder's failures are kept, so that two of
+/// its files sharing an id (`duplicate-id`, naming both) still refuse the bank; the built-in
+/// problem of that id is then left out too, so that no command judges by either file.
+pub fn merge(base: Bank, added: Bank) -> (Bank, Vec<Replaced>) {
+    let mut replaced = Vec::new();
+    let clashes = |id: &str| {
+        added.problems.iter().any(|p| p.id == id)
+            || added
+                .failures
+                .iter()
+                .any(|f| f.code == FindingCode::DuplicateId && f.problem.as_deref() == Some(id))
+    };
+    let mut problems: Vec<Problem> = Vec::with_capacity(base.problems.len() + added.problems.len());
+    for p in base.problems {
+        if clashes(&p.id) {
+            if let Some(q) = added.problems.iter().find(|q| q.id == p.id) {
+                replaced.push(Replaced {
+                    id: p.id.clone(),
+                    file: q.file.clone(),
+                });
+            }
+            continue;
+        }
+        problems.push(p);
+    }
+    problems.extend(added.problems);
+    let mut failures = base.failures;
+    failures.extend(added.failures);
+    (Bank { problems, failures }, replaced)
+}
+
 /// Why a problem defined by two files is refused, naming both.
 pub fn duplicate_message(id: &str, first: &str, second: &str) -> String {
     format!(

@@ -31,8 +31,7 @@ pub fn run(
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
     // Only the problem asked for is built, from the embedded bank or a folder.
-    let found =
-        super::problems::find_problem(problems, &args.problem).map_err(anyhow::Error::msg)?;
+    let found = crate::face::find_problem(problems, &args.problem).map_err(anyhow::Error::msg)?;
     let Some(problem) = found.as_ref() else {
         eprintln!(
             "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",

@@ -7,10 +7,11 @@ mod chaos;
 mod check;
 mod derive;
 mod modes;
+mod problem_new;
 mod problems;
 mod read;
 mod simulate;
-mod system_args;
+pub(crate) mod system_args;
 
 use std::path::Path;
 use std::process::ExitCode;

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-mod body_args;
+pub(crate) mod body_args;
 
 use lagrange::diagnostic::{Diagnostic, render, render_plain};
 use lagrange::mechanics::system::NameError;
@@ -92,7 +92,7 @@ impl SystemArgs {
                 "give a problem id or --lagrangian, not both",
             ));
         }
-        let p = super::problems::find_problem(problems, id)
+        let p = crate::face::find_problem(problems, id)
             .map_err(CliError::Usage)?
             .ok_or_else(|| {
                 let ids = lagrange::bank::embedded::FILES

@@ -2,6 +2,7 @@
 //! concept, sharing the helpers in `helpers.rs`.
 
 mod bank;
+mod bank_folders;
 mod chaos_cli;
 mod cli;
 mod conventions;
@@ -36,6 +37,7 @@ mod notation_lists;
 mod phase_portrait;
 mod plot;
 mod practice_session;
+mod problem_new;
 mod properties;
 mod pty;
 mod repl;

@@ -11,7 +11,7 @@ use lagrange::mechanics::{MechError, RigidSpec, System};
 use super::CliError;
 
 /// Splits at top-level occurrences of `sep` (not inside parentheses or brackets), trimmed.
-pub(super) fn split_top(text: &str, sep: char) -> Vec<&str> {
+pub(crate) fn split_top(text: &str, sep: char) -> Vec<&str> {
     let mut parts = Vec::new();
     let (mut depth, mut start) = (0i32, 0);
     for (i, c) in text.char_indices() {
