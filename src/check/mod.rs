@@ -26,6 +26,7 @@ mod misconception;
 mod named;
 pub(crate) mod points;
 pub(crate) mod prepare;
+mod quote;
 mod residual;
 mod stability;
 mod terms;

@@ -34,6 +34,8 @@ pub struct Prepared {
     pub condition: std::cell::OnceCell<Option<Id>>,
     /// The reference answer's items, read once (one id per item; several per equilibrium).
     pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
+    /// The answer being checked, for quoting the student's own terms in diagnoses.
+    pub quotes: super::quote::Quotes,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -96,6 +98,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
+        quotes: super::quote::Quotes::default(),
     })
 }
 

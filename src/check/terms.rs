@@ -10,6 +10,7 @@
 use super::compare::{close, values};
 use super::diagnose::{MAX_SEARCH_TERMS, has_decimal, nice_fraction};
 use super::prepare::Prepared;
+use super::quote;
 use super::tolerance;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Style, Sym};
@@ -18,11 +19,38 @@ use crate::expr::{Id, Node, Style, Sym};
 const MAX_SCALED_TERMS: usize = 16;
 
 /// Terms of a sum with their sign in it: `shown` is the term as written on its side, `signed`
-/// its contribution (the negative of `shown` for a term on the right of `=`).
+/// its contribution (the negative of `shown` for a term on the right of `=`). `named` is how
+/// a message names each term as the student's: their own text where they typed the term
+/// ([`quote`](super::quote)), the side it is on when both sides have terms, and for a piece of
+/// a term that expanding split, the term it is a part of.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Terms {
     shown: Vec<Id>,
     signed: Vec<Id>,
+    named: Vec<Named>,
+}
+
+/// How a message names one of the student's terms.
+#[derive(Clone, Debug, Default)]
+struct Named {
+    /// The term as the student typed it, or printed where they did not type it as one.
+    text: String,
+    /// `on the left` or `on the right` of `=`, when both sides have terms.
+    side: Option<&'static str>,
+    /// The student's term this is a part of, when expanding split one.
+    within: Option<String>,
+}
+
+impl Named {
+    /// The phrase naming the term in a message: "your term −(m₂ − m₁) g", "your term
+    /// (m₂ − m₁) g on the right", "the part −½·m₂·ẋ² of your term ½ (m₁ − m₂) ẋ²".
+    fn phrase(&self) -> String {
+        let side = self.side.map(|s| format!(" {s}")).unwrap_or_default();
+        match &self.within {
+            None => format!("your term {}{side}", self.text),
+            Some(whole) => format!("the part {} of your term {whole}{side}", self.text),
+        }
+    }
 }
 
 /// The top-level terms of `e` (a sum's terms, or `e` itself; none for 0).
@@ -38,34 +66,69 @@ fn top_terms(p: &Prepared, e: Id) -> Vec<Id> {
 
 impl Terms {
     /// The terms of an expression, as written.
-    pub(super) fn of_expression(p: &Prepared, e: Id) -> Terms {
+    pub(super) fn of_expression(p: &mut Prepared, e: Id) -> Terms {
+        quote::ensure(p);
         let t = top_terms(p, e);
+        let named = t
+            .iter()
+            .map(|&x| Named {
+                text: quote::shown(p, x),
+                ..Named::default()
+            })
+            .collect();
         Terms {
             shown: t.clone(),
             signed: t,
+            named,
         }
     }
 
     /// The terms of an equation `lhs = rhs`, each shown on its own side.
     pub(super) fn of_equation(p: &mut Prepared, lhs: Id, rhs: Id) -> Terms {
         let mut out = Terms::of_expression(p, lhs);
-        for t in top_terms(p, rhs) {
+        let right = top_terms(p, rhs);
+        // "On the left" only helps where there is a right to tell it from.
+        if !out.shown.is_empty() && !right.is_empty() {
+            for n in &mut out.named {
+                n.side = Some("on the left");
+            }
+        }
+        let side = (!out.shown.is_empty()).then_some("on the right");
+        for t in right {
             out.shown.push(t);
             let n = p.system.pool.neg(t);
             out.signed.push(n);
+            out.named.push(Named {
+                text: quote::shown(p, t),
+                side,
+                within: None,
+            });
         }
         out
     }
 
-    /// Each term expanded into its own terms (`(m₁ + m₂)·g` gives two), keeping its side.
+    /// Each term expanded into its own terms (`(m₁ + m₂)·g` gives two), keeping its side; a
+    /// term that splits names its parts as parts of it.
     fn expanded(&self, p: &mut Prepared) -> Terms {
         let mut out = Terms::default();
-        for (&s, &g) in self.shown.iter().zip(&self.signed) {
+        for ((&s, &g), named) in self.shown.iter().zip(&self.signed).zip(&self.named) {
             let flip = s != g;
             let x = p.system.pool.expand(s);
-            for t in top_terms(p, x) {
+            let parts = top_terms(p, x);
+            let split = parts.len() > 1;
+            for t in parts {
                 out.shown.push(t);
                 out.signed.push(if flip { p.system.pool.neg(t) } else { t });
+                out.named.push(if split {
+                    Named {
+                        text: quote::shown(p, t),
+                        side: named.side,
+                        within: Some(named.within.clone().unwrap_or_else(|| named.text.clone())),
+                    }
+                } else {
+                    // The same term, rewritten: still the one the student wrote.
+                    named.clone()
+                });
             }
         }
         out
@@ -74,6 +137,11 @@ impl Terms {
     /// Number of terms.
     pub(super) fn len(&self) -> usize {
         self.shown.len()
+    }
+
+    /// How a message names term `i`.
+    fn phrase(&self, i: usize) -> String {
+        self.named.get(i).map_or_else(String::new, Named::phrase)
     }
 }
 
@@ -307,7 +375,6 @@ fn describe(
     how: Scaling,
     which: &str,
 ) -> Option<(Diagnosis, bool)> {
-    let pool = &p.system.pool;
     let found = match d {
         Difference::Missing(j) => {
             let what = content(p, reference.signed[j]);
@@ -347,8 +414,8 @@ fn describe(
         Difference::Extra(i) => Diagnosis::new(
             Code::ExtraTerm,
             format!(
-                "{which} has a term too many: your term {} should not be there",
-                pool.unicode(student.shown[i])
+                "{which} has a term too many: {} should not be there",
+                student.phrase(i)
             ),
         ),
         Difference::Pair(i, j, ratio) => {
@@ -373,8 +440,7 @@ fn pair(
     ratio: &[f64],
     (how, place): (Scaling, &str),
 ) -> Option<(Diagnosis, bool)> {
-    let pool = &p.system.pool;
-    let yours = pool.unicode(student.shown[i]);
+    let yours = student.phrase(i);
     // 0/0 (both terms vanish at a point) says nothing about the ratio; x/0 is infinite and
     // never constant.
     let known: Vec<f64> = ratio.iter().copied().filter(|r| !r.is_nan()).collect();
@@ -390,7 +456,7 @@ fn pair(
             return Some((
                 Diagnosis::new(
                     Code::SignError,
-                    format!("sign error{place}: your term {yours} should have the opposite sign"),
+                    format!("sign error{place}: {yours} should have the opposite sign"),
                 ),
                 true,
             ));
@@ -400,7 +466,7 @@ fn pair(
                 Diagnosis::new(
                     Code::RoundedConstant,
                     format!(
-                        "the coefficient of your term {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
+                        "the coefficient of {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
                         (f - 1.0).abs() * 100.0
                     ),
                 ),
@@ -418,7 +484,7 @@ fn pair(
         return Some((
             Diagnosis::new(
                 Code::ConstantFactor,
-                format!("your term {yours}{place} is off by a constant factor: {text}"),
+                format!("{yours}{place} is off by a constant factor: {text}"),
             ),
             true,
         ));
@@ -494,7 +560,7 @@ fn wrong_factor(
         return Some((
             Diagnosis::new(
                 Code::SignError,
-                format!("sign error: your term {yours} should have the opposite sign"),
+                format!("sign error: {yours} should have the opposite sign"),
             ),
             true,
         ));
@@ -520,8 +586,8 @@ fn wrong_factor(
             };
             (
                 format!(
-                    "in your term {yours}, the factor {} is wrong: {why}",
-                    pool.unicode(*w)
+                    "in {yours}, the factor {} is wrong: {why}",
+                    quote::shown(p, *w)
                 ),
                 true,
             )
@@ -533,20 +599,17 @@ fn wrong_factor(
                 .map(|(s, o)| pool.var_name(s, o, Style::Unicode))
                 .collect();
             (
-                format!(
-                    "your term {yours} lacks a factor (one in {})",
-                    vars.join(", ")
-                ),
+                format!("{yours} lacks a factor (one in {})", vars.join(", ")),
                 true,
             )
         }
         ([], []) if how == Scaling::Common => (
             format!(
-                "your term {yours} has a wrong factor among its parameters, compared with your other terms"
+                "{yours} has a wrong factor among its parameters, compared with your other terms"
             ),
             true,
         ),
-        _ => (format!("your term {yours} has a wrong factor"), false),
+        _ => (format!("{yours} has a wrong factor"), false),
     };
     Some((Diagnosis::new(Code::WrongFactor, message), named))
 }

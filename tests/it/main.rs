@@ -34,6 +34,7 @@ mod natural_answers;
 mod normal_modes;
 mod notation;
 mod notation_lists;
+mod own_terms;
 mod phase_portrait;
 mod plot;
 mod practice_session;
