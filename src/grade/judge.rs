@@ -10,7 +10,7 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Code, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Diagnosis, ReadAs, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
@@ -62,11 +62,96 @@ pub struct Rep {
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
-    /// The verdict ([`slim`]: what grading reads of it), or why the part could not be
+    /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
     /// checked.
-    pub verdict: Result<Verdict, String>,
-    /// Equal for answers equal at the sample points: the summary's grouping key.
-    pub fingerprint: Option<String>,
+    pub verdict: Result<Slim, String>,
+    /// Equal for answers equal at the sample points: the summary's grouping key (the
+    /// checker's fingerprint, hashed: see [`meaning`]).
+    pub fingerprint: Option<u128>,
+}
+
+/// A verdict as grading keeps it for every representative until the outputs are written:
+/// the status, the score, every code, the first diagnosis's message (results.csv, the
+/// summary, follow-through's earlier answer) and the Unicode reading (the summary), each
+/// text boxed to its length. A quarter of a [`Verdict`]'s size: a class of all-different
+/// answers keeps one per answer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slim {
+    /// The checker's status.
+    pub status: Checked,
+    /// The checker's score, 0…1.
+    pub score: f64,
+    /// The sampling seed (kept so [`Slim::verdict`] gives back the verdict kept before).
+    pub seed: u64,
+    /// The Unicode reading (`reading.unicode`).
+    pub unicode: Box<str>,
+    /// Every diagnosis's code, most specific first.
+    pub codes: Box<[Code]>,
+    /// The first diagnosis's message (empty without one).
+    pub message: Box<str>,
+}
+
+impl Slim {
+    /// What grading reads of `v`.
+    pub fn new(v: Verdict) -> Slim {
+        Slim {
+            status: v.status,
+            score: v.score,
+            seed: v.seed,
+            unicode: v.reading.unicode.into_boxed_str(),
+            codes: v.diagnoses.iter().map(|d| d.code).collect(),
+            message: (v.diagnoses.into_iter().next())
+                .map_or_else(Box::default, |d| d.message.into_boxed_str()),
+        }
+    }
+
+    /// The verdict with only what grading reads (no ids, no plain reading or note, no
+    /// parse error, and only the first diagnosis's message): what follow-through is given
+    /// of an earlier answer.
+    pub fn verdict(&self) -> Verdict {
+        let diagnoses = (self.codes.iter().enumerate())
+            .map(|(i, &code)| Diagnosis {
+                code,
+                message: if i == 0 {
+                    self.message.to_string()
+                } else {
+                    String::new()
+                },
+            })
+            .collect();
+        Verdict {
+            problem: String::new(),
+            part: String::new(),
+            status: self.status,
+            score: self.score,
+            reading: ReadAs {
+                plain: String::new(),
+                unicode: self.unicode.to_string(),
+                note: None,
+            },
+            diagnoses,
+            seed: self.seed,
+            parse_error: None,
+        }
+    }
+
+    /// The first diagnosis, as the verdict gave it.
+    pub fn first(&self) -> Option<Diagnosis> {
+        let &code = self.codes.first()?;
+        Some(Diagnosis::new(code, self.message.to_string()))
+    }
+}
+
+/// A grouping key of 128 bits for a text (a fingerprint): SipHash-1-3 under two keys drawn
+/// at random for each run, so no answer can be made to collide with another on purpose, and
+/// two different texts share a key with odds of about 2⁻¹²⁸ — the summary groups by it
+/// without keeping every wrong answer's fingerprint (about 100 bytes each).
+pub fn meaning(text: &str) -> u128 {
+    use std::hash::BuildHasher as _;
+    static KEYS: std::sync::OnceLock<[std::hash::RandomState; 2]> = std::sync::OnceLock::new();
+    let [a, b] =
+        KEYS.get_or_init(|| [std::hash::RandomState::new(), std::hash::RandomState::new()]);
+    (u128::from(a.hash_one(text)) << 64) | u128::from(b.hash_one(text))
 }
 
 /// What a row is given: shared by every row with the same representative (and the same
@@ -120,7 +205,7 @@ impl Judged {
         match (&o.message, o.rep) {
             (Some(m), _) => m,
             (None, Some(r)) => match &self.reps[r].verdict {
-                Ok(v) => v.diagnoses.first().map_or("", |d| d.message.as_str()),
+                Ok(v) => &v.message,
                 Err(e) => e,
             },
             (None, None) => "",
@@ -220,8 +305,9 @@ pub fn judge(
         let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
-            .flatten();
-        (verdict.map(slim), fingerprint)
+            .flatten()
+            .map(|f| meaning(&f));
+        (verdict.map(Slim::new), fingerprint)
     });
     if bar.stopped() {
         return Err(Interrupted);
@@ -270,27 +356,6 @@ pub fn judge(
     mark_counted(rows, &mut judged, table.students.len(), settings.best);
     phases.end("counted");
     Ok(judged)
-}
-
-/// A verdict with only what grading reads of it: the status, the score, every code, the
-/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer) and
-/// the Unicode reading (the summary). Kept for every representative until the summary is
-/// made, so a class of all-different answers keeps no other message or reading.
-fn slim(mut v: Verdict) -> Verdict {
-    v.problem = String::new();
-    v.part = String::new();
-    v.reading.plain = String::new();
-    v.reading.note = None;
-    v.reading.unicode.shrink_to_fit();
-    v.parse_error = None;
-    for d in v.diagnoses.iter_mut().skip(1) {
-        d.message = String::new();
-    }
-    if let Some(d) = v.diagnoses.first_mut() {
-        d.message.shrink_to_fit();
-    }
-    v.diagnoses.shrink_to_fit();
-    v
 }
 
 /// The outcome of a row that is not checked.
@@ -396,7 +461,7 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Invalid => Status::Invalid,
             },
             v.score * points,
-            v.diagnoses.iter().map(|d| d.code).collect(),
+            v.codes.to_vec(),
         ),
         Err(_) => (Status::Error, 0.0, Vec::new()),
     };

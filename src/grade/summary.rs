@@ -134,19 +134,20 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative, interned: a group is (part, status, meaning).
-    let mut meanings: FxHashMap<std::borrow::Cow<str>, usize> = FxHashMap::default();
+    // Meanings are 128-bit keys ([`super::judge::meaning`]), so none is kept as text.
+    let mut meanings: FxHashMap<u128, usize> = FxHashMap::default();
     let meaning: Vec<usize> = judged
         .reps
         .iter()
         .map(|r| {
-            let m = r.fingerprint.as_deref().map_or_else(
-                || format!("text:{}", r.answer.trim()).into(),
-                std::borrow::Cow::Borrowed,
-            );
+            let m = r
+                .fingerprint
+                .unwrap_or_else(|| super::judge::meaning(&format!("text:{}", r.answer.trim())));
             let n = meanings.len();
             *meanings.entry(m).or_insert(n)
         })
         .collect();
+    drop(meanings);
     // Each outcome's group (wrong and unreadable answers only), numbered once.
     let mut group_ids: FxHashMap<GroupKey, u32> = FxHashMap::default();
     let mut groups: Vec<GroupKey> = Vec::new();
@@ -182,10 +183,29 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
     }
     members.par_sort_unstable();
-    let tallies: Vec<(GroupKey, Tally)> = members
-        .par_chunk_by(|a, b| a.0 == b.0)
-        .map(|rows| (groups[rows[0].0 as usize], tally(rows)))
-        .collect();
+    let key = |(p, q): (usize, usize)| {
+        let problem = &bank.problems[p];
+        format!("{}/{}", problem.id, problem.parts[q].id)
+    };
+    // Groups counted and shown a batch at a time (in parallel), each batch's kept in the best
+    // few of its part: memory bounded however many groups there are.
+    let mut best = Best::default();
+    let mut chunks = members.chunk_by(|a, b| a.0 == b.0);
+    loop {
+        let batch: Vec<&[(u32, u32, u32, u32)]> = chunks.by_ref().take(GROUP_BATCH).collect();
+        if batch.is_empty() {
+            break;
+        }
+        let shown_batch: Vec<((String, Status), Shown)> = (batch.par_iter())
+            .map(|rows| {
+                let (t, status, _) = groups[rows[0].0 as usize];
+                ((key(t), status), shown(status, tally(rows), table, judged))
+            })
+            .collect();
+        for ((k, status), g) in shown_batch {
+            best.push(k, status, g);
+        }
+    }
     drop(members);
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
@@ -218,17 +238,9 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
             sum / s.students as f64 + 0.0
         };
     }
-    let key = |(p, q): (usize, usize)| {
-        let problem = &bank.problems[p];
-        format!("{}/{}", problem.id, problem.parts[q].id)
-    };
     let mut parts: BTreeMap<String, PartSummary> =
         parts.into_iter().map(|(t, s)| (key(t), s)).collect();
-    let tallies = tallies
-        .into_iter()
-        .map(|((t, status, _), tally)| ((key(t), status), tally))
-        .collect();
-    add_groups(&mut parts, tallies, table, judged);
+    best.finish(&mut parts, judged);
     Summary {
         run: String::new(),
         rows: rows.len(),
@@ -261,51 +273,77 @@ fn empty(points: f64) -> PartSummary {
     }
 }
 
-/// Turns the tallies into each part's sorted, truncated group list. Groups are ordered by
-/// their counts and full text ([`Shown`]); only the listed ones are made whole (codes,
-/// diagnosis, cut spellings), so a class of all-different answers keeps no more than the
-/// text each is sorted by.
+/// Groups counted and shown per batch in [`summarise`].
+const GROUP_BATCH: usize = 4096;
+
+/// Each part's sorted, truncated group lists, made from the groups one at a time. Groups are
+/// ordered by their counts and full text ([`Shown`]); only the listed ones are made whole
+/// (codes, diagnosis, cut spellings), so a class of all-different answers keeps no more than
+/// the text each is sorted by.
+///
+/// Per part and kind (wrong, unreadable): the best groups so far and the rows of all. Cut
+/// back to the listed few whenever many have gathered, so a class of all-different answers
+/// never holds every group's text at once (the order is total up to ties, which a stable
+/// sort keeps in order of first appearance, as one sort of all would).
+#[derive(Default)]
+struct Best {
+    per_part: BTreeMap<(String, bool), (Vec<Shown>, usize)>,
+}
+
+/// The order groups are listed in: most students, then most rows, then the full text.
+fn order(a: &Shown, b: &Shown) -> std::cmp::Ordering {
+    b.students
+        .cmp(&a.students)
+        .then_with(|| b.count.cmp(&a.count))
+        .then_with(|| a.full.cmp(&b.full))
+}
+
+impl Best {
+    /// Adds the next group (groups come in the order of their first appearance).
+    fn push(&mut self, key: String, status: Status, g: Shown) {
+        let (best, rows) = self
+            .per_part
+            .entry((key, status == Status::Invalid))
+            .or_default();
+        *rows += g.count;
+        best.push(g);
+        if best.len() >= 8 * MAX_GROUPS {
+            best.sort_by(order);
+            best.truncate(MAX_GROUPS);
+        }
+    }
+
+    /// Puts each part's listed groups and the count of the others into `parts`.
+    fn finish(self, parts: &mut BTreeMap<String, PartSummary>, judged: &Judged) {
+        for ((key, unreadable), (mut best, rows)) in self.per_part {
+            best.sort_by(order);
+            best.truncate(MAX_GROUPS);
+            let other = rows - best.iter().map(|g| g.count).sum::<usize>();
+            let listed: Vec<Group> = best.into_iter().map(|g| group(g, judged)).collect();
+            if let Some(s) = parts.get_mut(&key) {
+                if unreadable {
+                    (s.unreadable, s.other_unreadable) = (listed, other);
+                } else {
+                    (s.wrong, s.other_wrong) = (listed, other);
+                }
+            }
+        }
+    }
+}
+
+/// Every tally shown and listed, in order (what [`summarise`] does a batch at a time).
+#[cfg(test)]
 fn add_groups(
     parts: &mut BTreeMap<String, PartSummary>,
     tallies: Vec<((String, Status), Tally)>,
     table: &Table,
     judged: &Judged,
 ) {
-    // Per part and kind (wrong, unreadable): the best groups so far and the rows of all.
-    // Cut back to the listed few whenever many have gathered, so a class of all-different
-    // answers never holds every group's text at once (the order is total up to ties, which
-    // a stable sort keeps in order of first appearance, as one sort of all would).
-    let order = |a: &Shown, b: &Shown| {
-        b.students
-            .cmp(&a.students)
-            .then_with(|| b.count.cmp(&a.count))
-            .then_with(|| a.full.cmp(&b.full))
-    };
-    let mut per_part: BTreeMap<(String, bool), (Vec<Shown>, usize)> = BTreeMap::new();
+    let mut best = Best::default();
     for ((key, status), t) in tallies {
-        let (best, rows) = per_part
-            .entry((key, status == Status::Invalid))
-            .or_default();
-        *rows += t.count;
-        best.push(shown(status, t, table, judged));
-        if best.len() >= 8 * MAX_GROUPS {
-            best.sort_by(order);
-            best.truncate(MAX_GROUPS);
-        }
+        best.push(key, status, shown(status, t, table, judged));
     }
-    for ((key, unreadable), (mut best, rows)) in per_part {
-        best.sort_by(order);
-        best.truncate(MAX_GROUPS);
-        let other = rows - best.iter().map(|g| g.count).sum::<usize>();
-        let listed: Vec<Group> = best.into_iter().map(|g| group(g, judged)).collect();
-        if let Some(s) = parts.get_mut(&key) {
-            if unreadable {
-                (s.unreadable, s.other_unreadable) = (listed, other);
-            } else {
-                (s.wrong, s.other_wrong) = (listed, other);
-            }
-        }
-    }
+    best.finish(parts, judged);
 }
 
 /// A group as it is sorted: its counts, its most common reading (ties: the smaller text) and
@@ -325,7 +363,7 @@ fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
     let shown_of = |rep: usize| {
         let r = &judged.reps[rep];
         match &r.verdict {
-            Ok(v) if !v.reading.unicode.is_empty() => v.reading.unicode.clone(),
+            Ok(v) if !v.unicode.is_empty() => v.unicode.to_string(),
             _ => r.answer.trim().to_string(),
         }
     };
@@ -362,11 +400,9 @@ fn group(g: Shown, judged: &Judged) -> Group {
         status: g.status.name().to_string(),
         answer: cut(&g.full.0),
         codes: verdict.map_or(Vec::new(), |v| {
-            v.diagnoses.iter().map(|d| d.code.to_string()).collect()
+            v.codes.iter().map(|c| c.to_string()).collect()
         }),
-        diagnosis: verdict
-            .and_then(|v| v.diagnoses.first())
-            .map_or(String::new(), |d| d.message.clone()),
+        diagnosis: verdict.map_or(String::new(), |v| v.message.to_string()),
         examples: g.full.1.iter().take(2).map(|s| cut(s)).collect(),
     }
 }
