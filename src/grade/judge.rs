@@ -244,8 +244,8 @@ pub fn judge(
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
     let mut distinct: Vec<(usize, usize, &str)> = Vec::new();
-    let mut by_text: FxHashMap<(usize, usize, u32), u32> = FxHashMap::default();
-    // Per row: its own outcome (Err) or its distinct answer (Ok).
+    let mut by_text: FxHashMap<(u32, u32, u32), u32> = FxHashMap::default();
+    // Per row: its own outcome (Err) or its distinct answer (Ok), then its representative.
     let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
     for row in rows {
         let own = |o: Outcome, judged: &mut Judged| Err(judged.add(o));
@@ -270,14 +270,19 @@ pub fn judge(
                         &mut judged,
                     )
                 }
-                Ok((p, q)) => Ok(*by_text.entry((*p, *q, row.answer)).or_insert_with(|| {
-                    distinct.push((*p, *q, table.answers.get(row.answer)));
-                    distinct.len() as u32 - 1
-                })),
+                Ok((p, q)) => Ok(*by_text
+                    .entry((*p as u32, *q as u32, row.answer))
+                    .or_insert_with(|| {
+                        distinct.push((*p, *q, table.answers.get(row.answer)));
+                        distinct.len() as u32 - 1
+                    })),
             }
         };
         row_distinct.push(slot);
     }
+    // Freed before the answers are checked, which is where a class of all-different answers
+    // needs its memory.
+    drop((by_text, resolved));
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
@@ -291,6 +296,11 @@ pub fn judge(
         (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
+    // Each row's distinct answer becomes its representative.
+    for d in row_distinct.iter_mut().flatten() {
+        *d = reps_of[*d as usize] as u32;
+    }
+    drop((reps_of, distinct));
     phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
@@ -334,7 +344,7 @@ pub fn judge(
         .iter()
         .map(|d| Graded {
             outcome: match d {
-                Ok(d) => rep_outcomes[reps_of[*d as usize]],
+                Ok(r) => rep_outcomes[*r as usize],
                 Err(own) => *own,
             },
             counts: false,
@@ -473,5 +483,63 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
         message: None,
         target: Some((p, q)),
         rep: Some(r),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What grading kept of a verdict before [`Slim`] (issue 20 §5): the verdict with its ids,
+    /// plain reading, note, parse error and every message but the first emptied.
+    fn kept(mut v: Verdict) -> Verdict {
+        v.problem = String::new();
+        v.part = String::new();
+        v.reading.plain = String::new();
+        v.reading.note = None;
+        v.parse_error = None;
+        for d in v.diagnoses.iter_mut().skip(1) {
+            d.message = String::new();
+        }
+        v
+    }
+
+    /// A slim verdict gives back exactly what grading kept of the verdict before (follow-through
+    /// reads an earlier answer through it), for right, wrong and unreadable answers.
+    #[test]
+    fn a_slim_verdict_gives_back_what_grading_kept_of_the_verdict() {
+        let bank = crate::cli::problems::load_bank(None).unwrap_or_else(|e| panic!("{e}"));
+        let problem = (bank.problems.iter())
+            .find(|p| p.id == "simple-pendulum")
+            .unwrap_or_else(|| panic!("no simple-pendulum in the bank"));
+        let mut checker = Checker::new(problem);
+        let answers = [
+            ("eom", "m*l^2*theta'' + m*g*l*sin(theta) = 0", Checked::Correct),
+            ("eom", "m*l^2*theta'' + 1.000002*m*g*l*sin(theta) = 0", Checked::Incorrect),
+            ("eom", "m*l^2*theta'' - m*g*l*sin(theta) = 0", Checked::Incorrect),
+            ("potential", "m*g*l*cos(theta)", Checked::Incorrect),
+            ("potential", "m*g*(", Checked::Invalid),
+        ];
+        for (part, answer, status) in answers {
+            let v = checker
+                .check(part, answer)
+                .unwrap_or_else(|e| panic!("{answer}: {e}"));
+            assert_eq!(v.status, status, "{answer}");
+            let slim = Slim::new(v.clone());
+            assert_eq!(slim.verdict(), kept(v.clone()), "{answer}");
+            assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
+            assert_eq!(&*slim.unicode, v.reading.unicode.as_str(), "{answer}");
+            if status != Checked::Correct {
+                assert!(!slim.codes.is_empty() && !slim.message.is_empty(), "{answer}");
+            }
+        }
+    }
+
+    /// Equal texts share a meaning and different ones do not (the summary's grouping key).
+    #[test]
+    fn meanings_are_equal_exactly_for_equal_texts() {
+        assert_eq!(meaning("1.5, 2"), meaning("1.5, 2"));
+        assert_ne!(meaning("1.5, 2"), meaning("1.5, 2 "));
+        assert_ne!(meaning(""), meaning("text:"));
     }
 }

@@ -87,8 +87,9 @@ pub struct Group {
     pub examples: Vec<String>,
 }
 
-/// A group of wrong answers: its part, its status and its meaning (an index).
-type GroupKey = ((usize, usize), Status, usize);
+/// A group of wrong answers: its part, its status and its meaning (an index), in 16 bytes
+/// (a class of all-different answers has a group per answer).
+type GroupKey = ((u32, u32), Status, u32);
 
 /// A group counted: rows, distinct students, rows per representative and per spelling (an
 /// interned answer), each list sorted.
@@ -135,15 +136,15 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative, interned: a group is (part, status, meaning).
     // Meanings are 128-bit keys ([`super::judge::meaning`]), so none is kept as text.
-    let mut meanings: FxHashMap<u128, usize> = FxHashMap::default();
-    let meaning: Vec<usize> = judged
+    let mut meanings: FxHashMap<u128, u32> = FxHashMap::default();
+    let meaning: Vec<u32> = judged
         .reps
         .iter()
         .map(|r| {
             let m = r
                 .fingerprint
                 .unwrap_or_else(|| super::judge::meaning(&format!("text:{}", r.answer.trim())));
-            let n = meanings.len();
+            let n = meanings.len() as u32;
             *meanings.entry(m).or_insert(n)
         })
         .collect();
@@ -153,12 +154,13 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut groups: Vec<GroupKey> = Vec::new();
     let group_of: Vec<u32> = (judged.outcomes.iter())
         .map(|o| match (o.target, o.rep, o.status) {
-            (Some(t), Some(rep), Status::Incorrect | Status::Invalid) => *group_ids
-                .entry((t, o.status, meaning[rep]))
-                .or_insert_with(|| {
-                    groups.push((t, o.status, meaning[rep]));
+            (Some((p, q)), Some(rep), Status::Incorrect | Status::Invalid) => {
+                let g = ((p as u32, q as u32), o.status, meaning[rep]);
+                *group_ids.entry(g).or_insert_with(|| {
+                    groups.push(g);
                     groups.len() as u32 - 1
-                }),
+                })
+            }
             _ => u32::MAX,
         })
         .collect();
@@ -198,7 +200,8 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
         let shown_batch: Vec<((String, Status), Shown)> = (batch.par_iter())
             .map(|rows| {
-                let (t, status, _) = groups[rows[0].0 as usize];
+                let ((p, q), status, _) = groups[rows[0].0 as usize];
+                let t = (p as usize, q as usize);
                 ((key(t), status), shown(status, tally(rows), table, judged))
             })
             .collect();
