@@ -87,21 +87,48 @@ pub struct Slim {
     pub unicode: Box<str>,
     /// Every diagnosis's code, most specific first.
     pub codes: Box<[Code]>,
-    /// The first diagnosis's message (empty without one).
-    pub message: Box<str>,
+    /// The first diagnosis's message (empty without one), shared by the representatives
+    /// given the same ([`Messages`]).
+    pub message: std::sync::Arc<str>,
+}
+
+/// The messages of one run's verdicts, each kept once: most wrong answers of a class get one
+/// of a few messages (a class of all-different answers would otherwise keep a copy of it for
+/// each answer).
+#[derive(Default)]
+pub struct Messages(std::sync::Mutex<rustc_hash::FxHashSet<std::sync::Arc<str>>>);
+
+impl Messages {
+    /// `m`, shared with the equal message given before if there is one.
+    fn share(&self, m: String) -> std::sync::Arc<str> {
+        // A worker that panicked holding the lock left the set whole (insertions are atomic).
+        let mut set = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(a) = set.get(m.as_str()) {
+            return a.clone();
+        }
+        let a: std::sync::Arc<str> = m.into();
+        set.insert(a.clone());
+        a
+    }
 }
 
 impl Slim {
     /// What grading reads of `v`.
+    #[cfg(test)]
     pub fn new(v: Verdict) -> Slim {
+        Slim::shared(v, &Messages::default())
+    }
+
+    /// What grading reads of `v`, its message shared through `messages`.
+    pub fn shared(v: Verdict, messages: &Messages) -> Slim {
         Slim {
             status: v.status,
             score: v.score,
             seed: v.seed,
             unicode: v.reading.unicode.into_boxed_str(),
             codes: v.diagnoses.iter().map(|d| d.code).collect(),
-            message: (v.diagnoses.into_iter().next())
-                .map_or_else(Box::default, |d| d.message.into_boxed_str()),
+            message: messages
+                .share((v.diagnoses.into_iter().next()).map_or_else(String::new, |d| d.message)),
         }
     }
 
@@ -286,7 +313,7 @@ pub fn judge(
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &distinct, |c, part, text| {
+    let canon = par_map(bank, &distinct, |c, part, (_, _, text)| {
         if !bar.tick() {
             return None;
         }
@@ -306,9 +333,18 @@ pub fn judge(
         return Err(Interrupted);
     }
     bar.start(rep_inputs.len() as u64);
-    let checked = par_map(bank, &rep_inputs, |c, part, text| {
+    let messages = Messages::default();
+    // Each representative made where it is checked (no second list of them).
+    judged.reps = par_map(bank, &rep_inputs, |c, part, (problem, q, text)| {
+        let rep = |verdict, fingerprint| Rep {
+            problem,
+            part: q,
+            answer: text.to_string(),
+            verdict,
+            fingerprint,
+        };
         if !bar.tick() {
-            return (Err(Interrupted.to_string()), None);
+            return rep(Err(Interrupted.to_string()), None);
         }
         let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.
@@ -317,23 +353,15 @@ pub fn judge(
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
             .flatten()
             .map(|f| meaning(&f));
-        (verdict.map(Slim::new), fingerprint)
+        rep(verdict.map(|v| Slim::shared(v, &messages)), fingerprint)
     });
+    drop(messages);
     if bar.stopped() {
         return Err(Interrupted);
     }
     phases.end("check");
-    judged.reps = rep_inputs
-        .iter()
-        .zip(checked)
-        .map(|(&(problem, part, answer), (verdict, fingerprint))| Rep {
-            problem,
-            part,
-            answer: answer.to_string(),
-            verdict,
-            fingerprint,
-        })
-        .collect();
+    drop(rep_inputs);
+    judged.outcomes.reserve_exact(judged.reps.len());
     let rep_outcomes: Vec<u32> = (0..judged.reps.len())
         .map(|r| {
             let o = outcome(r, &judged.reps[r], bank);
@@ -395,7 +423,7 @@ fn is_list(part: &Part) -> bool {
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
     items: &[(usize, usize, &str)],
-    f: impl Fn(&mut Checker<'b>, &'b Part, &str) -> R + Sync + Send,
+    f: impl Fn(&mut Checker<'b>, &'b Part, (usize, usize, &str)) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -407,7 +435,7 @@ fn par_map<'b, R: Send>(
             |checkers, &(p, q, text)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q], text)
+                f(checker, &problem.parts[q], (p, q, text))
             },
         )
         .collect()
@@ -514,9 +542,21 @@ mod tests {
             .unwrap_or_else(|| panic!("no simple-pendulum in the bank"));
         let mut checker = Checker::new(problem);
         let answers = [
-            ("eom", "m*l^2*theta'' + m*g*l*sin(theta) = 0", Checked::Correct),
-            ("eom", "m*l^2*theta'' + 1.000002*m*g*l*sin(theta) = 0", Checked::Incorrect),
-            ("eom", "m*l^2*theta'' - m*g*l*sin(theta) = 0", Checked::Incorrect),
+            (
+                "eom",
+                "m*l^2*theta'' + m*g*l*sin(theta) = 0",
+                Checked::Correct,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' + 1.000002*m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' - m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
             ("potential", "m*g*l*cos(theta)", Checked::Incorrect),
             ("potential", "m*g*(", Checked::Invalid),
         ];
@@ -530,7 +570,10 @@ mod tests {
             assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
             assert_eq!(&*slim.unicode, v.reading.unicode.as_str(), "{answer}");
             if status != Checked::Correct {
-                assert!(!slim.codes.is_empty() && !slim.message.is_empty(), "{answer}");
+                assert!(
+                    !slim.codes.is_empty() && !slim.message.is_empty(),
+                    "{answer}"
+                );
             }
         }
     }
