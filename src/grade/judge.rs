@@ -10,7 +10,7 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Code, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Diagnosis, ReadAs, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
@@ -62,11 +62,123 @@ pub struct Rep {
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
-    /// The verdict ([`slim`]: what grading reads of it), or why the part could not be
+    /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
     /// checked.
-    pub verdict: Result<Verdict, String>,
-    /// Equal for answers equal at the sample points: the summary's grouping key.
-    pub fingerprint: Option<String>,
+    pub verdict: Result<Slim, String>,
+    /// Equal for answers equal at the sample points: the summary's grouping key (the
+    /// checker's fingerprint, hashed: see [`meaning`]).
+    pub fingerprint: Option<u128>,
+}
+
+/// A verdict as grading keeps it for every representative until the outputs are written:
+/// the status, the score, every code, the first diagnosis's message (results.csv, the
+/// summary, follow-through's earlier answer) and the Unicode reading (the summary), each
+/// text boxed to its length. A quarter of a [`Verdict`]'s size: a class of all-different
+/// answers keeps one per answer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slim {
+    /// The checker's status.
+    pub status: Checked,
+    /// The checker's score, 0…1.
+    pub score: f64,
+    /// The sampling seed (kept so [`Slim::verdict`] gives back the verdict kept before).
+    pub seed: u64,
+    /// The Unicode reading (`reading.unicode`).
+    pub unicode: Box<str>,
+    /// Every diagnosis's code, most specific first.
+    pub codes: Box<[Code]>,
+    /// The first diagnosis's message (empty without one), shared by the representatives
+    /// given the same ([`Messages`]).
+    pub message: std::sync::Arc<str>,
+}
+
+/// The messages of one run's verdicts, each kept once: most wrong answers of a class get one
+/// of a few messages (a class of all-different answers would otherwise keep a copy of it for
+/// each answer).
+#[derive(Default)]
+pub struct Messages(std::sync::Mutex<rustc_hash::FxHashSet<std::sync::Arc<str>>>);
+
+impl Messages {
+    /// `m`, shared with the equal message given before if there is one.
+    fn share(&self, m: String) -> std::sync::Arc<str> {
+        // A worker that panicked holding the lock left the set whole (insertions are atomic).
+        let mut set = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(a) = set.get(m.as_str()) {
+            return a.clone();
+        }
+        let a: std::sync::Arc<str> = m.into();
+        set.insert(a.clone());
+        a
+    }
+}
+
+impl Slim {
+    /// What grading reads of `v`.
+    #[cfg(test)]
+    pub fn new(v: Verdict) -> Slim {
+        Slim::shared(v, &Messages::default())
+    }
+
+    /// What grading reads of `v`, its message shared through `messages`.
+    pub fn shared(v: Verdict, messages: &Messages) -> Slim {
+        Slim {
+            status: v.status,
+            score: v.score,
+            seed: v.seed,
+            unicode: v.reading.unicode.into_boxed_str(),
+            codes: v.diagnoses.iter().map(|d| d.code).collect(),
+            message: messages
+                .share((v.diagnoses.into_iter().next()).map_or_else(String::new, |d| d.message)),
+        }
+    }
+
+    /// The verdict with only what grading reads (no ids, no plain reading or note, no
+    /// parse error, and only the first diagnosis's message): what follow-through is given
+    /// of an earlier answer.
+    pub fn verdict(&self) -> Verdict {
+        let diagnoses = (self.codes.iter().enumerate())
+            .map(|(i, &code)| Diagnosis {
+                code,
+                message: if i == 0 {
+                    self.message.to_string()
+                } else {
+                    String::new()
+                },
+            })
+            .collect();
+        Verdict {
+            problem: String::new(),
+            part: String::new(),
+            status: self.status,
+            score: self.score,
+            reading: ReadAs {
+                plain: String::new(),
+                unicode: self.unicode.to_string(),
+                note: None,
+            },
+            diagnoses,
+            seed: self.seed,
+            parse_error: None,
+        }
+    }
+
+    /// The first diagnosis, as the verdict gave it.
+    pub fn first(&self) -> Option<Diagnosis> {
+        let &code = self.codes.first()?;
+        Some(Diagnosis::new(code, self.message.to_string()))
+    }
+}
+
+/// A grouping key of 128 bits for a text (a fingerprint): SipHash-1-3 under two keys drawn
+/// at random for each run, so no answer can be made to collide with another on purpose, and
+/// two different texts share a key with odds of about 2⁻¹²⁸ — the summary groups by it
+/// without keeping every wrong answer's fingerprint (about 100 bytes each).
+pub fn meaning(text: &str) -> u128 {
+    use std::hash::BuildHasher as _;
+    static KEYS: std::sync::OnceLock<[std::hash::RandomState; 2]> = std::sync::OnceLock::new();
+    let [a, b] =
+        KEYS.get_or_init(|| [std::hash::RandomState::new(), std::hash::RandomState::new()]);
+    (u128::from(a.hash_one(text)) << 64) | u128::from(b.hash_one(text))
 }
 
 /// What a row is given: shared by every row with the same representative (and the same
@@ -120,7 +232,7 @@ impl Judged {
         match (&o.message, o.rep) {
             (Some(m), _) => m,
             (None, Some(r)) => match &self.reps[r].verdict {
-                Ok(v) => v.diagnoses.first().map_or("", |d| d.message.as_str()),
+                Ok(v) => &v.message,
                 Err(e) => e,
             },
             (None, None) => "",
@@ -159,8 +271,8 @@ pub fn judge(
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
     let mut distinct: Vec<(usize, usize, &str)> = Vec::new();
-    let mut by_text: FxHashMap<(usize, usize, u32), u32> = FxHashMap::default();
-    // Per row: its own outcome (Err) or its distinct answer (Ok).
+    let mut by_text: FxHashMap<(u32, u32, u32), u32> = FxHashMap::default();
+    // Per row: its own outcome (Err) or its distinct answer (Ok), then its representative.
     let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
     for row in rows {
         let own = |o: Outcome, judged: &mut Judged| Err(judged.add(o));
@@ -185,18 +297,23 @@ pub fn judge(
                         &mut judged,
                     )
                 }
-                Ok((p, q)) => Ok(*by_text.entry((*p, *q, row.answer)).or_insert_with(|| {
-                    distinct.push((*p, *q, table.answers.get(row.answer)));
-                    distinct.len() as u32 - 1
-                })),
+                Ok((p, q)) => Ok(*by_text
+                    .entry((*p as u32, *q as u32, row.answer))
+                    .or_insert_with(|| {
+                        distinct.push((*p, *q, table.answers.get(row.answer)));
+                        distinct.len() as u32 - 1
+                    })),
             }
         };
         row_distinct.push(slot);
     }
+    // Freed before the answers are checked, which is where a class of all-different answers
+    // needs its memory.
+    drop((by_text, resolved));
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &distinct, |c, part, text| {
+    let canon = par_map(bank, &distinct, |c, part, (_, _, text)| {
         if !bar.tick() {
             return None;
         }
@@ -206,38 +323,45 @@ pub fn judge(
         (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
+    // Each row's distinct answer becomes its representative.
+    for d in row_distinct.iter_mut().flatten() {
+        *d = reps_of[*d as usize] as u32;
+    }
+    drop((reps_of, distinct));
     phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
     }
     bar.start(rep_inputs.len() as u64);
-    let checked = par_map(bank, &rep_inputs, |c, part, text| {
+    let messages = Messages::default();
+    // Each representative made where it is checked (no second list of them).
+    judged.reps = par_map(bank, &rep_inputs, |c, part, (problem, q, text)| {
+        let rep = |verdict, fingerprint| Rep {
+            problem,
+            part: q,
+            answer: text.to_string(),
+            verdict,
+            fingerprint,
+        };
         if !bar.tick() {
-            return (Err(Interrupted.to_string()), None);
+            return rep(Err(Interrupted.to_string()), None);
         }
         let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.
         let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
-            .flatten();
-        (verdict.map(slim), fingerprint)
+            .flatten()
+            .map(|f| meaning(&f));
+        rep(verdict.map(|v| Slim::shared(v, &messages)), fingerprint)
     });
+    drop(messages);
     if bar.stopped() {
         return Err(Interrupted);
     }
     phases.end("check");
-    judged.reps = rep_inputs
-        .iter()
-        .zip(checked)
-        .map(|(&(problem, part, answer), (verdict, fingerprint))| Rep {
-            problem,
-            part,
-            answer: answer.to_string(),
-            verdict,
-            fingerprint,
-        })
-        .collect();
+    drop(rep_inputs);
+    judged.outcomes.reserve_exact(judged.reps.len());
     let rep_outcomes: Vec<u32> = (0..judged.reps.len())
         .map(|r| {
             let o = outcome(r, &judged.reps[r], bank);
@@ -248,7 +372,7 @@ pub fn judge(
         .iter()
         .map(|d| Graded {
             outcome: match d {
-                Ok(d) => rep_outcomes[reps_of[*d as usize]],
+                Ok(r) => rep_outcomes[*r as usize],
                 Err(own) => *own,
             },
             counts: false,
@@ -270,27 +394,6 @@ pub fn judge(
     mark_counted(rows, &mut judged, table.students.len(), settings.best);
     phases.end("counted");
     Ok(judged)
-}
-
-/// A verdict with only what grading reads of it: the status, the score, every code, the
-/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer) and
-/// the Unicode reading (the summary). Kept for every representative until the summary is
-/// made, so a class of all-different answers keeps no other message or reading.
-fn slim(mut v: Verdict) -> Verdict {
-    v.problem = String::new();
-    v.part = String::new();
-    v.reading.plain = String::new();
-    v.reading.note = None;
-    v.reading.unicode.shrink_to_fit();
-    v.parse_error = None;
-    for d in v.diagnoses.iter_mut().skip(1) {
-        d.message = String::new();
-    }
-    if let Some(d) = v.diagnoses.first_mut() {
-        d.message.shrink_to_fit();
-    }
-    v.diagnoses.shrink_to_fit();
-    v
 }
 
 /// The outcome of a row that is not checked.
@@ -320,7 +423,7 @@ fn is_list(part: &Part) -> bool {
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
     items: &[(usize, usize, &str)],
-    f: impl Fn(&mut Checker<'b>, &'b Part, &str) -> R + Sync + Send,
+    f: impl Fn(&mut Checker<'b>, &'b Part, (usize, usize, &str)) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -332,7 +435,7 @@ fn par_map<'b, R: Send>(
             |checkers, &(p, q, text)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q], text)
+                f(checker, &problem.parts[q], (p, q, text))
             },
         )
         .collect()
@@ -396,7 +499,7 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Invalid => Status::Invalid,
             },
             v.score * points,
-            v.diagnoses.iter().map(|d| d.code).collect(),
+            v.codes.to_vec(),
         ),
         Err(_) => (Status::Error, 0.0, Vec::new()),
     };
@@ -408,5 +511,78 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
         message: None,
         target: Some((p, q)),
         rep: Some(r),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What grading kept of a verdict before [`Slim`] (issue 20 §5): the verdict with its ids,
+    /// plain reading, note, parse error and every message but the first emptied.
+    fn kept(mut v: Verdict) -> Verdict {
+        v.problem = String::new();
+        v.part = String::new();
+        v.reading.plain = String::new();
+        v.reading.note = None;
+        v.parse_error = None;
+        for d in v.diagnoses.iter_mut().skip(1) {
+            d.message = String::new();
+        }
+        v
+    }
+
+    /// A slim verdict gives back exactly what grading kept of the verdict before (follow-through
+    /// reads an earlier answer through it), for right, wrong and unreadable answers.
+    #[test]
+    fn a_slim_verdict_gives_back_what_grading_kept_of_the_verdict() {
+        let bank = crate::cli::problems::load_bank(None).unwrap_or_else(|e| panic!("{e}"));
+        let problem = (bank.problems.iter())
+            .find(|p| p.id == "simple-pendulum")
+            .unwrap_or_else(|| panic!("no simple-pendulum in the bank"));
+        let mut checker = Checker::new(problem);
+        let answers = [
+            (
+                "eom",
+                "m*l^2*theta'' + m*g*l*sin(theta) = 0",
+                Checked::Correct,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' + 1.000002*m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' - m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
+            ("potential", "m*g*l*cos(theta)", Checked::Incorrect),
+            ("potential", "m*g*(", Checked::Invalid),
+        ];
+        for (part, answer, status) in answers {
+            let v = checker
+                .check(part, answer)
+                .unwrap_or_else(|e| panic!("{answer}: {e}"));
+            assert_eq!(v.status, status, "{answer}");
+            let slim = Slim::new(v.clone());
+            assert_eq!(slim.verdict(), kept(v.clone()), "{answer}");
+            assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
+            assert_eq!(&*slim.unicode, v.reading.unicode.as_str(), "{answer}");
+            if status != Checked::Correct {
+                assert!(
+                    !slim.codes.is_empty() && !slim.message.is_empty(),
+                    "{answer}"
+                );
+            }
+        }
+    }
+
+    /// Equal texts share a meaning and different ones do not (the summary's grouping key).
+    #[test]
+    fn meanings_are_equal_exactly_for_equal_texts() {
+        assert_eq!(meaning("1.5, 2"), meaning("1.5, 2"));
+        assert_ne!(meaning("1.5, 2"), meaning("1.5, 2 "));
+        assert_ne!(meaning(""), meaning("text:"));
     }
 }

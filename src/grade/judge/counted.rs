@@ -11,7 +11,7 @@ use lagrange::check::{Diagnosis, Status as Checked, Verdict};
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::super::input::Row;
-use super::{Judged, Rep, Status};
+use super::{Judged, Rep, Slim, Status};
 
 /// The row that counts for each (student, problem, part): the last graded attempt, or with
 /// `best` the highest-scoring one (the later of equals). Error rows never count. Rows are
@@ -152,7 +152,7 @@ pub(super) fn follow_through(
         .map(|r| match &r.verdict {
             Ok(v) => match v.status {
                 Checked::Incorrect => true,
-                Checked::Correct => v.diagnoses.first().is_some_and(accepts),
+                Checked::Correct => v.first().as_ref().is_some_and(accepts),
                 Checked::Invalid => false,
             },
             Err(_) => false,
@@ -251,7 +251,10 @@ fn follows(key: &FollowKey, reps: &[Rep], bank: &Bank) -> Option<Diagnosis> {
         .map(|&r| {
             let e = &reps[r];
             let id = problem.parts[e.part].id.clone();
-            (Earlier::new(id, e.answer.clone()), e.verdict.clone().ok())
+            (
+                Earlier::new(id, e.answer.clone()),
+                e.verdict.as_ref().ok().map(Slim::verdict),
+            )
         })
         .collect();
     let list: Vec<Earlier> = earlier.iter().map(|(e, _)| e.clone()).collect();
