@@ -100,18 +100,21 @@ function unit(u) {
   return u ? ` [${u}]` : '';
 }
 
-/** The simulation's pictures: q(t) of every coordinate, then one phase portrait per coordinate. */
+/** The simulation's pictures: q(t) of every coordinate, then one phase portrait per coordinate.
+ * Names are shown as the engine names them (`labels`: θ₁, `rate_labels`: θ̇₁), as the REPL does. */
 export function plots(series) {
   const out = [];
   const t = series.t ?? [];
   const names = series.names ?? [];
+  const shown = names.map((n, i) => series.labels?.[i] ?? n);
+  const rates = names.map((n, i) => series.rate_labels?.[i] ?? `${n}'`);
   const units = series.units ?? {};
-  const curves = names.map((n, i) => ({ name: n, xs: t, ys: series.q[i] }));
+  const curves = shown.map((n, i) => ({ name: n, xs: t, ys: series.q[i] }));
   const sameUnit = new Set((units.coordinates ?? []).map((u) => u ?? '')).size <= 1;
-  const qLabel = names.length === 1 ? `${names[0]}${unit(units.coordinates?.[0])}` : `coordinates${sameUnit ? unit(units.coordinates?.[0]) : ''}`;
-  out.push(chart(`The coordinates against time: ${names.join(', ')}`, `t${unit(units.time)}`, qLabel, curves));
-  names.forEach((n, i) => {
-    out.push(chart(`Phase portrait of ${n}: its rate against its value`, `${n}${unit(units.coordinates?.[i])}`, `${n}'${unit(units.velocities?.[i])}`,
+  const qLabel = shown.length === 1 ? `${shown[0]}${unit(units.coordinates?.[0])}` : `coordinates${sameUnit ? unit(units.coordinates?.[0]) : ''}`;
+  out.push(chart(`The coordinates against time: ${shown.join(', ')}`, `t${unit(units.time)}`, qLabel, curves));
+  shown.forEach((n, i) => {
+    out.push(chart(`Phase portrait of ${n}: ${rates[i]} against ${n}`, `${n}${unit(units.coordinates?.[i])}`, `${rates[i]}${unit(units.velocities?.[i])}`,
       [{ name: n, xs: series.q[i], ys: series.v[i] }]));
   });
   return out;
