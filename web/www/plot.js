@@ -87,6 +87,8 @@ function chart(title, xLabel, yLabel, curves) {
     svg.append(el('path', { d, fill: 'none', stroke: COLOURS[k % COLOURS.length], 'stroke-width': 1.6, class: 'curve' }));
   });
   if (curves.length > 1) {
+    // The legend on a white card, so the curves passing under it do not cross its names.
+    svg.append(el('rect', { x: W - M.right - 96, y: M.top + 2, width: 94, height: 16 * curves.length + 6, fill: '#fff', 'fill-opacity': 0.9, stroke: '#c9ccd1' }));
     curves.forEach((c, k) => {
       const y = M.top + 14 + 16 * k;
       svg.append(el('line', { x1: W - M.right - 90, x2: W - M.right - 70, y1: y - 4, y2: y - 4, stroke: COLOURS[k % COLOURS.length], 'stroke-width': 2 }));
