@@ -12,6 +12,7 @@
 //! - [`report`]: what each command shows, as data built here and rendered once, for every
 //!   face;
 //! - [`tutor`]: practice sessions — the derivation ladder, follow-through, progress;
+//! - [`policy`]: the grading policy and the assignment file (credit per code, attempts);
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face;
 //! - [`progress`]: the one cancellable progress callback that long calls take.
 //!
@@ -32,6 +33,7 @@ const LAYERS: &[&str] = &[
     "bank",
     "report",
     "tutor",
+    "policy",
 ];
 
 #[cfg(test)]
@@ -42,6 +44,7 @@ pub mod check;
 pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;
+pub mod policy;
 pub mod problem;
 pub mod progress;
 pub mod report;

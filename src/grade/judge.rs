@@ -16,7 +16,10 @@ use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
 use lagrange::tutor::command::did_you_mean;
 
+use lagrange::policy::{Decision, Policy};
+
 use super::input::Table;
+use super::overrides::Overrides;
 
 mod counted;
 use crate::bar::Shared;
@@ -45,13 +48,14 @@ impl Status {
     }
 }
 
-/// How to judge: follow-through credit (`None`: off) and whether the best attempt counts.
+/// How to judge: the assignment's policy (credit per code, follow-through, attempts) and the
+/// instructor's decisions on answers the checker could not settle.
 #[derive(Clone, Copy, Debug)]
-pub struct Settings {
-    /// The follow-through credit as a fraction of the points; `None`: no follow-through.
-    pub follow_through: Option<f64>,
-    /// The best attempt counts instead of the last.
-    pub best: bool,
+pub struct Settings<'s> {
+    /// How verdicts become scores and which attempt counts (`lagrange::policy`).
+    pub policy: &'s Policy,
+    /// The instructor's decisions (`--overrides`), applied before follow-through and counting.
+    pub overrides: Option<&'s Overrides>,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
@@ -88,6 +92,8 @@ pub struct Outcome {
     pub target: Option<(usize, usize)>,
     /// The representative whose verdict this is.
     pub rep: Option<usize>,
+    /// The instructor's decision that replaced the checker's (`--overrides`), if any.
+    pub decision: Option<Decision>,
 }
 
 /// The outcome of one row of the input.
@@ -107,6 +113,9 @@ pub struct Judged {
     pub outcomes: Vec<Outcome>,
     /// The answers actually checked.
     pub reps: Vec<Rep>,
+    /// The score a counted row counts for when the attempt penalty lowers it below its
+    /// outcome's (few rows: only later attempts, only with a penalty).
+    pub penalised: FxHashMap<u32, f64>,
 }
 
 impl Judged {
@@ -127,8 +136,16 @@ impl Judged {
         }
     }
 
+    /// The score row `i` counts for in the gradebook (after the attempt penalty).
+    pub fn counted_score(&self, i: usize) -> f64 {
+        match self.penalised.get(&(i as u32)) {
+            Some(&s) => s,
+            None => self.outcome(i).score,
+        }
+    }
+
     /// Adds an outcome; its index.
-    fn add(&mut self, o: Outcome) -> u32 {
+    pub(super) fn add(&mut self, o: Outcome) -> u32 {
         self.outcomes.push(o);
         self.outcomes.len() as u32 - 1
     }
@@ -155,6 +172,7 @@ pub fn judge(
         rows: Vec::with_capacity(rows.len()),
         outcomes: Vec::new(),
         reps: Vec::new(),
+        penalised: FxHashMap::default(),
     };
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
@@ -240,7 +258,7 @@ pub fn judge(
         .collect();
     let rep_outcomes: Vec<u32> = (0..judged.reps.len())
         .map(|r| {
-            let o = outcome(r, &judged.reps[r], bank);
+            let o = outcome(r, &judged.reps[r], bank, settings.policy);
             judged.add(o)
         })
         .collect();
@@ -256,18 +274,26 @@ pub fn judge(
         .collect();
     drop(row_distinct);
     phases.end("outcomes");
-    if let Some(credit) = settings.follow_through {
+    if let Some(o) = settings.overrides {
+        o.apply(table, &mut judged, bank);
+    }
+    if settings.policy.follow_through.is_some() {
         follow_through(
             rows,
             &mut judged,
             bank,
-            credit,
+            settings.policy,
             table.students.len(),
-            settings.best,
         );
         phases.end("follow-through");
     }
-    mark_counted(rows, &mut judged, table.students.len(), settings.best);
+    mark_counted(
+        rows,
+        &mut judged,
+        bank,
+        settings.policy,
+        table.students.len(),
+    );
     phases.end("counted");
     Ok(judged)
 }
@@ -302,6 +328,7 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
         message: Some(message),
         target,
         rep: None,
+        decision: None,
     }
 }
 
@@ -384,8 +411,8 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
     Ok((p, q))
 }
 
-/// The outcome of representative `r`.
-fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
+/// The outcome of representative `r`: its verdict scored by the policy.
+fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
     let points = bank.problems[p].parts[q].points;
     let (status, score, codes) = match &rep.verdict {
@@ -395,8 +422,8 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Incorrect => Status::Incorrect,
                 Checked::Invalid => Status::Invalid,
             },
-            v.score * points,
-            v.diagnoses.iter().map(|d| d.code).collect(),
+            policy.answer_fraction(v.status, v.score, &codes_of(v)) * points,
+            codes_of(v),
         ),
         Err(_) => (Status::Error, 0.0, Vec::new()),
     };
@@ -408,5 +435,11 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
         message: None,
         target: Some((p, q)),
         rep: Some(r),
+        decision: None,
     }
+}
+
+/// A verdict's diagnosis codes, most specific first.
+fn codes_of(v: &Verdict) -> Vec<Code> {
+    v.diagnoses.iter().map(|d| d.code).collect()
 }
