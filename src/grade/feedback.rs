@@ -140,18 +140,22 @@ pub fn write(
         let rows = &order[start..end];
         start = end;
         let shown = shown(rows, table, judged, bank, &mut hints);
-        let (total, max) = book.students.get(s).map_or((0.0, book.max()), |(_, sc)| {
-            (sc.iter().flatten().sum(), book.max())
-        });
-        let key = &table.students[s];
-        staged.push(folder.stage(
-            &format!("{name}.md"),
-            markdown(key, total, max, &shown).as_bytes(),
-        )?);
-        staged.push(folder.stage(
-            &format!("{name}.html"),
-            html(key, total, max, &shown).as_bytes(),
-        )?);
+        let scores = book
+            .students
+            .get(s)
+            .map_or(&[][..], |(_, sc)| sc.as_slice());
+        let head = Head {
+            key: &table.students[s],
+            total: scores.iter().flatten().sum(),
+            max: book.max(),
+            // The parts set that no answer of this student counts for.
+            missing: (book.columns.iter().zip(scores))
+                .filter(|(_, sc)| sc.is_none())
+                .map(|(c, _)| c.as_str())
+                .collect(),
+        };
+        staged.push(folder.stage(&format!("{name}.md"), markdown(&head, &shown).as_bytes())?);
+        staged.push(folder.stage(&format!("{name}.html"), html(&head, &shown).as_bytes())?);
         if staged.len() >= 2 * BATCH {
             crate::outfile::commit(std::mem::take(&mut staged))?;
         }
@@ -277,9 +281,18 @@ fn verdict(a: &Shown) -> String {
     v
 }
 
+/// What heads a student's file: the key, the total of the parts set and those not answered.
+struct Head<'b> {
+    key: &'b str,
+    total: f64,
+    max: f64,
+    missing: Vec<&'b str>,
+}
+
 /// The Markdown file.
-fn markdown(key: &str, total: f64, max: f64, answers: &[Shown]) -> String {
-    let mut out = format!("# Feedback for {}\n\n", cell(key));
+fn markdown(head: &Head, answers: &[Shown]) -> String {
+    let (total, max) = (head.total, head.max);
+    let mut out = format!("# Feedback for {}\n\n", cell(head.key));
     let _ = writeln!(
         out,
         "Total: {} of {}{}.\n",
@@ -287,6 +300,9 @@ fn markdown(key: &str, total: f64, max: f64, answers: &[Shown]) -> String {
         points(&num(max)),
         percent(total, max)
     );
+    if !head.missing.is_empty() {
+        let _ = writeln!(out, "Not answered: {}.\n", cell(&head.missing.join(", ")));
+    }
     for a in answers {
         let _ = writeln!(out, "## {}\n", cell(&title(a)));
         let _ = writeln!(out, "- Your answer: {}", code(&a.answer));
@@ -328,8 +344,9 @@ fn esc(s: &str) -> String {
 }
 
 /// The HTML file: a page of its own, no script, no outside resource.
-fn html(key: &str, total: f64, max: f64, answers: &[Shown]) -> String {
-    let key = esc(key);
+fn html(head: &Head, answers: &[Shown]) -> String {
+    let (total, max) = (head.total, head.max);
+    let key = esc(head.key);
     let mut out = format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>Feedback for {key}</title>\n\
@@ -344,6 +361,13 @@ fn html(key: &str, total: f64, max: f64, answers: &[Shown]) -> String {
         points(&num(max)),
         esc(&percent(total, max))
     );
+    if !head.missing.is_empty() {
+        let _ = writeln!(
+            out,
+            "<p>Not answered: {}.</p>",
+            esc(&head.missing.join(", "))
+        );
+    }
     for a in answers {
         let _ = writeln!(out, "<h2>{}</h2>\n<ul>", esc(&title(a)));
         let _ = writeln!(out, "<li>Your answer: <code>{}</code></li>", esc(&a.answer));
