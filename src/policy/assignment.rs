@@ -238,7 +238,7 @@ impl Assignment {
                         v.span().start,
                         "unknown-code",
                         format!("`{}` is not a diagnosis code{hint}", visible(name)),
-                        "the codes are listed in docs/grading.md (e.g. sign-error, constant-factor)",
+                        "the codes are listed in docs/checking.md (e.g. sign-error, constant-factor)",
                     ));
                 };
                 policy.credit.push((*code, fraction(v, "the credit")?));
@@ -405,7 +405,7 @@ points = { eom = 2 }
         let bad = FILE.replace("\"eom\"]", "\"eon\"]");
         let a = Assignment::parse(&bad).unwrap();
         let e = a.apply(&mut crate::embedded::bank()).unwrap_err();
-        assert_eq!((e.code, e.line), ("unknown-part", 12));
+        assert_eq!((e.code, e.line), ("unknown-part", 11));
         assert!(e.message.contains("did you mean `eom`"), "{e}");
         assert!(Assignment::parse("seed = -1").is_err());
         assert!(Assignment::parse("[policy]\nattempts = \"first\"").is_err());
