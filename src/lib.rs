@@ -74,6 +74,7 @@
 //! - [`report`]: what each command shows, as data built here and rendered once, for every
 //!   face;
 //! - [`tutor`]: practice sessions — the derivation ladder, follow-through, progress;
+//! - [`policy`]: the grading policy and the assignment file (credit per code, attempts);
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face;
 //! - [`progress`]: the one cancellable progress callback that long calls take.
 //!
@@ -96,6 +97,7 @@ const LAYERS: &[&str] = &[
     "bank",
     "report",
     "tutor",
+    "policy",
 ];
 
 #[cfg(test)]
@@ -106,6 +108,7 @@ pub mod check;
 pub mod diagnostic;
 pub mod expr;
 pub mod mechanics;
+pub mod policy;
 pub mod problem;
 pub mod progress;
 pub mod report;

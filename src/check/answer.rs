@@ -95,7 +95,7 @@ pub(crate) fn check_prepared(
     // `T = …` for a part asking for T: the value after the name is the answer.
     let label = named::label(part, p, input);
     let input = label.as_ref().map_or(input, |l| &input[l.offset..]);
-    p.quotes = super::quote::Quotes::of(input);
+    p.quotes = super::prepare::Quotes::of(input);
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
             lists::check_list(problem, part, p, input)

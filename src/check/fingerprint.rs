@@ -406,8 +406,8 @@ mod tests {
         assert_eq!(c.canonical("eom", "m*(").unwrap(), None);
         // A name the part asks for is not part of the answer; a wrong name is.
         let bare = c.canonical("kinetic", "1/2*m*l^2*theta'^2").unwrap();
-        assert_eq!(c.canonical("kinetic", "T = ½ m l² θ̇²").unwrap(), bare);
-        assert_ne!(c.canonical("kinetic", "V = ½ m l² θ̇²").unwrap(), bare);
+        assert_eq!(c.canonical("kinetic", "T = 1/2 m l² θ̇²").unwrap(), bare);
+        assert_ne!(c.canonical("kinetic", "V = 1/2 m l² θ̇²").unwrap(), bare);
     }
 
     #[test]

@@ -2,6 +2,8 @@
 //! seeded sample points that respect the assumptions, and readers for answer items (equations,
 //! equilibrium points, frequencies).
 
+use rustc_hash::FxHashMap;
+
 use super::error::CheckError;
 use super::points::PointSet;
 use super::tolerance;
@@ -35,7 +37,7 @@ pub struct Prepared {
     /// The reference answer's items, read once (one id per item; several per equilibrium).
     pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
     /// The answer being checked, for quoting the student's own terms in diagnoses.
-    pub quotes: super::quote::Quotes,
+    pub quotes: Quotes,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -98,7 +100,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
-        quotes: super::quote::Quotes::default(),
+        quotes: Quotes::default(),
     })
 }
 
@@ -396,6 +398,23 @@ fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckErr
         .iter()
         .map(|x| dynamics.accelerations(x, &mut scratch).ok())
         .collect())
+}
+
+/// The answer being checked, and its quotes once made.
+#[derive(Clone, Debug, Default)]
+pub struct Quotes {
+    pub(super) source: String,
+    pub(super) table: Option<FxHashMap<Id, String>>,
+}
+
+impl Quotes {
+    /// Quotes for the answer `source` (made when first asked for).
+    pub(crate) fn of(source: &str) -> Quotes {
+        Quotes {
+            source: source.to_string(),
+            table: None,
+        }
+    }
 }
 
 #[cfg(test)]

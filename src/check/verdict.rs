@@ -287,6 +287,32 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// A verdict with no problem or part ids, no plain reading, note or parse error: what a
+    /// face that keeps many verdicts (grading a class) keeps of one, given back whole to the
+    /// library (follow-through reads an earlier answer through it).
+    pub fn kept(
+        status: Status,
+        score: f64,
+        unicode: String,
+        diagnoses: Vec<Diagnosis>,
+        seed: u64,
+    ) -> Verdict {
+        Verdict {
+            problem: String::new(),
+            part: String::new(),
+            status,
+            score,
+            reading: ReadAs {
+                plain: String::new(),
+                unicode,
+                note: None,
+            },
+            diagnoses,
+            seed,
+            parse_error: None,
+        }
+    }
+
     /// Orders the diagnoses most specific first and removes repeats.
     pub fn sort(&mut self) {
         self.diagnoses.sort_by_key(|d| d.code);

@@ -15,7 +15,8 @@ or wide (student plus one PROBLEM/PART column per part: one answer a cell). Colu
 case-insensitive; other columns are ignored.
 
 Outputs in DIR: results.csv (one row per answer, in input order), gradebook.csv, summary.md,
-summary.json, and with --lms canvas.csv, moodle.csv or gradescope.csv. See docs/grading.md.
+summary.json, review.csv (the answers needing a human), with --lms canvas.csv, moodle.csv or
+gradescope.csv, with --feedback one file per student in feedback/. See docs/grading.md.
 
 Exit codes:
   0  graded (rows with errors are in results.csv; stderr says how many)
@@ -47,6 +48,18 @@ pub struct GradeArgs {
     /// of a long file names).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     parts: Option<Vec<String>>,
+    /// The assignment file (TOML): its problems, parts, points, course seed and grading policy
+    /// (credit per diagnosis code, penalty per extra attempt, best or last, follow-through).
+    /// The options above take precedence over it.
+    #[arg(long, value_name = "FILE")]
+    assignment: Option<PathBuf>,
+    /// The instructor's decisions on answers: a review.csv with its `decision` column filled
+    /// in (correct, incorrect or a fraction of the points).
+    #[arg(long, value_name = "FILE")]
+    overrides: Option<PathBuf>,
+    /// Also write one Markdown and one HTML file per student under DIR/feedback/.
+    #[arg(long)]
+    feedback: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -77,6 +90,9 @@ impl GradeArgs {
             best: self.best,
             json: self.json,
             parts: self.parts.clone(),
+            assignment: self.assignment.clone(),
+            overrides: self.overrides.clone(),
+            feedback: self.feedback,
         }
     }
 }

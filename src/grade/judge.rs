@@ -10,17 +10,26 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Code, Diagnosis, ReadAs, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Diagnosis, Status as Checked, Verdict};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
 use lagrange::tutor::command::did_you_mean;
+
+use lagrange::policy::{Decision, Policy};
 
 use super::input::Table;
 
 mod counted;
 use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
+
+/// The instructor's decisions applied to judged rows (`--overrides`, in `overrides.rs`): a
+/// trait so that judging does not import the file that reads the decisions.
+pub trait Override: Sync + std::fmt::Debug {
+    /// Applies the decisions to the rows they name; the rows changed.
+    fn apply(&self, table: &Table, judged: &mut Judged, bank: &Bank) -> Vec<usize>;
+}
 
 /// The status column of results.csv.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -45,13 +54,14 @@ impl Status {
     }
 }
 
-/// How to judge: follow-through credit (`None`: off) and whether the best attempt counts.
+/// How to judge: the assignment's policy (credit per code, follow-through, attempts) and the
+/// instructor's decisions on answers the checker could not settle.
 #[derive(Clone, Copy, Debug)]
-pub struct Settings {
-    /// The follow-through credit as a fraction of the points; `None`: no follow-through.
-    pub follow_through: Option<f64>,
-    /// The best attempt counts instead of the last.
-    pub best: bool,
+pub struct Settings<'s> {
+    /// How verdicts become scores and which attempt counts (`lagrange::policy`).
+    pub policy: &'s Policy,
+    /// The instructor's decisions (`--overrides`), applied before follow-through and counting.
+    pub overrides: Option<&'s dyn Override>,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
@@ -146,20 +156,13 @@ impl Slim {
                 },
             })
             .collect();
-        Verdict {
-            problem: String::new(),
-            part: String::new(),
-            status: self.status,
-            score: self.score,
-            reading: ReadAs {
-                plain: String::new(),
-                unicode: self.unicode.to_string(),
-                note: None,
-            },
+        Verdict::kept(
+            self.status,
+            self.score,
+            self.unicode.to_string(),
             diagnoses,
-            seed: self.seed,
-            parse_error: None,
-        }
+            self.seed,
+        )
     }
 
     /// The first diagnosis, as the verdict gave it.
@@ -200,6 +203,8 @@ pub struct Outcome {
     pub target: Option<(usize, usize)>,
     /// The representative whose verdict this is.
     pub rep: Option<usize>,
+    /// The instructor's decision that replaced the checker's (`--overrides`), if any.
+    pub decision: Option<Decision>,
 }
 
 /// The outcome of one row of the input.
@@ -219,6 +224,9 @@ pub struct Judged {
     pub outcomes: Vec<Outcome>,
     /// The answers actually checked.
     pub reps: Vec<Rep>,
+    /// The score a counted row counts for when the attempt penalty lowers it below its
+    /// outcome's (few rows: only later attempts, only with a penalty).
+    pub penalised: FxHashMap<u32, f64>,
 }
 
 impl Judged {
@@ -239,8 +247,16 @@ impl Judged {
         }
     }
 
+    /// The score row `i` counts for in the gradebook (after the attempt penalty).
+    pub fn counted_score(&self, i: usize) -> f64 {
+        match self.penalised.get(&(i as u32)) {
+            Some(&s) => s,
+            None => self.outcome(i).score,
+        }
+    }
+
     /// Adds an outcome; its index.
-    fn add(&mut self, o: Outcome) -> u32 {
+    pub(super) fn add(&mut self, o: Outcome) -> u32 {
         self.outcomes.push(o);
         self.outcomes.len() as u32 - 1
     }
@@ -267,6 +283,7 @@ pub fn judge(
         rows: Vec::with_capacity(rows.len()),
         outcomes: Vec::new(),
         reps: Vec::new(),
+        penalised: FxHashMap::default(),
     };
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
@@ -364,7 +381,7 @@ pub fn judge(
     judged.outcomes.reserve_exact(judged.reps.len());
     let rep_outcomes: Vec<u32> = (0..judged.reps.len())
         .map(|r| {
-            let o = outcome(r, &judged.reps[r], bank);
+            let o = outcome(r, &judged.reps[r], bank, settings.policy);
             judged.add(o)
         })
         .collect();
@@ -380,18 +397,26 @@ pub fn judge(
         .collect();
     drop(row_distinct);
     phases.end("outcomes");
-    if let Some(credit) = settings.follow_through {
+    if let Some(o) = settings.overrides {
+        o.apply(table, &mut judged, bank);
+    }
+    if settings.policy.follow_through.is_some() {
         follow_through(
             rows,
             &mut judged,
             bank,
-            credit,
+            settings.policy,
             table.students.len(),
-            settings.best,
         );
         phases.end("follow-through");
     }
-    mark_counted(rows, &mut judged, table.students.len(), settings.best);
+    mark_counted(
+        rows,
+        &mut judged,
+        bank,
+        settings.policy,
+        table.students.len(),
+    );
     phases.end("counted");
     Ok(judged)
 }
@@ -405,6 +430,7 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
         message: Some(message),
         target,
         rep: None,
+        decision: None,
     }
 }
 
@@ -487,8 +513,8 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
     Ok((p, q))
 }
 
-/// The outcome of representative `r`.
-fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
+/// The outcome of representative `r`: its verdict scored by the policy.
+fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
     let points = bank.problems[p].parts[q].points;
     let (status, score, codes) = match &rep.verdict {
@@ -498,7 +524,7 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Incorrect => Status::Incorrect,
                 Checked::Invalid => Status::Invalid,
             },
-            v.score * points,
+            policy.answer_fraction(v.status, v.score, &v.codes) * points,
             v.codes.to_vec(),
         ),
         Err(_) => (Status::Error, 0.0, Vec::new()),
@@ -511,6 +537,7 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
         message: None,
         target: Some((p, q)),
         rep: Some(r),
+        decision: None,
     }
 }
 
@@ -536,7 +563,7 @@ mod tests {
     /// reads an earlier answer through it), for right, wrong and unreadable answers.
     #[test]
     fn a_slim_verdict_gives_back_what_grading_kept_of_the_verdict() {
-        let bank = crate::cli::problems::load_bank(None).unwrap_or_else(|e| panic!("{e}"));
+        let bank = crate::face::load_bank(None).unwrap_or_else(|e| panic!("{e}"));
         let problem = (bank.problems.iter())
             .find(|p| p.id == "simple-pendulum")
             .unwrap_or_else(|| panic!("no simple-pendulum in the bank"));

@@ -75,12 +75,12 @@ fn push_csv(out: &mut Vec<u8>, s: &str, formula: bool) {
 }
 
 /// Appends a text cell: neutralised ([`quote_cell`]), then as the csv writer writes it.
-fn push_cell(out: &mut Vec<u8>, s: &str) {
+pub(super) fn push_cell(out: &mut Vec<u8>, s: &str) {
     push_csv(out, s, needs_quote(s));
 }
 
 /// Appends a field that is never neutralised (codes, numbers, the run id).
-fn push_plain(out: &mut Vec<u8>, s: &str) {
+pub(super) fn push_plain(out: &mut Vec<u8>, s: &str) {
     push_csv(out, s, false);
 }
 
@@ -110,7 +110,8 @@ pub fn results(
     run: &str,
 ) -> std::io::Result<()> {
     let header = [
-        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
+        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message",
+        "override", "run",
     ];
     out.write_all(&csv_bytes(&header, std::iter::empty()).map_err(std::io::Error::other)?)?;
     // What an outcome writes after the answer: status, score, codes, message, run and the
@@ -126,6 +127,8 @@ pub fn results(
         push_plain(t, &codes.join(";"));
         t.push(b',');
         push_cell(t, judged.message(o));
+        t.push(b',');
+        push_plain(t, &super::review::override_cell(o));
         t.push(b',');
         push_plain(t, run);
         t.push(b'\n');
@@ -225,13 +228,13 @@ pub fn gradebook(
         .collect();
     let names = students(table);
     let mut scores = vec![vec![None; targets.len()]; names.len()];
-    for (r, g) in table.rows.iter().zip(&judged.rows) {
+    for (i, (r, g)) in table.rows.iter().zip(&judged.rows).enumerate() {
         if let (true, Some(c), Some(s)) = (
             g.counts,
             columns[g.outcome as usize],
             scores.get_mut(r.student as usize),
         ) {
-            s[c] = Some(judged.outcomes[g.outcome as usize].score);
+            s[c] = Some(judged.counted_score(i));
         }
     }
     Gradebook {

@@ -253,7 +253,7 @@ pub fn num(x: f64) -> String {
 /// `& < >` as entities and the marks Markdown acts on inside a line (`\ ` * _ [ ] | ~`)
 /// backslash-escaped, so a student's text is shown, never run (no link, no image, no tag, no
 /// emphasis, no broken table). Nothing in a cell is at the start of a line.
-fn cell(s: &str) -> String {
+pub(super) fn cell(s: &str) -> String {
     let s = lagrange::expr::error::visible(s);
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {

@@ -14,4 +14,4 @@ pub(crate) mod session;
 pub use command::{Command, CommandError, parse};
 pub use progress::{PartProgress, Progress, ProgressError};
 pub use response::Response;
-pub use session::Session;
+pub use session::{Session, first_hint};

@@ -19,6 +19,7 @@ mod fuzz_replay;
 mod grade;
 mod grade_consistency;
 mod grade_input;
+mod grade_policy;
 mod helpers;
 mod higher_order_lagrangian;
 mod hostile;

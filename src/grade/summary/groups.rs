@@ -229,6 +229,7 @@ mod tests {
             rows: Vec::new(),
             outcomes: Vec::new(),
             reps,
+            penalised: Default::default(),
         };
         // Group g holds representative g; a few groups have more students and attempts.
         let tallies = |k: usize| -> Vec<((String, Status), Tally)> {

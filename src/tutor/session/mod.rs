@@ -20,6 +20,7 @@
 
 mod analysis;
 mod answer;
+pub use answer::first_hint;
 mod guide;
 mod replies;
 mod simulate;
