@@ -47,6 +47,10 @@ pub struct GradeArgs {
     /// of a long file names).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     parts: Option<Vec<String>>,
+    /// The course seed: with each student's key it picks the student's numbers, against
+    /// which the parts that accept numbers are judged.
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    seed: u64,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -76,5 +80,6 @@ pub fn run(args: &GradeArgs, problems: Option<&Path>) -> anyhow::Result<ExitCode
         best: args.best,
         json: args.json,
         parts: args.parts.clone(),
+        seed: args.seed,
     })
 }

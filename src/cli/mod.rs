@@ -10,6 +10,7 @@ mod grid;
 mod modes;
 pub(crate) mod problems;
 mod read;
+mod sheets;
 mod simulate;
 pub(crate) mod system_args;
 

@@ -47,11 +47,13 @@ impl Status {
 
 /// How to judge: follow-through credit (`None`: off) and whether the best attempt counts.
 #[derive(Clone, Copy, Debug)]
-pub struct Settings {
+pub struct Settings<'v> {
     /// The follow-through credit as a fraction of the points; `None`: no follow-through.
     pub follow_through: Option<f64>,
     /// The best attempt counts instead of the last.
     pub best: bool,
+    /// The problems pinned to each student's numbers (`variants.rs`).
+    pub variants: &'v super::variants::Variants,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
@@ -146,7 +148,7 @@ type Resolved = Result<(usize, usize), String>;
 pub fn judge(
     table: &Table,
     bank: &Bank,
-    settings: Settings,
+    settings: Settings<'_>,
     progress: &mut (dyn Progress + Send),
     phases: &mut super::phases::Phases,
 ) -> Result<Judged, Interrupted> {
@@ -185,10 +187,14 @@ pub fn judge(
                         &mut judged,
                     )
                 }
-                Ok((p, q)) => Ok(*by_text.entry((*p, *q, row.answer)).or_insert_with(|| {
-                    distinct.push((*p, *q, table.answers.get(row.answer)));
-                    distinct.len() as u32 - 1
-                })),
+                Ok((p, q)) => {
+                    // The student's own numbers judge a part that accepts them.
+                    let p = settings.variants.problem(bank, row.student, *p, *q);
+                    Ok(*by_text.entry((p, *q, row.answer)).or_insert_with(|| {
+                        distinct.push((p, *q, table.answers.get(row.answer)));
+                        distinct.len() as u32 - 1
+                    }))
+                }
             }
         };
         row_distinct.push(slot);
@@ -387,6 +393,10 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
 /// The outcome of representative `r`.
 fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
+    // A problem pinned to a student's numbers counts as its bank problem (the first of its id).
+    let p = (bank.problems[..p].iter())
+        .position(|x| x.id == bank.problems[p].id)
+        .unwrap_or(p);
     let points = bank.problems[p].parts[q].points;
     let (status, score, codes) = match &rep.verdict {
         Ok(v) => (

@@ -15,6 +15,7 @@ mod judge;
 mod output;
 mod phases;
 mod summary;
+mod variants;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -43,6 +44,8 @@ pub struct Options {
     pub json: bool,
     /// The parts the instructor set (`PROBLEM/PART`), the gradebook's columns (`--parts`).
     pub parts: Option<Vec<String>>,
+    /// The course seed that, with each student's key, picks the student's numbers.
+    pub seed: u64,
 }
 
 /// Grades a class file; see the module docs for the exit codes.
@@ -104,9 +107,12 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     }
     let run = run_id(hash, opts, &bank);
     drop(bytes);
+    let mut bank = bank;
+    let variants = variants::extend(&mut bank, &table.students, opts.seed);
     let settings = judge::Settings {
         follow_through: opts.follow_through,
         best: opts.best,
+        variants: &variants,
     };
     let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
     phases.end("bank");
@@ -319,6 +325,14 @@ fn file_hash(bytes: &[u8]) -> Fnv {
 
 fn run_id(mut h: Fnv, opts: &Options, bank: &lagrange::bank::Bank) -> String {
     let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
+    h.add(settings.as_bytes());
+    // The seed decides the students' numbers, so it is part of what the outputs depend on
+    // (the default seed adds nothing: run ids from before it existed stay).
+    let settings = if opts.seed == 0 {
+        String::new()
+    } else {
+        format!("|seed {}", opts.seed)
+    };
     h.add(settings.as_bytes());
     for p in &bank.problems {
         for part in &p.parts {

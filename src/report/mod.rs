@@ -30,6 +30,7 @@ pub mod modes;
 pub mod portrait;
 pub mod problems;
 pub mod read;
+pub mod sheets;
 pub mod simulation;
 pub mod steady;
 pub mod units;
