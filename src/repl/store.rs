@@ -99,6 +99,14 @@ fn read(path: &Path) -> Result<Progress, String> {
 fn merge(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
     let mut out = disk.clone();
     for (problem, pp) in &mine.problems {
+        // The numbers practised last in this session win (a `:variant` here).
+        let before = base.problems.get(problem).and_then(|b| b.variant_seed);
+        if pp.variant_seed.is_some() && pp.variant_seed != before {
+            out.problems
+                .entry(problem.clone())
+                .or_default()
+                .variant_seed = pp.variant_seed;
+        }
         for (part, rec) in &pp.parts {
             let before = base.part(problem, part).cloned().unwrap_or_default();
             let new_attempts = rec.attempts.saturating_sub(before.attempts);

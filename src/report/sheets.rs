@@ -27,15 +27,23 @@ pub fn numbers_of(p: &Problem, variant: &Variant) -> Vec<String> {
 /// with the student's values where they write `{{name}}`, and the student's numbers listed.
 /// A problem without variants gives the plain sheet, with the student named.
 pub fn student_sheet(p: &Problem, answers: bool, key: &str, seed: u64) -> ProblemSheet {
-    let mut sheet = problem_sheet(p, answers);
+    let mut sheet = match pick(p, seed, key) {
+        Some(variant) => variant_sheet(p, answers, &variant),
+        None => problem_sheet(p, answers),
+    };
     sheet.student = Some(key.trim().to_string());
-    if let Some(variant) = pick(p, seed, key) {
-        sheet.statement = terminal_math(&fill(p.statement.trim(), &p.variants, Some(&variant)));
-        for (s, part) in sheet.parts.iter_mut().zip(&p.parts) {
-            s.prompt = terminal_math(&fill(&part.prompt, &p.variants, Some(&variant)));
-        }
-        sheet.numbers = numbers_of(p, &variant);
+    sheet
+}
+
+/// The sheet of `p` with the numbers of `variant`: where the statement and prompts write
+/// `{{name}}`, the value and unit; the numbers listed.
+pub fn variant_sheet(p: &Problem, answers: bool, variant: &Variant) -> ProblemSheet {
+    let mut sheet = problem_sheet(p, answers);
+    sheet.statement = terminal_math(&fill(p.statement.trim(), &p.variants, Some(variant)));
+    for (s, part) in sheet.parts.iter_mut().zip(&p.parts) {
+        s.prompt = terminal_math(&fill(&part.prompt, &p.variants, Some(variant)));
     }
+    sheet.numbers = numbers_of(p, variant);
     sheet
 }
 
@@ -55,7 +63,7 @@ pub(super) fn write_numbers(s: &ProblemSheet, paint: &dyn Paint, o: &mut String)
     } else if !s.varies.is_empty() && s.student.is_none() {
         writeln!(
             o,
-            "{} {} (each student's numbers: --student KEY)",
+            "{} {} (each student's own numbers: --student KEY; :variant to practise)",
             h("varies:     "),
             s.varies.join(", ")
         )?;

@@ -61,6 +61,10 @@ impl PartProgress {
 pub struct ProblemProgress {
     /// The parts attempted, hinted or revealed, by id.
     pub parts: BTreeMap<String, PartProgress>,
+    /// The seed of the numbers being practised (`:variant`), for a problem whose numbers
+    /// vary; absent until the student asks for numbers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub variant_seed: Option<u64>,
 }
 
 /// A student's progress over every problem, by problem id (ordered, so the JSON is stable).

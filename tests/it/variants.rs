@@ -348,3 +348,50 @@ fn an_instructor_shows_sheets_checks_exports_and_grades() {
         Some("student,pendulum-numbers/potential,total,max,percent")
     );
 }
+
+#[test]
+fn the_repl_practises_fresh_numbers_and_keeps_their_seed() {
+    use lagrange::tutor::{Progress, Response, Session};
+    let mut bank = lagrange::bank::Bank::default();
+    bank.add(example(), "pendulum-numbers.toml".into());
+    let mut s = Session::new(bank, Progress::new());
+    s.handle(":open pendulum-numbers");
+    let r = s.handle(":variant");
+    let Some(Response::Statement(st)) = r.first() else {
+        panic!("a statement: {r:?}");
+    };
+    // The numbers of the first seed after the problem id's: fixed, like every variant.
+    let numbers = st.sheet.numbers.join(", ");
+    let seed = s.progress().problems["pendulum-numbers"]
+        .variant_seed
+        .expect("the seed is kept");
+    let p = example();
+    let v = pick(&p, seed, "").expect("variants");
+    assert_eq!(
+        numbers,
+        lagrange::report::sheets::numbers_of(&p, &v).join(", ")
+    );
+    let (l, m, g) = (
+        v.get("l").unwrap(),
+        v.get("m").unwrap(),
+        v.get("g").unwrap(),
+    );
+    s.handle(":part potential");
+    let r = s.handle(&format!("-{m}*{g}*{l}*cos(theta)"));
+    assert!(
+        matches!(&r[0], Response::Verdict(v) if v.verdict.status == Status::Correct),
+        "{r:?}"
+    );
+    // A second `:variant` gives other numbers (the next seed of the sequence).
+    s.handle(":variant");
+    let next = s.progress().problems["pendulum-numbers"].variant_seed;
+    assert_ne!(next, Some(seed));
+    // A problem whose numbers do not vary says so.
+    let mut plain = Session::new(lagrange::embedded::bank(), Progress::new());
+    plain.handle(":open simple-pendulum");
+    let r = plain.handle(":variant");
+    assert!(
+        matches!(&r[0], Response::Error(e) if e.code == "no-variants"),
+        "{r:?}"
+    );
+}
