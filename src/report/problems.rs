@@ -233,7 +233,7 @@ impl ProblemSheet {
         if !self.definitions.is_empty() {
             writeln!(o, "{} {}", h("defined:    "), self.definitions.join(", "))?;
         }
-        super::sheets::write_numbers(self, paint, o)?;
+        write_numbers(self, paint, o)?;
         for (i, part) in self.parts.iter().enumerate() {
             writeln!(
                 o,
@@ -254,13 +254,49 @@ impl ProblemSheet {
             }
         }
         let student = self.student.as_deref().map_or(String::new(), |k| {
-            format!(" --student {}", super::sheets::shell_word(&visible(k)))
+            format!(" --student {}", shell_word(&visible(k)))
         });
         writeln!(
             o,
             "\nAnswer with `lagrange check {} <part> \"<answer>\"{student}`.",
             visible(&self.id)
         )
+    }
+}
+
+/// The `varies:` line of a sheet for no student, or the student and their numbers.
+fn write_numbers(s: &ProblemSheet, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+    let h = |t: &str| paint.heading(t);
+    if let Some(student) = &s.student {
+        writeln!(o, "{} {}", h("student:    "), visible(student))?;
+    }
+    if !s.numbers.is_empty() {
+        writeln!(
+            o,
+            "{} {}",
+            h("numbers:    "),
+            visible(&s.numbers.join(", "))
+        )?;
+    } else if !s.varies.is_empty() && s.student.is_none() {
+        writeln!(
+            o,
+            "{} {} (each student's own numbers: --student KEY; :variant to practise)",
+            h("varies:     "),
+            s.varies.join(", ")
+        )?;
+    }
+    Ok(())
+}
+
+/// `s` quoted for a POSIX shell when it holds anything but safe characters.
+pub(super) fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "@._-+".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
     }
 }
 

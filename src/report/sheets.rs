@@ -3,10 +3,10 @@
 //! A statement or prompt names a varied parameter by its symbol (`$m$`), or shows its value
 //! where it writes `{{m}}`; the sheet lists every number with its unit.
 
-use std::fmt::{self, Write as _};
+use std::fmt::Write as _;
 
-use super::problems::{ProblemSheet, problem_sheet, terminal_math};
-use super::{Paint, text};
+use super::problems::{ProblemSheet, problem_sheet, shell_word, terminal_math};
+use super::text;
 use crate::expr::error::visible;
 use crate::problem::Problem;
 use crate::problem::variant::{Variant, fill, pick};
@@ -45,30 +45,6 @@ pub fn variant_sheet(p: &Problem, answers: bool, variant: &Variant) -> ProblemSh
     }
     sheet.numbers = numbers_of(p, variant);
     sheet
-}
-
-/// The `varies:` line of a sheet for no student, or the student and their numbers.
-pub(super) fn write_numbers(s: &ProblemSheet, paint: &dyn Paint, o: &mut String) -> fmt::Result {
-    let h = |t: &str| paint.heading(t);
-    if let Some(student) = &s.student {
-        writeln!(o, "{} {}", h("student:    "), visible(student))?;
-    }
-    if !s.numbers.is_empty() {
-        writeln!(
-            o,
-            "{} {}",
-            h("numbers:    "),
-            visible(&s.numbers.join(", "))
-        )?;
-    } else if !s.varies.is_empty() && s.student.is_none() {
-        writeln!(
-            o,
-            "{} {} (each student's own numbers: --student KEY; :variant to practise)",
-            h("varies:     "),
-            s.varies.join(", ")
-        )?;
-    }
-    Ok(())
 }
 
 /// The sheets of `problems` for one student as Markdown: a heading per problem, the
@@ -165,18 +141,6 @@ pub fn latex(problems: &[&Problem], key: &str, seed: u64) -> String {
 /// `s` on one line (a key or title with a newline would break a heading), made visible.
 fn one_line(s: &str) -> String {
     visible(&s.split_whitespace().collect::<Vec<_>>().join(" "))
-}
-
-/// `s` quoted for a POSIX shell when it holds anything but safe characters.
-pub(super) fn shell_word(s: &str) -> String {
-    if !s.is_empty()
-        && s.chars()
-            .all(|c| c.is_ascii_alphanumeric() || "@._-+".contains(c))
-    {
-        s.to_string()
-    } else {
-        format!("'{}'", s.replace('\'', "'\\''"))
-    }
 }
 
 /// LaTeX's special characters escaped, for text mode.
