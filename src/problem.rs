@@ -5,6 +5,8 @@
 use crate::expr::{Context, Dimension, Dimensions, Id, read_expr};
 use crate::mechanics::System;
 
+pub mod variant;
+
 /// An inequality between two expressions of the parameters.
 #[derive(Clone, Debug)]
 pub struct Assumption {
@@ -165,6 +167,9 @@ pub struct Part {
     pub assumptions: Vec<Assumption>,
     /// Line of the part in its file.
     pub line: usize,
+    /// The answer may be written with the student's numbers (`1.5*9.81*1.2`) as well as in
+    /// symbols: it is judged against the problem pinned to the student's variant.
+    pub numbers: bool,
 }
 
 impl Part {
@@ -225,6 +230,9 @@ pub struct Problem {
     pub lagrangian_line: usize,
     /// What `simulate` starts from when the user gives nothing else.
     pub simulation: SimulationDefaults,
+    /// How parameters vary from student to student (`[variants]`; empty: one set of symbols
+    /// for everyone).
+    pub variants: Vec<variant::Varied>,
 }
 
 /// A problem's suggested numbers for simulating it: parameter values, an initial state and a

@@ -95,6 +95,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     Ok(Problem {
         // First: it reads `pf` and `system`, which the fields below move.
         simulation: b.simulation(&pf, &system)?,
+        variants: b.variants(&pf, &system)?,
         file: file.to_string(),
         id: b.id,
         title: pf.title,

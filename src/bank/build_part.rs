@@ -163,6 +163,7 @@ pub(super) fn build_part(
         // Read by the builder, which holds the system mutably.
         assumptions: Vec::new(),
         line,
+        numbers: sp.numbers,
     })
 }
 

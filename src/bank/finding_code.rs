@@ -166,6 +166,17 @@ finding_codes! {
     BadSteady => "bad-steady",
     /// A stated steady motion that is not one.
     NotSteady => "not-steady",
+    // Per-student variants.
+    /// A `[variants]` declaration that cannot be read (no values, a bad range or step…).
+    BadVariant => "bad-variant",
+    /// A part accepts numbers but no parameter varies (every student has one answer).
+    NumbersWithoutVariants => "numbers-without-variants",
+    /// A varied parameter can be 0 or ±1, so a missing factor would pass with numbers.
+    VariantTrivialValue => "variant-trivial-value",
+    /// Two varied parameters can be equal, so one could stand for the other with numbers.
+    VariantEqualValues => "variant-equal-values",
+    /// A part does not hold for some student's numbers.
+    VariantFails => "variant-fails",
 }
 
 impl fmt::Display for FindingCode {

@@ -13,6 +13,7 @@ mod build_part;
 mod build_reader;
 mod build_rigid;
 mod build_simulation;
+mod build_variants;
 pub mod embedded;
 pub mod export;
 pub(crate) mod finding;
@@ -30,6 +31,7 @@ mod verify_expression;
 mod verify_failed;
 mod verify_frequencies;
 mod verify_steady;
+pub mod verify_variants;
 
 pub use crate::problem::{Part, PartKind, Problem, Quantity};
 pub use finding::Finding;

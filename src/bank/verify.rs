@@ -19,8 +19,17 @@ use crate::expr::Dimension;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
-/// Verifies a problem; an empty list means every stated answer holds.
+/// Verifies a problem; an empty list means every stated answer holds. A problem with
+/// variants is proved for each student's numbers too (`verify_variants.rs`).
 pub fn verify(problem: &Problem) -> Vec<Finding> {
+    let mut out = verify_one(problem);
+    // `verify_one` is passed in so that the variants' file does not import this one.
+    out.extend(super::verify_variants::verify_variants(problem, verify_one));
+    out
+}
+
+/// Verifies a problem as it stands (with its parameters' ranges, pinned or not).
+pub(super) fn verify_one(problem: &Problem) -> Vec<Finding> {
     let mut out = Vec::new();
     let whole = |line: usize, code: FindingCode, message: String| Finding {
         file: problem.file.clone(),

@@ -289,6 +289,11 @@ fn dimension_check(
     s: Id,
     reference: Id,
 ) -> Option<Diagnosis> {
+    // A number carries no unit: an answer judged with the student's numbers (the problem
+    // pinned to them, without dimensions) has no dimension to check.
+    if part.numbers && problem.dims.is_empty() {
+        return None;
+    }
     let ds = match p.system.pool.dimension(s, &problem.dims) {
         Err(e) => return Some(Diagnosis::new(Code::Dimension, e.to_string())),
         Ok(Some(ds)) => ds,

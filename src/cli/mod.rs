@@ -10,6 +10,7 @@ mod modes;
 mod problem_new;
 mod problems;
 mod read;
+mod sheets;
 mod simulate;
 pub(crate) mod system_args;
 

@@ -22,7 +22,12 @@ pub enum ProblemsCommand {
         /// Also print the reference answers (for instructors).
         #[arg(long)]
         answers: bool,
+        #[command(flatten)]
+        student: super::sheets::StudentArgs,
     },
+    /// Every student's sheets of the given problems, as Markdown and LaTeX files (one pair per
+    /// student, each with that student's numbers).
+    ExportSheets(super::sheets::ExportArgs),
     /// Prove every stated answer against the physics. With no PATH, the bank in use.
     Verify {
         /// Problem files or folders of them.
@@ -51,7 +56,12 @@ pub fn run(
             out.push_str(&problem_list(&bank).render(&Terminal));
             Ok(ExitCode::SUCCESS)
         }
-        ProblemsCommand::Show { id, answers } => {
+        ProblemsCommand::ExportSheets(args) => super::sheets::export(args, dir),
+        ProblemsCommand::Show {
+            id,
+            answers,
+            student,
+        } => {
             let found = crate::face::find_problem(dir, id).map_err(anyhow::Error::msg)?;
             let Some(p) = found.as_ref() else {
                 eprintln!(
@@ -59,7 +69,13 @@ pub fn run(
                 );
                 return Ok(ExitCode::from(2));
             };
-            out.push_str(&problem_sheet(p, *answers).render(&Terminal));
+            let sheet = match &student.student {
+                Some(key) => {
+                    lagrange::report::sheets::student_sheet(p, *answers, key, student.seed)
+                }
+                None => problem_sheet(p, *answers),
+            };
+            out.push_str(&sheet.render(&Terminal));
             Ok(ExitCode::SUCCESS)
         }
         ProblemsCommand::Verify { paths } => {

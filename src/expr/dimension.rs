@@ -267,6 +267,12 @@ impl Dimensions {
         self
     }
 
+    /// Whether no symbol has a dimension (a problem pinned to a student's numbers, which
+    /// carry no units).
+    pub fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+
     /// Whether `name` varies (a coordinate, or `t`).
     fn varies(&self, name: &str) -> bool {
         name == super::pool::TIME || self.varying.contains(name)

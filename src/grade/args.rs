@@ -60,6 +60,11 @@ pub struct GradeArgs {
     /// Also write one Markdown and one HTML file per student under DIR/feedback/.
     #[arg(long)]
     feedback: bool,
+    /// The course seed: with each student's key it picks the student's numbers, against
+    /// which the parts that accept numbers are judged.
+    /// Without it, the assignment file's seed, else 0.
+    #[arg(long, value_name = "S")]
+    seed: Option<u64>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -93,6 +98,7 @@ impl GradeArgs {
             assignment: self.assignment.clone(),
             overrides: self.overrides.clone(),
             feedback: self.feedback,
+            seed: self.seed,
         }
     }
 }

@@ -62,6 +62,8 @@ pub struct Settings<'s> {
     pub policy: &'s Policy,
     /// The instructor's decisions (`--overrides`), applied before follow-through and counting.
     pub overrides: Option<&'s dyn Override>,
+    /// The problems pinned to each student's numbers (`variants.rs`).
+    pub variants: &'s super::variants::Variants,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
@@ -274,7 +276,7 @@ type Resolved = Result<(usize, usize), String>;
 pub fn judge(
     table: &Table,
     bank: &Bank,
-    settings: Settings,
+    settings: Settings<'_>,
     progress: &mut (dyn Progress + Send),
     phases: &mut super::phases::Phases,
 ) -> Result<Judged, Interrupted> {
@@ -314,12 +316,16 @@ pub fn judge(
                         &mut judged,
                     )
                 }
-                Ok((p, q)) => Ok(*by_text
-                    .entry((*p as u32, *q as u32, row.answer))
-                    .or_insert_with(|| {
-                        distinct.push((*p, *q, table.answers.get(row.answer)));
-                        distinct.len() as u32 - 1
-                    })),
+                Ok((p, q)) => {
+                    // The student's own numbers judge a part that accepts them.
+                    let p = settings.variants.problem(bank, row.student, *p, *q);
+                    Ok(*by_text
+                        .entry((p as u32, *q as u32, row.answer))
+                        .or_insert_with(|| {
+                            distinct.push((p, *q, table.answers.get(row.answer)));
+                            distinct.len() as u32 - 1
+                        }))
+                }
             }
         };
         row_distinct.push(slot);
@@ -516,6 +522,10 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
 /// The outcome of representative `r`: its verdict scored by the policy.
 fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
+    // A problem pinned to a student's numbers counts as its bank problem (the first of its id).
+    let p = (bank.problems[..p].iter())
+        .position(|x| x.id == bank.problems[p].id)
+        .unwrap_or(p);
     let points = bank.problems[p].parts[q].points;
     let (status, score, codes) = match &rep.verdict {
         Ok(v) => (

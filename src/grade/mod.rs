@@ -21,6 +21,7 @@ mod overrides;
 mod phases;
 mod review;
 mod summary;
+mod variants;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -57,6 +58,9 @@ pub struct Options {
     pub overrides: Option<PathBuf>,
     /// Also write one feedback file per student under `OUT/feedback/` (`--feedback`).
     pub feedback: bool,
+    /// The course seed (`--seed`) that, with each student's key, picks the student's
+    /// numbers; without it, the assignment file's seed, else 0.
+    pub seed: Option<u64>,
 }
 
 /// Grades a class file; see the module docs for the exit codes.
@@ -151,11 +155,17 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         );
     }
     let extra = assignment::run_key(&policy, assignment.as_ref(), decisions.as_ref());
-    let run = run_id(hash, opts, &bank, &extra);
+    let seed = (opts.seed)
+        .or(assignment.as_ref().and_then(|a| a.seed))
+        .unwrap_or(0);
+    let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
+    let mut bank = bank;
+    let variants = variants::extend(&mut bank, &table.students, seed);
     let settings = judge::Settings {
         policy: &policy,
         overrides: decisions.as_ref().map(|d| d as &dyn judge::Override),
+        variants: &variants,
     };
     let mut bar = crate::face::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
     phases.end("bank");
@@ -381,11 +391,22 @@ fn file_hash(bytes: &[u8]) -> Fnv {
     h
 }
 
-fn run_id(mut h: Fnv, opts: &Options, bank: &lagrange::bank::Bank, extra: &str) -> String {
+fn run_id(
+    mut h: Fnv,
+    opts: &Options,
+    bank: &lagrange::bank::Bank,
+    extra: &str,
+    seed: u64,
+) -> String {
     let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
     h.add(settings.as_bytes());
     // The assignment's policy, seed and decisions (empty without them: ids stay as they were).
     h.add(extra.as_bytes());
+    // The seed decides the students' numbers, so it is part of what the outputs depend on
+    // (the default seed adds nothing: run ids from before it existed stay).
+    if seed != 0 {
+        h.add(format!("|seed {seed}").as_bytes());
+    }
     for p in &bank.problems {
         for part in &p.parts {
             let key = format!(

@@ -31,6 +31,7 @@ pub mod modes;
 pub mod portrait;
 pub(crate) mod problems;
 pub mod read;
+pub mod sheets;
 pub mod simulation;
 pub(crate) mod steady;
 pub mod units;

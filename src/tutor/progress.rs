@@ -61,6 +61,10 @@ impl PartProgress {
 pub struct ProblemProgress {
     /// The parts attempted, hinted or revealed, by id.
     pub parts: BTreeMap<String, PartProgress>,
+    /// The seed of the numbers being practised (`:variant`), for a problem whose numbers
+    /// vary; absent until the student asks for numbers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub variant_seed: Option<u64>,
 }
 
 /// A student's progress over every problem, by problem id (ordered, so the JSON is stable).
@@ -174,6 +178,14 @@ impl Progress {
     pub fn merged(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
         let mut out = disk.clone();
         for (problem, pp) in &mine.problems {
+            // The numbers practised last in this session win (a `:variant` here).
+            let before = base.problems.get(problem).and_then(|b| b.variant_seed);
+            if pp.variant_seed.is_some() && pp.variant_seed != before {
+                out.problems
+                    .entry(problem.clone())
+                    .or_default()
+                    .variant_seed = pp.variant_seed;
+            }
             for (part, rec) in &pp.parts {
                 let before = base.part(problem, part).cloned().unwrap_or_default();
                 let new_attempts = rec.attempts.saturating_sub(before.attempts);

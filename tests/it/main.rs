@@ -58,3 +58,4 @@ mod sympy_systems;
 mod syntax;
 mod tutor_corpus;
 mod tutor_session;
+mod variants;

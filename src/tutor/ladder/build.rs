@@ -76,6 +76,7 @@ impl Builder<'_> {
             require_stability: false,
             assumptions: Vec::new(),
             line: self.problem.lagrangian_line,
+            numbers: false,
         };
         self.steps.push(Step {
             id,

@@ -93,6 +93,11 @@ impl Session {
             )));
         };
         let part = &problem.parts[index];
+        // A part that accepts numbers is judged with the numbers practised, if any.
+        let problem = match &o.pinned {
+            Some(pinned) if part.numbers => pinned,
+            _ => problem,
+        };
         let prepared = o
             .prepared
             .entry(index)
