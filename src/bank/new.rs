@@ -67,6 +67,19 @@ pub fn draft(spec: &Spec) -> Result<Drafted, Diagnostic> {
     }
     let base = skeleton(spec, &params, &ranges);
     for _ in 0..MAX_ROUNDS {
+        if parts.is_empty() {
+            let reasons: Vec<String> = (left_out.iter())
+                .map(|l| format!("{}: {}", l.part, l.reason))
+                .collect();
+            return Err(Diagnostic::new(
+                "nothing-to-state",
+                format!(
+                    "no part of this system can be stated ({})",
+                    reasons.join("; ")
+                ),
+                "`lagrange derive` with the same flags shows the system's equations",
+            ));
+        }
         let text = compose(&base, &parts, &left_out);
         let problem = load_str(&format!("{}.toml", spec.id), &text).map_err(|f| {
             Diagnostic::new(
@@ -127,6 +140,7 @@ fn parameters(spec: &Spec) -> Result<Vec<Param>, Diagnostic> {
         }
     }
     let mut names: Vec<String> = Vec::new();
+    let mut used = vec![false; spec.coordinates.len()];
     for text in texts {
         // An axis name (`y`) is a word, not an expression.
         if matches!(text, "x" | "y" | "z") && !spec.coordinates.iter().any(|c| c == text) {
@@ -141,16 +155,39 @@ fn parameters(spec: &Spec) -> Result<Vec<Param>, Diagnostic> {
         })?;
         for (s, _) in pool.variables(id) {
             let name = pool.name(s).to_string();
-            let coordinate = spec
-                .coordinates
-                .iter()
-                .any(|c| crate::expr::names::normalize(c) == name);
-            if !coordinate && name != "t" && !names.contains(&name) {
+            let coordinate =
+                (spec.coordinates.iter()).position(|c| crate::expr::names::normalize(c) == name);
+            if let Some(i) = coordinate {
+                used[i] = true;
+            }
+            if coordinate.is_none() && name != "t" && !names.contains(&name) {
                 names.push(name);
             }
         }
     }
     names.sort();
+    // A coordinate no expression uses is a typo (`--coords r,th` with `theta` in the
+    // positions): its equation would be empty and every part would fail verification.
+    if let Some(i) = used.iter().position(|u| !u) {
+        let read_as = if names.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; the names read as parameters are {}",
+                (names.iter().map(|n| format!("`{n}`")))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        return Err(Diagnostic::new(
+            "unused-coordinate",
+            format!(
+                "the coordinate `{}` appears in no position, potential or Lagrangian{read_as}",
+                spec.coordinates[i]
+            ),
+            "name the coordinates in --coords exactly as the expressions write them",
+        ));
+    }
     names
         .into_iter()
         .map(|name| {

@@ -23,6 +23,7 @@ pub(super) fn candidates(problem: &Problem) -> (Vec<Candidate>, Vec<LeftOut>, Ve
         sys.pool.plain(s)
     };
     if let (true, Some(t), Some(v)) = (from_bodies, sys.kinetic, sys.potential) {
+        let v_hints = potential_hints(problem, v);
         parts.push(Candidate::one(
             "kinetic",
             "expression",
@@ -39,10 +40,7 @@ pub(super) fn candidates(problem: &Problem) -> (Vec<Candidate>, Vec<LeftOut>, Ve
                 "expression",
                 "Write the potential energy V (any zero level).",
                 plain(&mut sys, v),
-                &[
-                    "Gravity contributes m g times each body's height; a spring ½ k (stretch)².",
-                    "Only differences of V matter: any constant may be added.",
-                ],
+                &v_hints.iter().map(String::as_str).collect::<Vec<_>>(),
             )
             .with("up_to", Field::Str("constant".into())),
         );
@@ -163,4 +161,35 @@ pub(super) fn candidates(problem: &Problem) -> (Vec<Candidate>, Vec<LeftOut>, Ve
     ));
     let widened = super::new_statics::statics(&mut sys, &d, &mut parts, &mut left);
     (parts, left, widened)
+}
+
+/// The potential part's hints, naming only what this V holds: gravity (a parameter of the
+/// dimension of an acceleration) and springs (one of a stiffness), then the free zero level.
+fn potential_hints(problem: &Problem, v: Id) -> Vec<String> {
+    let sys = &problem.system;
+    let has = |d: crate::expr::Dimension| {
+        (sys.pool.variables(v).iter()).any(|(s, _)| problem.dims.get(sys.pool.name(*s)) == Some(d))
+    };
+    let mut hints = Vec::new();
+    let mut first = Vec::new();
+    if has(crate::expr::Dimension::new(0, 1, -2)) {
+        first.push("gravity contributes m g times each mass's height");
+    }
+    if has(crate::expr::Dimension::new(1, 0, -2)) {
+        first.push(
+            "a spring contributes ½ k (stretch)², the stretch measured from its natural length",
+        );
+    }
+    if first.is_empty() {
+        hints.push(
+            "Add the potential of each force the problem names, as a function of the coordinates."
+                .to_string(),
+        );
+    } else {
+        let mut s = first.join("; ");
+        s[..1].make_ascii_uppercase();
+        hints.push(format!("{s}."));
+    }
+    hints.push("Only differences of V matter: any constant may be added.".to_string());
+    hints
 }

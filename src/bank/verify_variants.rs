@@ -9,6 +9,7 @@
 
 use super::FindingCode;
 use super::finding::Finding;
+use crate::check::points::PointSet;
 use crate::mechanics::sample::seed_from;
 use crate::problem::Problem;
 use crate::problem::variant::{Variant, count, nth, show_number, splitmix64};
@@ -136,10 +137,8 @@ pub(super) fn verify_variants(
         for p in pinned.parts.iter_mut().filter(|p| !p.numbers) {
             p.wrong.clear();
         }
-        if let Some(f) = verify_one(&pinned).into_iter().next() {
-            let named = variant
-                .values
-                .iter()
+        let named = || {
+            (variant.values.iter())
                 .map(|(n, x)| {
                     let v = problem.variants.iter().find(|v| &v.name == n);
                     format!(
@@ -148,7 +147,32 @@ pub(super) fn verify_variants(
                     )
                 })
                 .collect::<Vec<_>>()
-                .join(", ");
+                .join(", ")
+        };
+        // An assumption the variant's numbers break is the declaration's fault: say so at the
+        // declaration, not at whichever part first fails to sample.
+        if !pinned.assumptions.is_empty()
+            && let Err(e) = PointSet::draw(
+                &pinned.system,
+                &pinned.assumptions,
+                seed_from(&[&problem.id, "variant-assumptions"]),
+                1,
+            )
+        {
+            let line = problem.variants.iter().map(|v| v.line).min().unwrap_or(0);
+            out.push(at(
+                line,
+                None,
+                FindingCode::VariantFails,
+                format!(
+                    "for the variant {}: {e}; narrow the declared values so that every variant satisfies the assumptions",
+                    named()
+                ),
+            ));
+            break;
+        }
+        if let Some(f) = verify_one(&pinned).into_iter().next() {
+            let named = named();
             out.push(Finding {
                 code: FindingCode::VariantFails,
                 message: format!(

@@ -42,8 +42,15 @@ pub fn run(
         return Ok(ExitCode::from(2));
     };
     // A part that accepts numbers is judged against the student's own numbers.
+    let seed = match args.student.seed_for(problem) {
+        Ok(s) => s,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     let variant = (args.student.student.as_deref())
-        .and_then(|k| lagrange::problem::variant::pick(problem, args.student.seed, k));
+        .and_then(|k| lagrange::problem::variant::pick(problem, seed, k));
     let numbers = problem.part(&args.part).is_some_and(|p| p.numbers);
     let pinned = variant
         .as_ref()

@@ -69,10 +69,15 @@ pub fn run(
                 );
                 return Ok(ExitCode::from(2));
             };
-            let sheet = match &student.student {
-                Some(key) => {
-                    lagrange::report::sheets::student_sheet(p, *answers, key, student.seed)
+            let seed = match student.seed_for(p) {
+                Ok(s) => s,
+                Err(message) => {
+                    eprintln!("error: {message}");
+                    return Ok(ExitCode::from(2));
                 }
+            };
+            let sheet = match &student.student {
+                Some(key) => lagrange::report::sheets::student_sheet(p, *answers, key, seed),
                 None => problem_sheet(p, *answers),
             };
             out.push_str(&sheet.render(&Terminal));

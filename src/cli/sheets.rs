@@ -22,9 +22,35 @@ pub struct StudentArgs {
     /// ignored).
     #[arg(long, value_name = "KEY")]
     pub student: Option<String>,
-    /// The course seed: with the student's key it decides their numbers.
-    #[arg(long, value_name = "S", default_value_t = 0)]
-    pub seed: u64,
+    /// The course seed: with the student's key it decides their numbers. Required for a
+    /// problem whose numbers vary.
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+}
+
+impl StudentArgs {
+    /// The seed for `problem`: `--seed`, or 0 where it cannot matter (no student, or a problem
+    /// without variants). A student's numbers never silently come from a seed nobody gave.
+    pub fn seed_for(&self, problem: &Problem) -> Result<u64, String> {
+        match self.seed {
+            Some(s) => Ok(s),
+            None if self.student.is_none() || problem.variants.is_empty() => Ok(0),
+            None => Err(no_seed(&[problem])),
+        }
+    }
+}
+
+/// The refusal when problems with variants are given no course seed.
+fn no_seed(problems: &[&Problem]) -> String {
+    let ids: Vec<String> = (problems.iter())
+        .filter(|p| !p.variants.is_empty())
+        .map(|p| format!("`{}`", lagrange::expr::error::visible(&p.id)))
+        .collect();
+    format!(
+        "{} give{} each student their own numbers from the course seed, and no `--seed` was given\n  help: add `--seed S` (the seed on the student's sheet)",
+        ids.join(", "),
+        if ids.len() == 1 { "s" } else { "" }
+    )
 }
 
 /// `lagrange problems export-sheets PROBLEM… --students FILE [--seed S] [--out DIR]`.
@@ -37,9 +63,9 @@ pub struct ExportArgs {
     /// The students: a file with one key a line, or a class CSV with a `student` column.
     #[arg(long, value_name = "FILE")]
     students: PathBuf,
-    /// The course seed.
-    #[arg(long, value_name = "S", default_value_t = 0)]
-    seed: u64,
+    /// The course seed (required when a problem's numbers vary).
+    #[arg(long, value_name = "S")]
+    seed: Option<u64>,
     /// The folder for the sheets (created if needed).
     #[arg(long, value_name = "DIR", default_value = "sheets")]
     out: PathBuf,
@@ -74,14 +100,19 @@ pub fn export(args: &ExportArgs, dir: Option<&Path>) -> anyhow::Result<ExitCode>
         Err(m) => return fail(m),
     };
     let refs: Vec<&Problem> = problems.iter().collect();
+    let seed = match args.seed {
+        Some(s) => s,
+        None if refs.iter().all(|p| p.variants.is_empty()) => 0,
+        None => return fail(no_seed(&refs)),
+    };
     let names = file_names(&students);
     let mut index = String::from("student,markdown,latex\n");
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     for (key, name) in students.iter().zip(&names) {
         let (md, tex) = (format!("{name}.md"), format!("{name}.tex"));
         index.push_str(&format!("{},{md},{tex}\n", csv_field(key)));
-        files.push((md, markdown(&refs, key, args.seed).into_bytes()));
-        files.push((tex, latex(&refs, key, args.seed).into_bytes()));
+        files.push((md, markdown(&refs, key, seed).into_bytes()));
+        files.push((tex, latex(&refs, key, seed).into_bytes()));
     }
     files.push(("index.csv".into(), index.into_bytes()));
     let all: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();

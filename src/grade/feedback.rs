@@ -20,6 +20,7 @@ use super::input::{NONE, Table};
 use super::judge::{Judged, Status};
 use super::output::Gradebook;
 use super::summary::{cell, num};
+use super::variants::Variants;
 
 /// The longest name kept whole (bytes, before the extension).
 const LONGEST: usize = 180;
@@ -94,6 +95,8 @@ struct Shown {
     attempts: usize,
     counts: bool,
     answer: String,
+    /// The student's numbers the answer was judged with (empty: the same for everyone).
+    numbers: String,
     read_as: String,
     status: Status,
     score: String,
@@ -112,6 +115,7 @@ pub fn write(
     judged: &Judged,
     bank: &Bank,
     book: &Gradebook,
+    variants: &Variants,
 ) -> Result<usize, String> {
     let names = names(&table.students)?;
     let files: Vec<String> = (names.iter())
@@ -139,7 +143,7 @@ pub fn write(
         }
         let rows = &order[start..end];
         start = end;
-        let shown = shown(rows, table, judged, bank, &mut hints);
+        let shown = shown(rows, (table, judged, bank, variants), &mut hints);
         let scores = book
             .students
             .get(s)
@@ -167,9 +171,7 @@ pub fn write(
 /// A student's answers as shown.
 fn shown(
     rows: &[u32],
-    table: &Table,
-    judged: &Judged,
-    bank: &Bank,
+    (table, judged, bank, variants): (&Table, &Judged, &Bank, &Variants),
     hints: &mut rustc_hash::FxHashMap<(usize, usize), Option<String>>,
 ) -> Vec<Shown> {
     let mut out: Vec<Shown> = Vec::with_capacity(rows.len());
@@ -209,6 +211,11 @@ fn shown(
                 attempts: end - k,
                 counts,
                 answer: table.answer(row).to_string(),
+                numbers: target.map_or(String::new(), |(p, _)| {
+                    variants
+                        .label(judged.judged_with(o).unwrap_or(p))
+                        .to_string()
+                }),
                 read_as,
                 status: o.status,
                 score: num(o.score),
@@ -305,6 +312,9 @@ fn markdown(head: &Head, answers: &[Shown]) -> String {
     }
     for a in answers {
         let _ = writeln!(out, "## {}\n", cell(&title(a)));
+        if !a.numbers.is_empty() {
+            let _ = writeln!(out, "- Your numbers: {}", cell(&a.numbers));
+        }
         let _ = writeln!(out, "- Your answer: {}", code(&a.answer));
         if !a.read_as.is_empty() {
             let _ = writeln!(out, "- Read as: {}", code(&a.read_as));
@@ -370,6 +380,9 @@ fn html(head: &Head, answers: &[Shown]) -> String {
     }
     for a in answers {
         let _ = writeln!(out, "<h2>{}</h2>\n<ul>", esc(&title(a)));
+        if !a.numbers.is_empty() {
+            let _ = writeln!(out, "<li>Your numbers: {}</li>", esc(&a.numbers));
+        }
         let _ = writeln!(out, "<li>Your answer: <code>{}</code></li>", esc(&a.answer));
         if !a.read_as.is_empty() {
             let _ = writeln!(out, "<li>Read as: <code>{}</code></li>", esc(&a.read_as));

@@ -30,7 +30,14 @@ pub use slim::{Messages, Slim, meaning};
 /// trait so that judging does not import the file that reads the decisions.
 pub trait Override: Sync + std::fmt::Debug {
     /// Applies the decisions to the rows they name; the rows changed.
-    fn apply(&self, table: &Table, judged: &mut Judged, bank: &Bank) -> Vec<usize>;
+    /// An answer's variant (`variants`) is part of what a decision is about.
+    fn apply(
+        &self,
+        table: &Table,
+        judged: &mut Judged,
+        bank: &Bank,
+        variants: &super::variants::Variants,
+    ) -> Vec<usize>;
 }
 
 /// The status column of results.csv.
@@ -130,6 +137,12 @@ pub struct Judged {
 }
 
 impl Judged {
+    /// The bank problem that judged an outcome: for a part that accepts numbers, the one
+    /// pinned to the student's numbers (the outcome's `target` names its bank problem).
+    pub fn judged_with(&self, o: &Outcome) -> Option<usize> {
+        o.rep.map(|r| self.reps[r].problem)
+    }
+
     /// Row `i`'s outcome.
     pub fn outcome(&self, i: usize) -> &Outcome {
         &self.outcomes[self.rows[i].outcome as usize]
@@ -302,7 +315,7 @@ pub fn judge(
     drop(row_distinct);
     phases.end("outcomes");
     if let Some(o) = settings.overrides {
-        o.apply(table, &mut judged, bank);
+        o.apply(table, &mut judged, bank, settings.variants);
     }
     if settings.policy.follow_through.is_some() {
         follow_through(

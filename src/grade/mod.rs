@@ -155,9 +155,21 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         );
     }
     let extra = assignment::run_key(&policy, assignment.as_ref(), decisions.as_ref());
-    let seed = (opts.seed)
-        .or(assignment.as_ref().and_then(|a| a.seed))
-        .unwrap_or(0);
+    let seed = (opts.seed).or(assignment.as_ref().and_then(|a| a.seed));
+    // Without a course seed every student's numbers would silently be seed 0's: refuse.
+    let varied = variants::answered_with_variants(&bank, &table);
+    let seed = match (seed, varied.is_empty()) {
+        (Some(s), _) => s,
+        (None, true) => 0,
+        (None, false) => {
+            eprintln!(
+                "error: {} give{} each student their own numbers from the course seed, and no seed was given\n  help: add `--seed S` (the seed the students' sheets were made with) or `seed = S` in the assignment file",
+                varied.join(", "),
+                if varied.len() == 1 { "s" } else { "" }
+            );
+            return Ok(ExitCode::from(2));
+        }
+    };
     let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
     let mut bank = bank;
@@ -174,8 +186,14 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     let judged = judged?;
     if opts.feedback {
         let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
-        if let Err(message) = feedback::write(&dir.join("feedback"), &table, &judged, &bank, &book)
-        {
+        if let Err(message) = feedback::write(
+            &dir.join("feedback"),
+            &table,
+            &judged,
+            &bank,
+            &book,
+            &variants,
+        ) {
             eprintln!("error: {message}");
             return Ok(ExitCode::from(2));
         }
@@ -193,7 +211,8 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             let (_, bytes) = output::lms_file(lms, &book, &title)?;
             files.push((lms_name(lms), bytes));
         }
-        let (queue, unmatched) = review::review_csv(&table, &judged, &bank, decisions.as_ref());
+        let (queue, unmatched) =
+            review::review_csv(&table, &judged, &bank, &variants, decisions.as_ref());
         files.push(("review.csv", queue));
         if let Some(d) = &decisions {
             assignment::unmatched_notes(d, &unmatched);

@@ -1,7 +1,7 @@
 //! `grade --overrides FILE`: the instructor's decisions on answers the checker could not
 //! settle, read from a review queue they filled in (review.csv, or any CSV with the columns
-//! `problem`, `part`, `answer` and `decision`), applied to every row with that exact text on
-//! that part — visibly: the row's `override` column names the decision and its message says
+//! `problem`, `part`, `answer` and `decision`, and `variant` where the numbers vary), applied
+//! to every row with that exact text on that part and variant — visibly: the row's `override` column names the decision and its message says
 //! what the checker had said.
 
 use rustc_hash::FxHashMap;
@@ -13,6 +13,7 @@ use lagrange::policy::Decision;
 use super::cell::unquote_cell;
 use super::input::Table;
 use super::judge::{Judged, Override, Status};
+use super::variants::Variants;
 
 /// The largest overrides file read.
 const MAX_BYTES: u64 = 64 * 1024 * 1024;
@@ -24,6 +25,9 @@ pub struct Entry {
     pub problem: String,
     /// The part id.
     pub part: String,
+    /// The student's numbers the decision is about, as review.csv's `variant` column writes
+    /// them (empty: a problem without variants, or a file without the column).
+    pub variant: String,
     /// The answer, exactly as typed.
     pub answer: String,
     /// The decision.
@@ -41,8 +45,8 @@ pub struct Overrides {
     pub entries: Vec<Entry>,
 }
 
-/// The `(problem, part, answer)` an entry is about.
-type Key<'a> = (&'a str, &'a str, &'a str);
+/// The `(problem, part, variant, answer)` an entry is about.
+pub type Key<'a> = (&'a str, &'a str, &'a str, &'a str);
 
 impl Overrides {
     /// Reads an overrides file; the error is one line with the file's line number.
@@ -103,6 +107,7 @@ impl Overrides {
                     .to_string(),
             );
         };
+        let variant = column("variant");
         let mut entries = Vec::new();
         for record in records {
             let record = record.map_err(|e| {
@@ -119,6 +124,7 @@ impl Overrides {
             entries.push(Entry {
                 problem: cell(problem).trim().to_string(),
                 part: cell(part).trim().to_string(),
+                variant: variant.map_or(String::new(), |v| cell(v).trim().to_string()),
                 answer: cell(answer).to_string(),
                 decision: d,
                 written,
@@ -128,10 +134,10 @@ impl Overrides {
         Ok(Overrides { entries })
     }
 
-    /// The entry deciding each `(problem, part, answer)`: the last of the file.
-    fn by_key(&self) -> FxHashMap<Key<'_>, usize> {
+    /// The entry deciding each `(problem, part, variant, answer)`: the last of the file.
+    pub fn by_key(&self) -> FxHashMap<Key<'_>, usize> {
         (self.entries.iter().enumerate())
-            .map(|(i, e)| ((e.problem.as_str(), e.part.as_str(), e.answer.as_str()), i))
+            .map(|(i, e)| (e.key(), i))
             .collect()
     }
 
@@ -139,7 +145,14 @@ impl Overrides {
     /// entry names gets the decision's status and score, the entry in its `override` column
     /// and a message saying what the checker had said. Rows sharing an outcome share the new
     /// one. The number of rows each entry changed, in entry order.
-    pub fn apply(&self, table: &Table, judged: &mut Judged, bank: &Bank) -> Vec<usize> {
+    /// A decision about an answer on a problem with variants holds for that variant only.
+    pub fn apply(
+        &self,
+        table: &Table,
+        judged: &mut Judged,
+        bank: &Bank,
+        variants: &Variants,
+    ) -> Vec<usize> {
         let mut used = vec![0usize; self.entries.len()];
         if self.entries.is_empty() {
             return used;
@@ -156,7 +169,12 @@ impl Overrides {
             }
             let problem = &bank.problems[p];
             let part = &problem.parts[q];
-            let key = (problem.id.as_str(), part.id.as_str(), table.answer(row));
+            let key = (
+                problem.id.as_str(),
+                part.id.as_str(),
+                variants.label(judged.judged_with(o).unwrap_or(p)),
+                table.answer(row),
+            );
             let Some(&e) = by_key.get(&key) else {
                 continue;
             };
@@ -190,9 +208,27 @@ impl Overrides {
     }
 }
 
+impl Entry {
+    /// What the entry is about.
+    fn key(&self) -> Key<'_> {
+        (
+            self.problem.as_str(),
+            self.part.as_str(),
+            self.variant.as_str(),
+            self.answer.as_str(),
+        )
+    }
+}
+
 impl Override for Overrides {
-    fn apply(&self, table: &Table, judged: &mut Judged, bank: &Bank) -> Vec<usize> {
-        Overrides::apply(self, table, judged, bank)
+    fn apply(
+        &self,
+        table: &Table,
+        judged: &mut Judged,
+        bank: &Bank,
+        variants: &Variants,
+    ) -> Vec<usize> {
+        Overrides::apply(self, table, judged, bank, variants)
     }
 }
 

@@ -1,5 +1,6 @@
 //! review.csv: the answers that need a human — every `invalid` answer and every wrong answer
-//! whose only diagnosis is a bare `not-equal` — grouped by their exact text per part, with how
+//! whose only diagnosis is a bare `not-equal` — grouped by their exact text per part (and per
+//! variant, where the student's numbers decide the verdict), with how
 //! the checker tried to read them and an empty `decision` column for the instructor. Filled
 //! in and given back with `grade --overrides`, its decisions apply on the next run, and the
 //! next review.csv carries them (also those that matched no answer this time), so no decision
@@ -15,11 +16,12 @@ use super::judge::{Judged, Outcome, Status};
 use super::output::{push_cell, push_plain};
 use super::overrides::Overrides;
 use super::summary::num;
+use super::variants::Variants;
 
 /// The columns of review.csv.
-const HEADER: [&str; 10] = [
-    "problem", "part", "answer", "students", "answers", "status", "codes", "read_as", "message",
-    "decision",
+const HEADER: [&str; 11] = [
+    "problem", "part", "variant", "answer", "students", "answers", "status", "codes", "read_as",
+    "message", "decision",
 ];
 
 /// What the checker said of a row, before any override: status, codes, how it read the
@@ -81,10 +83,12 @@ pub fn review_csv(
     table: &Table,
     judged: &Judged,
     bank: &Bank,
+    variants: &Variants,
     overrides: Option<&Overrides>,
 ) -> (Vec<u8>, Vec<usize>) {
-    // (problem, part, answer, student, row) of every row to list.
-    let mut listed: Vec<(usize, usize, u32, u32, u32)> = Vec::new();
+    // (problem, part, the problem pinned to the student's numbers, answer, student, row) of
+    // every row to list: one text is one answer per variant.
+    let mut listed: Vec<(usize, usize, usize, u32, u32, u32)> = Vec::new();
     for (i, row) in table.rows.iter().enumerate() {
         let o = judged.outcome(i);
         let Some((p, q)) = o.target else { continue };
@@ -92,25 +96,31 @@ pub fn review_csv(
             continue;
         }
         if o.decision.is_some() || needs_review(&said(o, judged)) {
-            listed.push((p, q, row.answer, row.student, i as u32));
+            let pinned = judged.judged_with(o).unwrap_or(p);
+            listed.push((p, q, pinned, row.answer, row.student, i as u32));
         }
     }
     listed.sort_unstable();
     struct Group {
         p: usize,
         q: usize,
+        pinned: usize,
         row: usize,
         students: usize,
         answers: usize,
     }
     let mut groups: Vec<Group> = Vec::new();
     for w in 0..listed.len() {
-        let (p, q, a, s, r) = listed[w];
-        let same = w > 0 && listed[w - 1].0 == p && listed[w - 1].1 == q && listed[w - 1].2 == a;
+        let (p, q, pinned, a, s, r) = listed[w];
+        let same = w > 0 && {
+            let b = listed[w - 1];
+            (b.0, b.1, b.2, b.3) == (p, q, pinned, a)
+        };
         if !same {
             groups.push(Group {
                 p,
                 q,
+                pinned,
                 row: r as usize,
                 students: 0,
                 answers: 0,
@@ -119,7 +129,7 @@ pub fn review_csv(
         let Some(g) = groups.last_mut() else { continue };
         g.answers += 1;
         // Sorted by student within a group: a new student is a change from the row before.
-        if !same || listed[w - 1].3 != s {
+        if !same || listed[w - 1].4 != s {
             g.students += 1;
         }
     }
@@ -135,11 +145,7 @@ pub fn review_csv(
             .then_with(|| ids(a).cmp(&ids(b)))
             .then_with(|| text(a).cmp(text(b)))
     });
-    let decided = overrides.map(|o| {
-        (o.entries.iter().enumerate())
-            .map(|(i, e)| ((e.problem.as_str(), e.part.as_str(), e.answer.as_str()), i))
-            .collect::<rustc_hash::FxHashMap<_, _>>()
-    });
+    let decided = overrides.map(Overrides::by_key);
     let mut matched = vec![false; overrides.map_or(0, |o| o.entries.len())];
     let mut out = Vec::new();
     for (k, h) in HEADER.iter().enumerate() {
@@ -151,12 +157,13 @@ pub fn review_csv(
     out.push(b'\n');
     for g in &groups {
         let (problem, part) = ids(g);
+        let variant = variants.label(g.pinned);
         let answer = text(g);
         let o = judged.outcome(g.row);
         let s = said(o, judged);
         let decision = decided
             .as_ref()
-            .and_then(|d| d.get(&(problem, part, answer)).copied());
+            .and_then(|d| d.get(&(problem, part, variant, answer)).copied());
         if let Some(e) = decision {
             matched[e] = true;
         }
@@ -167,7 +174,7 @@ pub fn review_csv(
         let codes: Vec<&str> = s.codes.iter().map(|c| c.as_str()).collect();
         line(
             &mut out,
-            [problem, part, answer],
+            [problem, part, variant, answer],
             [g.students, g.answers],
             [s.status, &codes.join(";")],
             [s.read_as, s.message, written],
@@ -179,7 +186,7 @@ pub fn review_csv(
             let e = &o.entries[e];
             line(
                 &mut out,
-                [&e.problem, &e.part, &e.answer],
+                [&e.problem, &e.part, &e.variant, &e.answer],
                 [0, 0],
                 ["", ""],
                 ["", "no answer of this class has this text", &e.written],
@@ -192,12 +199,12 @@ pub fn review_csv(
 /// One line of review.csv: text cells neutralised against spreadsheet formulas.
 fn line(
     out: &mut Vec<u8>,
-    [problem, part, answer]: [&str; 3],
+    [problem, part, variant, answer]: [&str; 4],
     [students, answers]: [usize; 2],
     [status, codes]: [&str; 2],
     [read_as, message, decision]: [&str; 3],
 ) {
-    for (k, c) in [problem, part, answer].iter().enumerate() {
+    for (k, c) in [problem, part, variant, answer].iter().enumerate() {
         if k > 0 {
             out.push(b',');
         }

@@ -10,11 +10,16 @@ use rustc_hash::FxHashMap;
 use lagrange::bank::Bank;
 use lagrange::problem::variant::pick;
 
+use super::input::Table;
+
 /// Which pinned problem judges each student's numbers answers.
 #[derive(Debug, Default)]
 pub struct Variants {
     /// (student, bank problem) → index of the problem pinned to the student's variant.
     of: FxHashMap<(u32, usize), usize>,
+    /// A pinned problem's numbers as the sheet shows them (`l = 0.75 m, m = 0.4 kg`), by its
+    /// index in the bank.
+    labels: FxHashMap<usize, String>,
 }
 
 impl Variants {
@@ -25,6 +30,12 @@ impl Variants {
             return p;
         }
         self.of.get(&(student, p)).copied().unwrap_or(p)
+    }
+
+    /// The numbers bank problem `p` is pinned to (empty: not a pinned problem). An answer's
+    /// text means one thing per variant: `1.5` is right for one student and wrong for another.
+    pub fn label(&self, p: usize) -> &str {
+        self.labels.get(&p).map_or("", String::as_str)
     }
 }
 
@@ -46,11 +57,27 @@ pub fn extend(bank: &mut Bank, students: &[String], seed: u64) -> Variants {
             };
             let index = *by_key.entry(v.key()).or_insert_with(|| {
                 pinned.push(problem.pinned(&v));
-                bank.problems.len() + pinned.len() - 1
+                let index = bank.problems.len() + pinned.len() - 1;
+                let label = lagrange::report::sheets::numbers_of(problem, &v).join(", ");
+                variants.labels.insert(index, label);
+                index
             });
             variants.of.insert((s as u32, p), index);
         }
         bank.problems.extend(pinned);
     }
     variants
+}
+
+/// The ids of the problems the class answers whose numbers differ per student (variants and a
+/// part that accepts numbers), in bank order: grading them needs the course seed.
+pub fn answered_with_variants(bank: &Bank, table: &Table) -> Vec<String> {
+    let named: rustc_hash::FxHashSet<&str> = (0..table.names.len())
+        .map(|i| table.names.get(i as u32))
+        .collect();
+    (bank.problems.iter())
+        .filter(|p| !p.variants.is_empty() && p.parts.iter().any(|x| x.numbers))
+        .filter(|p| named.contains(p.id.as_str()))
+        .map(|p| format!("`{}`", p.id))
+        .collect()
 }

@@ -32,7 +32,7 @@ pub enum MechError {
     #[error("no equilibrium was found in the coordinate ranges")]
     NoEquilibrium,
     /// Something cannot be evaluated at the state asked for.
-    #[error("{what} is undefined at this state")]
+    #[error("{what} cannot be evaluated at this state")]
     Undefined { what: String },
     /// More generalized forces than coordinates.
     #[error("{given} generalized forces given for {coordinates} coordinates")]

@@ -315,7 +315,7 @@ impl Assignment {
                 return Err(fail(
                     "unknown-problem",
                     format!("no problem `{}` in the bank{hint}", visible(&entry.id)),
-                    "`lagrange problems list` lists the problems".to_string(),
+                    "`lagrange problems list` lists the problems; a problem of your own needs its folder: `--add-problems DIR`".to_string(),
                 ));
             };
             let problem = &bank.problems[p];

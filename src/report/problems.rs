@@ -111,6 +111,9 @@ pub struct ProblemSheet {
     /// The student this sheet is for (`--student`), with their numbers.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub student: Option<String>,
+    /// The course seed that picked the student's numbers (only when the problem varies), so
+    /// the sheet can say how to check an answer against them.
+    pub seed: Option<u64>,
     /// The student's numbers, each `m = 1.5 kg`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub numbers: Vec<String>,
@@ -205,6 +208,7 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
             .collect(),
         varies: p.variants.iter().map(|v| v.name.clone()).collect(),
         student: None,
+        seed: None,
         numbers: Vec::new(),
     }
 }
@@ -256,9 +260,10 @@ impl ProblemSheet {
         let student = self.student.as_deref().map_or(String::new(), |k| {
             format!(" --student {}", shell_word(&visible(k)))
         });
+        let seed = self.seed.map_or(String::new(), |s| format!(" --seed {s}"));
         writeln!(
             o,
-            "\nAnswer with `lagrange check {} <part> \"<answer>\"{student}`.",
+            "\nAnswer with `lagrange check {} <part> \"<answer>\"{student}{seed}`.",
             visible(&self.id)
         )
     }

@@ -32,6 +32,7 @@ pub fn student_sheet(p: &Problem, answers: bool, key: &str, seed: u64) -> Proble
         None => problem_sheet(p, answers),
     };
     sheet.student = Some(key.trim().to_string());
+    sheet.seed = (!p.variants.is_empty()).then_some(seed);
     sheet
 }
 
@@ -80,7 +81,9 @@ pub fn markdown(problems: &[&Problem], key: &str, seed: u64) -> String {
                     one_line(&prompt)
                 )?;
             }
-            let seeded = if seed == 0 {
+            // The seed is named whenever the numbers depend on it, 0 included: without it
+            // `check` cannot find the student's numbers.
+            let seeded = if p.variants.is_empty() {
                 String::new()
             } else {
                 format!(" --seed {seed}")

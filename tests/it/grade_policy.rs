@@ -281,12 +281,15 @@ fn the_review_queue_lists_what_needs_a_human_and_overrides_apply_visibly() {
     assert!(queue.iter().all(|r| r["decision"].is_empty()));
     // The instructor decides: the unclosed parenthesis is right, `m g l` for V is worth half.
     let mut filled = records(&d.join("out/review.csv"));
-    filled[1][9] = "correct".to_string();
+    let decision = (filled[0].iter())
+        .position(|h| h == "decision")
+        .expect("a decision column");
+    filled[1][decision] = "correct".to_string();
     let v = filled
         .iter()
         .position(|r| r[1] == "potential")
         .expect("V row");
-    filled[v][9] = "50%".to_string();
+    filled[v][decision] = "50%".to_string();
     let mut w = csv::Writer::from_path(d.join("decisions.csv")).expect("create");
     for r in &filled {
         w.write_record(r).expect("write");

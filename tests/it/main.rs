@@ -7,6 +7,7 @@ mod chaos_cli;
 mod cli;
 mod conventions;
 mod corpus;
+mod course_seed;
 mod diagnostics;
 mod dimensions;
 mod docs_commands;
