@@ -7,9 +7,12 @@
 use std::path::Path;
 use std::process::Command;
 
+/// A folder's files, by name, with their bytes.
+type Files = Vec<(String, Vec<u8>)>;
+
 /// Every file of a folder, by name, with its bytes.
-fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+fn outputs(dir: &Path) -> Files {
+    let mut files: Files = std::fs::read_dir(dir)
         .expect("out dir")
         .map(|e| {
             let e = e.expect("entry");
@@ -56,7 +59,7 @@ fn outputs_do_not_depend_on_the_window_size() {
     let dir = crate::helpers::scratch("grade-windows");
     let input = dir.join("class.csv");
     std::fs::write(&input, class()).expect("write the class");
-    let mut seen: Vec<(String, Vec<(String, Vec<u8>)>)> = Vec::new();
+    let mut seen: Vec<(String, Files)> = Vec::new();
     for (window, threads) in [("", "2"), ("1", "2"), ("7", "1"), ("7", "2")] {
         let out = dir.join(format!("out-{window}-{threads}"));
         let mut cmd = Command::new(env!("CARGO_BIN_EXE_lagrange"));
