@@ -6,6 +6,7 @@
 //! represents a form never depends on the thread count, so neither does any output.
 
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 use rayon::prelude::*;
 
@@ -81,8 +82,10 @@ pub struct Rep {
     pub problem: usize,
     /// The part's index in the problem.
     pub part: usize,
-    /// The answer checked (the first spelling of the form in input order).
-    pub answer: String,
+    /// The answer checked (the first spelling of the form in input order), as its index in
+    /// [`Table::answers`] (the text is not copied: a class of all-different answers has a
+    /// representative per row).
+    pub answer: u32,
     /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
     /// checked.
     pub verdict: Result<Slim, String>,
@@ -99,8 +102,9 @@ pub struct Outcome {
     pub status: Status,
     /// The verdict's score times the part's points (follow-through credit included).
     pub score: f64,
-    /// The diagnosis codes, most specific first (`follows-from-earlier` leading).
-    pub codes: Vec<Code>,
+    /// The diagnosis codes, most specific first (`follows-from-earlier` leading); shared with
+    /// the verdict's own (a class of all-different answers has an outcome per row).
+    pub codes: Arc<[Code]>,
     /// The first diagnosis, or why the row is an error or unread; `None`: the first
     /// diagnosis of the representative's verdict, or why it could not be checked (not copied:
     /// a class of all-different answers has as many outcomes as rows). See
@@ -178,6 +182,60 @@ impl Judged {
 /// The most answers one checker reads (see [`par_map`]).
 const CHUNK: usize = 1024;
 
+/// The representatives checked at a time before their verdicts are moved out of the workers'
+/// memory (see [`judge`]): large enough that the workers are rarely idle at a window's end.
+const WINDOW: usize = 16 * 1024;
+
+/// [`WINDOW`], or `LAGRANGE_GRADE_WINDOW` from the environment when it is a positive number
+/// (for the test that outputs do not depend on it).
+fn window_size() -> usize {
+    (std::env::var("LAGRANGE_GRADE_WINDOW").ok())
+        .and_then(|v| v.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(WINDOW)
+}
+
+/// An answer to check: the problem and part indices in the bank, its text and its index in
+/// [`Table::answers`].
+type Item<'t> = (usize, usize, &'t str, u32);
+
+/// Checks a window of representatives in parallel, in order.
+fn check_window(bank: &Bank, window: &[Item], bar: &Shared<'_>, messages: &Messages) -> Vec<Rep> {
+    par_map(bank, window, |c, part, (problem, q, text, answer)| {
+        let rep = |verdict, fingerprint| Rep {
+            problem,
+            part: q,
+            answer,
+            verdict,
+            fingerprint,
+        };
+        if !bar.tick() {
+            return rep(Err(Interrupted.to_string()), None);
+        }
+        let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
+        // Only wrong answers are grouped, so a right one needs no fingerprint.
+        let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
+        let fingerprint = wrong
+            .then(|| c.fingerprint(&part.id, text).ok().flatten())
+            .flatten()
+            .map(|f| meaning(&f));
+        rep(verdict.map(|v| Slim::shared(v, messages)), fingerprint)
+    })
+}
+
+impl Rep {
+    /// The same representative, its text moved into the calling thread's memory.
+    fn rehomed(self) -> Rep {
+        Rep {
+            verdict: match self.verdict {
+                Ok(v) => Ok(v.rehomed()),
+                Err(e) => Err(e.as_str().to_string()),
+            },
+            ..self
+        }
+    }
+}
+
 /// A problem and part id pair as typed: the bank part it names, or why it names none (the
 /// message without its line).
 type Resolved = Result<(usize, usize), String>;
@@ -200,7 +258,7 @@ pub fn judge(
     };
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
-    let mut distinct: Vec<(usize, usize, &str)> = Vec::new();
+    let mut distinct: Vec<Item> = Vec::new();
     let mut by_text: FxHashMap<(u32, u32, u32), u32> = FxHashMap::default();
     // Per row: its own outcome (Err) or its distinct answer (Ok), then its representative.
     let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
@@ -233,7 +291,8 @@ pub fn judge(
                     Ok(*by_text
                         .entry((p as u32, *q as u32, row.answer))
                         .or_insert_with(|| {
-                            distinct.push((p, *q, table.answers.get(row.answer)));
+                            let text = table.answers.get(row.answer);
+                            distinct.push((p, *q, text, row.answer));
                             distinct.len() as u32 - 1
                         }))
                 }
@@ -247,7 +306,7 @@ pub fn judge(
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &distinct, |c, part, (_, _, text)| {
+    let canon = par_map(bank, &distinct, |c, part, (_, _, text, _)| {
         if !bar.tick() {
             return None;
         }
@@ -268,27 +327,19 @@ pub fn judge(
     }
     bar.start(rep_inputs.len() as u64);
     let messages = Messages::default();
-    // Each representative made where it is checked (no second list of them).
-    judged.reps = par_map(bank, &rep_inputs, |c, part, (problem, q, text)| {
-        let rep = |verdict, fingerprint| Rep {
-            problem,
-            part: q,
-            answer: text.to_string(),
-            verdict,
-            fingerprint,
-        };
-        if !bar.tick() {
-            return rep(Err(Interrupted.to_string()), None);
+    judged.reps.reserve_exact(rep_inputs.len());
+    // Checked a window at a time, each window's representatives then moved into this
+    // thread's memory: the long-lived verdicts are not left scattered among the checkers'
+    // scratch memory in the workers' heaps (which is then freed whole), so a class of
+    // all-different answers needs less memory (issue 20 §5). Verdicts do not depend on which
+    // checker reads an answer, so neither do the outputs on the window's size.
+    for window in rep_inputs.chunks(window_size()) {
+        let checked = check_window(bank, window, &bar, &messages);
+        judged.reps.extend(checked.into_iter().map(Rep::rehomed));
+        if bar.stopped() {
+            break;
         }
-        let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
-        // Only wrong answers are grouped, so a right one needs no fingerprint.
-        let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
-        let fingerprint = wrong
-            .then(|| c.fingerprint(&part.id, text).ok().flatten())
-            .flatten()
-            .map(|f| meaning(&f));
-        rep(verdict.map(|v| Slim::shared(v, &messages)), fingerprint)
-    });
+    }
     drop(messages);
     if bar.stopped() {
         return Err(Interrupted);
@@ -320,6 +371,7 @@ pub fn judge(
     if settings.policy.follow_through.is_some() {
         follow_through(
             rows,
+            &table.answers,
             &mut judged,
             bank,
             settings.policy,
@@ -343,12 +395,18 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
     Outcome {
         status,
         score: 0.0,
-        codes: Vec::new(),
+        codes: no_codes(),
         message: Some(message),
         target,
         rep: None,
         decision: None,
     }
+}
+
+/// No diagnosis codes: one shared empty list (rows that are errors have no codes each).
+pub fn no_codes() -> Arc<[Code]> {
+    static EMPTY: std::sync::OnceLock<Arc<[Code]>> = std::sync::OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from([])).clone()
 }
 
 /// Whether a part's answer is a list (equilibria, frequencies, values).
@@ -365,8 +423,8 @@ fn is_list(part: &Part) -> bool {
 /// which makes a long chunk slower per answer, so chunks are not long either.
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
-    items: &[(usize, usize, &str)],
-    f: impl Fn(&mut Checker<'b>, &'b Part, (usize, usize, &str)) -> R + Sync + Send,
+    items: &[Item],
+    f: impl Fn(&mut Checker<'b>, &'b Part, Item) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -375,10 +433,10 @@ fn par_map<'b, R: Send>(
         .with_max_len(CHUNK)
         .map_init(
             || (0..n).map(|_| None).collect::<Vec<Option<Checker<'b>>>>(),
-            |checkers, &(p, q, text)| {
+            |checkers, &(p, q, text, answer)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q], (p, q, text))
+                f(checker, &problem.parts[q], (p, q, text, answer))
             },
         )
         .collect()
@@ -388,17 +446,17 @@ fn par_map<'b, R: Send>(
 /// first distinct answer of each canonical form; unreadable answers stand for themselves).
 #[allow(clippy::type_complexity)]
 fn representatives<'r>(
-    distinct: &[(usize, usize, &'r str)],
+    distinct: &[Item<'r>],
     canon: Vec<Option<String>>,
-) -> (Vec<usize>, Vec<(usize, usize, &'r str)>) {
-    let mut reps: Vec<(usize, usize, &str)> = Vec::new();
+) -> (Vec<usize>, Vec<Item<'r>>) {
+    let mut reps: Vec<Item> = Vec::new();
     let mut by_form: FxHashMap<(usize, usize, String), usize> = FxHashMap::default();
     let mut of = Vec::with_capacity(distinct.len());
-    for (&(p, q, text), form) in distinct.iter().zip(canon) {
+    for (&(p, q, text, answer), form) in distinct.iter().zip(canon) {
         // A leading NUL cannot start a canonical form, so raw text never collides with one.
         let key = form.unwrap_or_else(|| format!("\0{text}"));
         let r = *by_form.entry((p, q, key)).or_insert_with(|| {
-            reps.push((p, q, text));
+            reps.push((p, q, text, answer));
             reps.len() - 1
         });
         of.push(r);
@@ -446,9 +504,9 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
                 Checked::Invalid => Status::Invalid,
             },
             policy.answer_fraction(v.status, v.score, &v.codes) * points,
-            v.codes.to_vec(),
+            v.codes.clone(),
         ),
-        Err(_) => (Status::Error, 0.0, Vec::new()),
+        Err(_) => (Status::Error, 0.0, no_codes()),
     };
     Outcome {
         status,

@@ -42,7 +42,7 @@ fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
     if o.decision.is_none() {
         return Said {
             status: o.status.name(),
-            codes: o.codes.clone(),
+            codes: o.codes.to_vec(),
             read_as,
             message: judged.message(o),
         };

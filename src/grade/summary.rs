@@ -93,40 +93,61 @@ type GroupKey = ((u32, u32), Status, u32);
 pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let rows = &table.rows;
     // Rows per outcome, then everything an outcome decides is counted once per outcome.
-    let mut per_outcome = vec![0usize; judged.outcomes.len()];
+    let mut per_outcome = vec![0u32; judged.outcomes.len()];
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
-    // The meaning of each representative, interned: a group is (part, status, meaning).
-    // Meanings are 128-bit keys ([`super::judge::meaning`]), so none is kept as text.
-    let mut meanings: FxHashMap<u128, u32> = FxHashMap::default();
-    let meaning: Vec<u32> = judged
-        .reps
-        .iter()
-        .map(|r| {
-            let m = r
-                .fingerprint
-                .unwrap_or_else(|| super::judge::meaning(&format!("text:{}", r.answer.trim())));
-            let n = meanings.len() as u32;
-            *meanings.entry(m).or_insert(n)
+    // The meaning of each representative as a number: a group is (part, status, meaning).
+    // Meanings are 128-bit keys ([`super::judge::meaning`]), so none is kept as text; equal
+    // keys are found by sorting them (24 bytes each, not a map's 32 and its spare room: a
+    // class of all-different answers has a key per answer), each numbered by the first
+    // representative that has it.
+    let mut keyed: Vec<(u64, u64, u32)> = (judged.reps.par_iter().enumerate())
+        .map(|(i, r)| {
+            let m = r.fingerprint.unwrap_or_else(|| {
+                super::judge::meaning(&format!("text:{}", table.answers.get(r.answer).trim()))
+            });
+            ((m >> 64) as u64, m as u64, i as u32)
         })
         .collect();
-    drop(meanings);
-    // Each outcome's group (wrong and unreadable answers only), numbered once.
-    let mut group_ids: FxHashMap<GroupKey, u32> = FxHashMap::default();
-    let mut groups: Vec<GroupKey> = Vec::new();
-    let group_of: Vec<u32> = (judged.outcomes.iter())
-        .map(|o| match (o.target, o.rep, o.status) {
+    keyed.par_sort_unstable();
+    let mut meaning = vec![0u32; judged.reps.len()];
+    for run in keyed.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
+        for &(_, _, r) in run {
+            meaning[r as usize] = run[0].2;
+        }
+    }
+    drop(keyed);
+    // Each outcome's group (wrong and unreadable answers only), numbered in order of first
+    // appearance (by outcome), found by sorting the outcomes' keys rather than through a map
+    // of them (a class of all-different answers has a group per answer).
+    let mut keyed: Vec<(GroupKey, u32)> = (judged.outcomes.iter().enumerate())
+        .filter_map(|(i, o)| match (o.target, o.rep, o.status) {
             (Some((p, q)), Some(rep), Status::Incorrect | Status::Invalid) => {
-                let g = ((p as u32, q as u32), o.status, meaning[rep]);
-                *group_ids.entry(g).or_insert_with(|| {
-                    groups.push(g);
-                    groups.len() as u32 - 1
-                })
+                Some((((p as u32, q as u32), o.status, meaning[rep]), i as u32))
             }
-            _ => u32::MAX,
+            _ => None,
         })
         .collect();
-    drop(group_ids);
+    drop(meaning);
+    keyed.par_sort_unstable();
+    // Each group's first outcome and where its run starts, in order of first appearance.
+    let mut firsts: Vec<(u32, u32)> = Vec::new();
+    for (k, w) in keyed.iter().enumerate() {
+        if k == 0 || keyed[k - 1].0 != w.0 {
+            firsts.push((w.1, k as u32));
+        }
+    }
+    firsts.par_sort_unstable();
+    let mut group_of = vec![u32::MAX; judged.outcomes.len()];
+    let mut groups: Vec<GroupKey> = Vec::with_capacity(firsts.len());
+    for (id, &(_, start)) in firsts.iter().enumerate() {
+        let key = keyed[start as usize].0;
+        groups.push(key);
+        for &(_, o) in keyed[start as usize..].iter().take_while(|w| w.0 == key) {
+            group_of[o as usize] = id as u32;
+        }
+    }
+    drop((keyed, firsts));
     // Per row of a group: (group, student, representative, answer), sorted in parallel and
     // counted per group: no set or map per group.
     let mut members: Vec<(u32, u32, u32, u32)> = Vec::new();
@@ -175,11 +196,12 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
     for (o, &n) in judged.outcomes.iter().zip(&per_outcome) {
+        let n = n as usize;
         if n == 0 {
             continue;
         }
         *status.entry(o.status.name().to_string()).or_insert(0) += n;
-        for c in &o.codes {
+        for c in o.codes.iter() {
             *codes.entry(c.to_string()).or_insert(0) += n;
         }
         let Some((p, q)) = o.target else { continue };

@@ -21,6 +21,7 @@ mod grade;
 mod grade_consistency;
 mod grade_input;
 mod grade_policy;
+mod grade_windows;
 mod helpers;
 mod higher_order_lagrangian;
 mod hostile;

@@ -14,6 +14,7 @@ use lagrange::policy::Policy;
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::super::input::Row;
+use super::super::intern::Interner;
 use super::{Judged, Rep, Slim, Status};
 
 /// The row that counts for each (student, problem, part), as the policy chooses it (the last
@@ -159,6 +160,7 @@ type FollowKey = (usize, Vec<usize>);
 /// share its outcome.
 pub(super) fn follow_through(
     rows: &[Row],
+    answers: &Interner,
     judged: &mut Judged,
     bank: &Bank,
     policy: &Policy,
@@ -219,7 +221,7 @@ pub(super) fn follow_through(
     pairs.dedup();
     let pair_answers: Vec<Option<Diagnosis>> = pairs
         .par_iter()
-        .map(|&(rep, e)| follows(&(rep, vec![e]), reps, bank))
+        .map(|&(rep, e)| follows(&(rep, vec![e]), reps, answers, bank))
         .collect();
     let pair_answer: FxHashMap<(usize, usize), &Diagnosis> = (pairs.iter().zip(&pair_answers))
         .filter_map(|(&k, d)| Some((k, d.as_ref()?)))
@@ -243,12 +245,14 @@ pub(super) fn follow_through(
             if accepts(d) {
                 g.status = Status::Correct;
                 g.score = points;
-                g.codes = vec![d.code];
+                g.codes = std::sync::Arc::from([d.code]);
             } else {
                 // A list already partly right keeps the larger of its own score and the credit.
                 let own = if points > 0.0 { g.score / points } else { 0.0 };
                 g.score = policy.follow_through_fraction(own).unwrap_or(own) * points;
-                g.codes.insert(0, d.code);
+                g.codes = std::iter::once(d.code)
+                    .chain(g.codes.iter().copied())
+                    .collect();
             }
             g.message = Some(d.message.clone());
             Some(judged.add(g))
@@ -263,7 +267,7 @@ pub(super) fn follow_through(
 
 /// The `follows-from-earlier` diagnosis when the wrong answer of `key` follows from the
 /// earlier answers of `key`.
-fn follows(key: &FollowKey, reps: &[Rep], bank: &Bank) -> Option<Diagnosis> {
+fn follows(key: &FollowKey, reps: &[Rep], answers: &Interner, bank: &Bank) -> Option<Diagnosis> {
     let rep = &reps[key.0];
     let problem = &bank.problems[rep.problem];
     let part = &problem.parts[rep.part];
@@ -274,7 +278,7 @@ fn follows(key: &FollowKey, reps: &[Rep], bank: &Bank) -> Option<Diagnosis> {
             let e = &reps[r];
             let id = problem.parts[e.part].id.clone();
             (
-                Earlier::new(id, e.answer.clone()),
+                Earlier::new(id, answers.get(e.answer).to_string()),
                 e.verdict.as_ref().ok().map(Slim::verdict),
             )
         })
@@ -286,5 +290,5 @@ fn follows(key: &FollowKey, reps: &[Rep], bank: &Bank) -> Option<Diagnosis> {
             .find(|(e, _)| e == x)
             .and_then(|(_, v)| v.clone())
     };
-    follows_from_earlier(problem, part, &rep.answer, &list, &known)
+    follows_from_earlier(problem, part, answers.get(rep.answer), &list, &known)
 }

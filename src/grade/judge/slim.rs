@@ -18,8 +18,8 @@ pub struct Slim {
     pub seed: u64,
     /// The Unicode reading (`reading.unicode`).
     pub unicode: Box<str>,
-    /// Every diagnosis's code, most specific first.
-    pub codes: Box<[Code]>,
+    /// Every diagnosis's code, most specific first (shared with the outcomes scored from it).
+    pub codes: std::sync::Arc<[Code]>,
     /// The first diagnosis's message (empty without one), shared by the representatives
     /// given the same ([`Messages`]).
     pub message: std::sync::Arc<str>,
@@ -86,6 +86,16 @@ impl Slim {
             diagnoses,
             self.seed,
         )
+    }
+
+    /// The same verdict, its texts copied into the calling thread's memory (the message stays
+    /// shared).
+    pub fn rehomed(self) -> Slim {
+        Slim {
+            unicode: Box::from(&*self.unicode),
+            codes: std::sync::Arc::from(&*self.codes),
+            ..self
+        }
     }
 
     /// The first diagnosis, as the verdict gave it.

@@ -143,7 +143,7 @@ pub(super) fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) ->
         let r = &judged.reps[rep];
         match &r.verdict {
             Ok(v) if !v.unicode.is_empty() => v.unicode.to_string(),
-            _ => r.answer.trim().to_string(),
+            _ => table.answers.get(r.answer).trim().to_string(),
         }
     };
     let mut reps: Vec<(usize, String, usize)> =
@@ -220,7 +220,7 @@ mod tests {
             .map(|a| Rep {
                 problem: 0,
                 part: 0,
-                answer: table.answers.get(a as u32).to_string(),
+                answer: a as u32,
                 verdict: Err(String::new()),
                 fingerprint: None,
             })
