@@ -62,9 +62,10 @@ const LEFT: f64 = 78.0;
 const RIGHT: f64 = 18.0;
 const TOP: f64 = 16.0;
 const BOTTOM: f64 = 50.0;
-/// The tick texts' and labels' sizes in pixels (the SVG's font sizes).
-pub(super) const TICK_SIZE: f64 = 12.0;
-pub(super) const LABEL_SIZE: f64 = 14.0;
+/// A tick text's size in pixels (the SVG's font size; a face drawing the marks uses it too).
+pub const TICK_SIZE: f64 = 12.0;
+/// An axis label's size in pixels.
+pub const LABEL_SIZE: f64 = 14.0;
 
 /// The curves' colours, in the order of the series (distinct for colour-blind readers too).
 const PALETTE: [Rgb; 6] = [

@@ -28,7 +28,7 @@ mod svg;
 mod ticks;
 
 pub use label::{axis, unicode};
-pub use layout::{Anchor, Mark, Rgb};
+pub use layout::{Anchor, LABEL_SIZE, Mark, Rgb, TICK_SIZE};
 pub use svg::escape;
 pub use ticks::{Ticks, nice, ticks};
 

@@ -1,5 +1,5 @@
 //! The library's chart marks ([`lagrange::chart::Mark`]) drawn through plotters, so a PNG
-//! shows what the SVG does: a [`Figure`] is a [`Picture`] whose every mark is drawn at the
+//! shows what the SVG does: a `Figure` is a `Picture` whose every mark is drawn at the
 //! library's pixels with its colours and texts (DejaVu Sans at the SVG's font sizes).
 
 use plotters::coord::Shift;
@@ -7,11 +7,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::backend::{DrawResult, Picture};
-use lagrange::chart::{Anchor, Figure, Mark, Rgb};
-
-/// The SVG's font sizes (tick texts, axis labels), in pixels.
-const TICK_SIZE: f64 = 12.0;
-const LABEL_SIZE: f64 = 14.0;
+use lagrange::chart::{Anchor, Figure, LABEL_SIZE, Mark, Rgb, TICK_SIZE};
 
 impl Picture for Figure {
     fn size(&self) -> (u32, u32) {

@@ -1,6 +1,6 @@
 //! q(t), the phase portrait and the energy error to a file: the library's [`lagrange::chart`]
 //! figures, written as its SVG text, or drawn as PNG from the same marks (see
-//! [`marks`](super::marks)) — the same ticks, labels and colours either way.
+//! `marks.rs`) — the same ticks, labels and colours either way.
 
 use std::path::Path;
 
