@@ -73,6 +73,8 @@
 //! - [`bank`]: the problem format, loading, verification and the embedded bank;
 //! - [`report`]: what each command shows, as data built here and rendered once, for every
 //!   face;
+//! - [`chart`]: a simulation's q(t), phase-portrait and energy pictures, laid out once and
+//!   written as SVG for every face;
 //! - [`tutor`]: practice sessions — the derivation ladder, follow-through, progress;
 //! - [`policy`]: the grading policy and the assignment file (credit per code, attempts);
 //! - [`diagnostic`]: rendering of positioned errors, shared by every face;
@@ -96,6 +98,7 @@ const LAYERS: &[&str] = &[
     "check",
     "bank",
     "report",
+    "chart",
     "tutor",
     "policy",
 ];
@@ -104,6 +107,7 @@ const LAYERS: &[&str] = &[
 mod layers;
 
 pub mod bank;
+pub mod chart;
 pub mod check;
 pub mod diagnostic;
 pub mod expr;

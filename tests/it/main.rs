@@ -4,6 +4,7 @@
 mod bank;
 mod bank_folders;
 mod chaos_cli;
+mod chart;
 mod cli;
 mod conventions;
 mod corpus;

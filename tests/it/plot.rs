@@ -24,26 +24,13 @@ fn svg(path: &Path) -> String {
     text
 }
 
-/// The number of points of each data curve (the blue polylines; the mesh is black).
-/// The samples drawn per panel when a curve is cut into pieces that run left to right (each
-/// cut repeats its turning point): Σ points − (pieces − panels), divided by `panels`.
-fn samples_drawn(svg: &str, panels: usize) -> usize {
-    let c = curves(svg);
-    (c.iter().sum::<usize>() + panels - c.len()) / panels
-}
-
+/// The number of points of each data curve (`<path class="curve" d="M…L…L…">`).
 fn curves(svg: &str) -> Vec<usize> {
     svg.lines()
-        .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#0000FF\""))
+        .filter(|l| l.starts_with("<path class=\"curve\""))
         .map(|l| {
-            let points = l
-                .split("points=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap();
-            points.split_whitespace().count()
+            let d = l.split(" d=\"").nth(1).unwrap().split('"').next().unwrap();
+            d.matches(['M', 'L']).count()
         })
         .collect()
 }
@@ -73,11 +60,10 @@ fn the_double_pendulum_draws_q_of_t_its_phase_portrait_and_its_energy_error() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("Final:"), "{out}");
     let q = svg(&q);
-    assert!(
-        q.contains(">\nθ₁ / rad\n</text>") && q.contains(">\nθ₂ / rad\n</text>"),
-        "{q}"
-    );
-    assert!(q.contains(">\nt / s\n</text>"));
+    // One chart: both coordinates share the axis and its unit, a legend names each curve.
+    assert!(q.contains(">θ₁, θ₂ / rad</text>"), "{q}");
+    assert!(q.contains(">θ₁</text>") && q.contains(">θ₂</text>"), "{q}");
+    assert!(q.contains(">t / s</text>"));
     assert_eq!(curves(&q), vec![300, 300]);
     let p = svg(&p);
     for label in [
@@ -86,9 +72,9 @@ fn the_double_pendulum_draws_q_of_t_its_phase_portrait_and_its_energy_error() {
         "θ₂ / rad",
         "θ\u{307}₂ / rad s⁻¹",
     ] {
-        assert!(p.contains(&format!(">\n{label}\n</text>")), "{label}");
+        assert!(p.contains(&format!(">{label}</text>")), "{label}");
     }
-    assert_eq!(samples_drawn(&p, 2), 300);
+    assert_eq!(curves(&p), vec![300, 300]);
     let e = svg(&e);
     assert!(e.contains("(h − h₀)/|h₀|"));
     assert_eq!(curves(&e), vec![300]);
@@ -188,5 +174,5 @@ fn the_readme_phase_portrait_is_what_its_command_draws() {
             .contains("--t-end 10 --samples 500 --phase docs/pendulum-phase.svg")
     );
     crate::helpers::assert_svg_agrees(&svg(&fresh), &svg(&committed), "docs/pendulum-phase.svg");
-    assert_eq!(samples_drawn(&svg(&committed), 1), 500);
+    assert_eq!(curves(&svg(&committed)), vec![500]);
 }

@@ -191,6 +191,12 @@ test('a reload keeps the progress and the open problem', async () => {
 });
 
 test('a simulation is drawn as q(t) and a phase portrait', async () => {
+  // The engine's SVG is inserted under the page's strict Content-Security-Policy: nothing in
+  // it may be refused (an inline style or script would be).
+  await page.evaluate(() => {
+    globalThis.cspViolations = [];
+    document.addEventListener('securitypolicyviolation', (e) => globalThis.cspViolations.push(`${e.violatedDirective} ${e.blockedURI}`));
+  });
   await page.click('#simulate');
   await page.waitForSelector('#simulation:not([hidden]) svg.chart');
   assert.equal(await page.locator('#plots svg.chart').count(), 2);
@@ -202,7 +208,13 @@ test('a simulation is drawn as q(t) and a phase portrait', async () => {
   assert.match(summary, /θ = /);
   assert.doesNotMatch(summary, /theta/);
   const labels = await page.locator('#plots svg.chart text.label').allTextContents();
-  assert.deepEqual(labels, ['t [s]', 'θ [rad]', 'θ [rad]', 'θ\u0307 [rad s⁻¹]']);
+  assert.deepEqual(labels, ['t / s', 'θ / rad', 'θ / rad', 'θ\u0307 / rad s⁻¹']);
+  // Drawn, not just present: the q(t) chart has a size on the page and round ticks.
+  const box = await page.locator('#plots svg.chart >> nth=0').boundingBox();
+  assert.ok(box.width > 200 && box.height > 100, JSON.stringify(box));
+  const ticks = await page.locator('#plots svg.chart >> nth=0 >> text:not(.label)').allTextContents();
+  assert.ok(ticks.includes('0') && ticks.includes('−1') && ticks.includes('1'), ticks.join(' '));
+  assert.deepEqual(await page.evaluate(() => globalThis.cspViolations), []);
   await page.locator('#simulation').scrollIntoViewIfNeeded();
   await shot('07-simulation');
 });

@@ -3,7 +3,7 @@
 //! comes back as the same JSON object the REPL's `--json` protocol prints
 //! (docs/repl-protocol.md), built by [`json_object`]; the page only draws it, so no mathematics
 //! lives in JavaScript. What the terminal faces compute on their side is added here as data:
-//! a simulation's even grid (the page draws q(t) and the phase portrait from it), an
+//! a simulation's even grid and its q(t) and phase-portrait pictures as SVG text, an
 //! analysis's text and LaTeX, the position of an unreadable answer's error, and the live
 //! reading of a half-typed line ([`Engine::preview`]).
 //!
@@ -12,6 +12,7 @@
 //! reported with their lines and not added.
 
 use lagrange::bank::{Bank, Finding, embedded, load_str, verify::verify};
+use lagrange::chart::unicode;
 use lagrange::expr::Style;
 use lagrange::report::{Plain, ReadOptions, reading};
 use lagrange::tutor::response::{AnalysisReport, json_object};
@@ -84,7 +85,8 @@ impl Engine {
     }
 
     /// Answers one line as the REPL's `--json` protocol does: one JSON object, its further
-    /// responses in `"more"`. A simulation adds `series` (its even grid), an analysis `text`
+    /// responses in `"more"`. A simulation adds `series` (its even grid) and `charts` (its
+    /// pictures as SVG documents, [`lagrange::chart`]), an analysis `text`
     /// (and `latex` for `:read` and `:derive`), a verdict `reading_tex` (or, unreadable,
     /// `error_span`), and a statement, part or hint the file's own `$…$` text (`*_tex`).
     pub fn handle(&mut self, line: &str) -> String {
@@ -311,6 +313,7 @@ fn extend(r: &Response, map: &mut Map<String, Value>, line: &str) {
                 // The REPL's summary, with the coordinates' Unicode names (θ, θ̇).
                 AnalysisReport::Simulate(r) => {
                     map.insert("series".into(), series(r));
+                    map.insert("charts".into(), charts(r));
                     (r.render_unicode(&Plain), None)
                 }
             };
@@ -368,8 +371,9 @@ fn error_span(e: Option<&lagrange::ParseError>, map: &mut Map<String, Value>, li
 }
 
 /// A simulation's even grid for drawing: `t`, per coordinate `q` and `v` (its rate), `h`,
-/// the coordinates' names as typed (`names`) and as shown (`labels`: `θ₁`; `rate_labels`:
-/// `θ̇₁`), and the axes' units. Non-finite samples become null.
+/// the coordinates' names as typed (`names`) and as shown ([`lagrange::chart::unicode`],
+/// as the REPL and the charts name them: `labels`: `θ₁`; `rate_labels`: `θ̇₁`), and the axes'
+/// units. Non-finite samples become null.
 fn series(r: &lagrange::report::SimulationReport) -> Value {
     let n = r.grid.first().map_or(0, |row| row.1.len() / 2);
     let num = |x: f64| if x.is_finite() { json!(x) } else { Value::Null };
@@ -381,8 +385,8 @@ fn series(r: &lagrange::report::SimulationReport) -> Value {
     };
     json!({
         "names": r.names.iter().take(n).collect::<Vec<_>>(),
-        "labels": r.names.iter().take(n).map(|q| shown_name(q, 0)).collect::<Vec<_>>(),
-        "rate_labels": r.names.iter().take(n).map(|q| shown_name(q, 1)).collect::<Vec<_>>(),
+        "labels": r.names.iter().take(n).map(|q| unicode(q)).collect::<Vec<_>>(),
+        "rate_labels": r.names.iter().take(n).map(|q| unicode(&[q, "'"].concat())).collect::<Vec<_>>(),
         "t": r.grid.iter().map(|row| num(row.0)).collect::<Vec<_>>(),
         "q": (0..n).map(column).collect::<Vec<_>>(),
         "v": (n..2 * n).map(column).collect::<Vec<_>>(),
@@ -396,18 +400,14 @@ fn series(r: &lagrange::report::SimulationReport) -> Value {
     })
 }
 
-/// A coordinate's name (`theta1`) as the library prints it in Unicode, differentiated `order`
-/// times (`θ₁`, `θ̇₁`): read as the coordinate and printed by the expression printer, as the
-/// REPL's summary and charts name it; the name itself if it cannot be read.
-fn shown_name(name: &str, order: u8) -> String {
-    use lagrange::expr::{Context, Node, Pool, read_expr};
-    let mut pool = Pool::new();
-    let coordinate = Context::new().with_coordinates([name]);
-    match read_expr(name, &coordinate, &mut pool).map(|id| pool.node(id).clone()) {
-        Ok(Node::Var(sym, 0)) => pool.var_name(sym, order, Style::Unicode),
-        _ if order == 0 => name.to_string(),
-        _ => format!("{name}{}", "'".repeat(usize::from(order))),
-    }
+/// The simulation's pictures as SVG documents, drawn by the library as the CLI's `--plot` and
+/// `--phase` files are (the same bytes for the same run): q(t) of every coordinate, then their
+/// phase portraits. The page inserts them as they are.
+fn charts(r: &lagrange::report::SimulationReport) -> Value {
+    json!([
+        lagrange::chart::qt(r).to_svg(),
+        lagrange::chart::phase(r).to_svg()
+    ])
 }
 
 #[cfg(test)]
@@ -420,15 +420,5 @@ mod tests {
         assert_eq!(utf16_span("θ+(", 3..4), (2, 3));
         assert_eq!(utf16_span("𝜃(", 4..5), (2, 3));
         assert_eq!(utf16_span("ab", 7..9), (2, 2));
-    }
-
-    #[test]
-    fn coordinates_are_shown_as_the_repl_names_them() {
-        assert_eq!(shown_name("theta", 0), "θ");
-        assert_eq!(shown_name("theta", 1), "θ\u{307}");
-        assert_eq!(shown_name("theta1", 0), "θ₁");
-        assert_eq!(shown_name("theta2", 1), "θ\u{307}₂");
-        assert_eq!(shown_name("x", 1), "x\u{307}");
-        assert_eq!(shown_name("r", 0), "r");
     }
 }

@@ -157,6 +157,27 @@ fn a_simulation_carries_its_grid() {
 }
 
 #[wasm_bindgen_test]
+fn a_simulation_carries_its_pictures_as_the_librarys_svg() {
+    let mut e = Engine::new();
+    e.handle(":open double-pendulum");
+    let r = parse(&e.handle(":simulate --t-end 1"));
+    let charts: Vec<&str> = r["charts"]
+        .as_array()
+        .map(|a| a.iter().filter_map(Value::as_str).collect())
+        .unwrap_or_default();
+    assert_eq!(charts.len(), 2, "q(t), then the phase portraits");
+    for svg in &charts {
+        assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\""));
+        assert!(!svg.contains("<script") && !svg.contains("style=") && !svg.contains("href"));
+    }
+    // One q(t) chart with both coordinates (two curves, a legend), two phase panels.
+    assert!(charts[0].contains(">θ₁, θ₂ / rad</text>"), "{}", charts[0]);
+    assert_eq!(charts[0].matches("class=\"curve\"").count(), 2);
+    assert!(charts[1].contains(">θ\u{307}₂ / rad s⁻¹</text>"));
+    assert_eq!(charts[1].matches("class=\"curve\"").count(), 2);
+}
+
+#[wasm_bindgen_test]
 fn a_double_pendulums_coordinates_are_shown_with_subscripts() {
     let mut e = Engine::new();
     e.handle(":open double-pendulum");

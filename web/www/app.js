@@ -213,7 +213,7 @@ const ui = {
   },
   simulation(r) {
     els.simulation.hidden = false;
-    els.plots.replaceChildren(...plots(r.series ?? { t: [], names: [], q: [], v: [] }));
+    els.plots.replaceChildren(...plots(r.charts));
     els.simSummary.textContent = r.text ?? '';
   },
   suggestion(s) {

@@ -8,8 +8,8 @@ use plotters::prelude::*;
 
 use super::backend::draw_on;
 
-use super::label::{axis, unicode};
 use super::range;
+use lagrange::chart::{axis, unicode};
 use lagrange::report::chaos::ChaosReport;
 use lagrange::report::units::AxisUnits;
 

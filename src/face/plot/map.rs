@@ -131,7 +131,7 @@ impl FlipMap<'_> {
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc(super::label::axis(
+            .y_desc(lagrange::chart::axis(
                 "time to flip",
                 self.time_unit.as_deref(),
             ))

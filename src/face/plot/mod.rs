@@ -1,19 +1,20 @@
-//! Pictures of a simulation (a face, like `grade/`): q(t), phase portraits and their
-//! energy families, the relative energy error, the flip-time map, and `chaos`'s separation,
-//! Lyapunov estimate and Poincaré section, as SVG or PNG files (plotters, chosen by the file's
-//! extension), and q(t) as a terminal chart (textplots). Labels are the coordinates' names in
-//! Unicode (`theta1'` is drawn θ̇₁).
+//! Pictures of a simulation (a face, like `grade/`): q(t), the phase portrait and the
+//! relative energy error are the library's [`lagrange::chart`] figures (its SVG text, or its
+//! marks drawn as PNG); the portraits' energy families, the flip-time map, and `chaos`'s
+//! separation, Lyapunov estimate and Poincaré section are drawn here with plotters; SVG or PNG
+//! by the file's extension. q(t) is also a terminal chart (textplots). Labels are the
+//! coordinates' names in Unicode (`theta1'` is drawn θ̇₁).
 
 mod backend;
 mod chaos;
-mod label;
 mod map;
+mod marks;
 mod portrait;
 mod svg;
 mod terminal;
 
 pub use chaos::{chaos_svg, poincare_svg};
-pub use label::{axis, unicode};
+pub use lagrange::chart::{axis, unicode};
 pub use map::{FlipMap, flip_map};
 pub use portrait::portrait_svg;
 pub use svg::{energy_svg, phase_svg, qt_svg};
@@ -21,65 +22,34 @@ pub use terminal::terminal_chart;
 
 use lagrange::report::SimulationReport;
 
-/// The coordinates' curves on the report's even grid: per coordinate, (t, q) and (q, q̇).
+/// The coordinates' curves (t, q) on the report's even grid, for the terminal chart.
 struct Curves {
     /// The coordinates' names (`theta1`), in order.
     names: Vec<String>,
     /// `(t, q_i)` for each coordinate i.
     qt: Vec<Vec<(f64, f64)>>,
-    /// `(q_i, q̇_i)` for each coordinate i.
-    phase: Vec<Vec<(f64, f64)>>,
-    /// `(t, (h − h₀)/|h₀|)`, or the absolute error when h₀ = 0.
-    energy: Vec<(f64, f64)>,
     /// The time axis' label, "t / s" when the unit is known.
     t_label: String,
-    /// Each coordinate's and each rate's axis label, "θ₁ / rad", "θ̇₁ / rad s⁻¹".
+    /// Each coordinate's axis label, "θ₁ / rad".
     q_labels: Vec<String>,
-    qdot_labels: Vec<String>,
 }
 
 impl Curves {
     fn of(r: &SimulationReport) -> Self {
         let n = r.names.len() / 2;
-        let h0 = r.grid.first().map_or(0.0, |row| row.2);
-        let scale = if h0 == 0.0 { 1.0 } else { h0.abs() };
         let qt = (0..n)
             .map(|i| r.grid.iter().map(|(t, y, _)| (*t, y[i])).collect())
-            .collect();
-        let phase = (0..n)
-            .map(|i| r.grid.iter().map(|(_, y, _)| (y[i], y[n + i])).collect())
-            .collect();
-        let energy = r
-            .grid
-            .iter()
-            .map(|(t, _, h)| (*t, (h - h0) / scale))
             .collect();
         let u = &r.units;
         let unit = |units: &[Option<String>], i: usize| units.get(i).cloned().flatten();
         let q_labels = (0..n)
-            .map(|i| {
-                label::axis(
-                    &label::unicode(&r.names[i]),
-                    unit(&u.coordinates, i).as_deref(),
-                )
-            })
-            .collect();
-        let qdot_labels = (0..n)
-            .map(|i| {
-                label::axis(
-                    &label::unicode(&r.names[n + i]),
-                    unit(&u.velocities, i).as_deref(),
-                )
-            })
+            .map(|i| axis(&unicode(&r.names[i]), unit(&u.coordinates, i).as_deref()))
             .collect();
         Curves {
-            t_label: label::axis("t", u.time.as_deref()),
+            t_label: axis("t", u.time.as_deref()),
             q_labels,
-            qdot_labels,
             names: r.names[..n].to_vec(),
             qt,
-            phase,
-            energy,
         }
     }
 }

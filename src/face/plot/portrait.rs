@@ -10,8 +10,8 @@ use plotters::prelude::*;
 
 use super::backend::draw_on;
 
-use super::label::{axis, unicode};
 use super::range;
+use lagrange::chart::{axis, unicode};
 use lagrange::report::units::AxisUnits;
 use lagrange::simulate::portrait::{CurveKind, Portrait};
 

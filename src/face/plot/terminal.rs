@@ -3,7 +3,7 @@
 
 use textplots::{Chart, Plot, Shape};
 
-use super::{Curves, label::unicode, range};
+use super::{Curves, range, unicode};
 use lagrange::report::SimulationReport;
 
 /// The charts of q(t), one per coordinate, as text.
