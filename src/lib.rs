@@ -89,6 +89,7 @@
 /// all of them.
 #[cfg_attr(not(test), allow(dead_code))]
 const LAYERS: &[&str] = &[
+    "sort",
     "progress",
     "expr",
     "diagnostic",
@@ -117,6 +118,7 @@ pub mod problem;
 pub mod progress;
 pub mod report;
 pub mod simulate;
+mod sort;
 pub mod tutor;
 
 // What a library user needs, in one place (the modules hold the rest).

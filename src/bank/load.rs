@@ -221,9 +221,9 @@ pub fn load_str(file: &str, text: &str) -> Result<Problem, Finding> {
             format!("arrays and tables are nested more than {MAX_NESTING} deep"),
         ));
     }
-    let pf: ProblemFile = toml::from_str(text).map_err(|e| {
-        let line = e.span().map_or(1, |s| line_of(text, s.start));
-        let msg = e.message().trim().to_string();
+    let pf: ProblemFile = super::schema_read::from_str(text).map_err(|e| {
+        let line = e.span.map_or(1, |s| line_of(text, s.start));
+        let msg = e.message.trim().to_string();
         let code = if msg.contains("unknown field") {
             FindingCode::UnknownKey
         } else if msg.contains("missing field") {

@@ -25,6 +25,7 @@ mod new_statics;
 mod new_toml;
 mod new_types;
 pub mod schema;
+pub(crate) mod schema_read;
 pub mod verify;
 mod verify_equilibria;
 mod verify_expression;

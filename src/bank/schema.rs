@@ -1,14 +1,17 @@
-//! The TOML schema of a problem file, as serde reads it. Unknown keys are errors. See
+//! The TOML schema of a problem file, read by `schema_read` (serde's rules and messages; how
+//! a field is added: `schema_struct!`). Unknown keys are errors. See
 //! `docs/problem-format.md` for the field-by-field description.
 
 use std::collections::BTreeMap;
 
-use serde::Deserialize;
+use serde::de::Unexpected;
 use toml::Spanned;
+use toml::de::DeValue;
 
+use super::schema_read::{self as read, FromToml, ReadError, schema_struct};
+
+schema_struct! {
 /// A whole problem file.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ProblemFile {
     pub id: Spanned<String>,
     pub title: String,
@@ -52,12 +55,12 @@ pub struct ProblemFile {
     #[serde(default)]
     pub variants: BTreeMap<String, Spanned<VariantSpec>>,
 }
+}
 
+schema_struct! {
 /// How one parameter varies between students: `values` (a set), or `range` with `step` (a
 /// grid) or `digits` (every number of so many significant digits in it); `unit` is shown
 /// after the number.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct VariantSpec {
     pub values: Option<Vec<f64>>,
     pub range: Option<Vec<f64>>,
@@ -66,10 +69,10 @@ pub struct VariantSpec {
     #[serde(default)]
     pub unit: String,
 }
+}
 
+schema_struct! {
 /// The initial state and duration a simulation of the problem starts from by default.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct SimulationSpec {
     /// Initial coordinates (`theta`) and velocities (`theta'`); others start at 0.
     #[serde(default)]
@@ -77,10 +80,10 @@ pub struct SimulationSpec {
     /// The end time.
     pub t_end: Option<f64>,
 }
+}
 
+schema_struct! {
 /// A generalized coordinate.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct CoordinateSpec {
     pub name: String,
     #[serde(default)]
@@ -95,27 +98,58 @@ pub struct CoordinateSpec {
     /// Where the coordinate can physically be (default: anywhere).
     pub domain: Option<DomainSpec>,
 }
+}
 
 /// A declared domain: `"positive"`, `"negative"`, `"any"`, or an open interval `[low, high]`
 /// whose ends are numbers or expressions of the parameters.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug)]
+#[cfg_attr(test, derive(serde::Deserialize))]
+#[cfg_attr(test, serde(untagged))]
 pub enum DomainSpec {
     Word(String),
     Interval(Vec<BoundSpec>),
 }
 
+impl FromToml for DomainSpec {
+    /// The first form that reads, as serde's `untagged` tries them.
+    fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
+        read::numbers_fit(v)?;
+        String::read(v)
+            .map(DomainSpec::Word)
+            .or_else(|_| Vec::read(v).map(DomainSpec::Interval))
+            .map_err(|_| untagged(v, "DomainSpec"))
+    }
+}
+
 /// One end of a declared interval.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug)]
+#[cfg_attr(test, derive(serde::Deserialize))]
+#[cfg_attr(test, serde(untagged))]
 pub enum BoundSpec {
     Number(f64),
     Text(String),
 }
 
+impl FromToml for BoundSpec {
+    fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
+        read::numbers_fit(v)?;
+        f64::read(v)
+            .map(BoundSpec::Number)
+            .or_else(|_| String::read(v).map(BoundSpec::Text))
+            .map_err(|_| untagged(v, "BoundSpec"))
+    }
+}
+
+/// serde's error for a value no form of the untagged enum `name` reads.
+fn untagged(v: &Spanned<DeValue<'_>>, name: &str) -> ReadError {
+    ReadError {
+        message: format!("data did not match any variant of untagged enum {name}"),
+        span: Some(v.span()),
+    }
+}
+
+schema_struct! {
 /// A parameter.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ParameterSpec {
     pub dimension: String,
     /// Positive sampling range (a list, checked to have two elements).
@@ -126,12 +160,12 @@ pub struct ParameterSpec {
     /// Where the parameter can physically be (default: positive with a physical dimension).
     pub domain: Option<DomainSpec>,
 }
+}
 
+schema_struct! {
 /// A body: `kind = "point"` (mass, position), `kind = "rotor"` (inertia, angle) or
 /// `kind = "rigid"` (mass, centre-of-mass position, inertia or moments or tensor, and one of
 /// angle, omega_body, euler).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct BodySpec {
     pub kind: String,
     pub mass: Option<String>,
@@ -147,13 +181,14 @@ pub struct BodySpec {
     /// z-x-z Euler angles φ, θ, ψ (rigid, 3-D).
     pub euler: Option<Vec<String>>,
 }
+}
 
+schema_struct! {
 /// A force `vector` applied at the point `at`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct PointForceSpec {
     pub at: Vec<String>,
     pub vector: Vec<String>,
+}
 }
 
 /// One end of a spring: a body number (1-based) or a fixed point.
@@ -163,7 +198,23 @@ pub enum AnchorSpec {
     Point(Vec<String>),
 }
 
-impl<'de> Deserialize<'de> for AnchorSpec {
+impl FromToml for AnchorSpec {
+    fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
+        const EXPECTED: &str = "a body number (1, 2, …) or a point [\"x\", \"y\"]";
+        if let DeValue::Array(_) = v.get_ref() {
+            return Vec::read(v).map(AnchorSpec::Point);
+        }
+        match read::integer(v)? {
+            Some(n) => usize::try_from(n)
+                .map(AnchorSpec::Body)
+                .map_err(|_| read::invalid_value(v, Unexpected::Signed(n), EXPECTED)),
+            None => Err(read::wrong_type(v, EXPECTED)),
+        }
+    }
+}
+
+#[cfg(test)]
+impl<'de> serde::Deserialize<'de> for AnchorSpec {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct V;
         impl<'de> serde::de::Visitor<'de> for V {
@@ -191,9 +242,8 @@ impl<'de> Deserialize<'de> for AnchorSpec {
     }
 }
 
+schema_struct! {
 /// A potential: `gravity` (g, axis), `spring` (k, natural, from, to) or `explicit` (V).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct PotentialSpec {
     pub kind: String,
     pub g: Option<String>,
@@ -206,6 +256,7 @@ pub struct PotentialSpec {
     #[serde(rename = "V")]
     pub v: Option<String>,
 }
+}
 
 /// A reference answer: one string, or a list for systems and lists.
 #[derive(Debug, Clone)]
@@ -214,7 +265,18 @@ pub enum AnswerSpec {
     Many(Vec<String>),
 }
 
-impl<'de> Deserialize<'de> for AnswerSpec {
+impl FromToml for AnswerSpec {
+    fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
+        match v.get_ref() {
+            DeValue::String(s) => Ok(AnswerSpec::One(s.to_string())),
+            DeValue::Array(_) => Vec::read(v).map(AnswerSpec::Many),
+            _ => Err(read::wrong_type(v, "a string or a list of strings")),
+        }
+    }
+}
+
+#[cfg(test)]
+impl<'de> serde::Deserialize<'de> for AnswerSpec {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct V;
         impl<'de> serde::de::Visitor<'de> for V {
@@ -240,9 +302,8 @@ impl<'de> Deserialize<'de> for AnswerSpec {
     }
 }
 
+schema_struct! {
 /// A part of a problem.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct PartSpec {
     pub id: String,
     pub kind: String,
@@ -286,4 +347,5 @@ pub struct PartSpec {
     /// The answer may use the student's numbers instead of the varied parameters' symbols.
     #[serde(default)]
     pub numbers: bool,
+}
 }

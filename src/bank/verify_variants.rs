@@ -39,7 +39,7 @@ pub fn proved_variants(problem: &Problem) -> Vec<Variant> {
             picked.push(k);
         }
     }
-    picked.sort_unstable();
+    crate::sort::sort_unstable(&mut picked);
     picked
         .into_iter()
         .map(|k| nth(&problem.variants, k))

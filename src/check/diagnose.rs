@@ -61,7 +61,9 @@ fn terms_forces_first(p: &mut Prepared, e: Id) -> Vec<Id> {
     if ts.len() < 2 || ts.len() > MAX_SEARCH_TERMS {
         return Vec::new();
     }
-    ts.sort_by_key(|&t| p.system.pool.variables(t).iter().any(|v| v.1 == 2));
+    crate::sort::sort_by_key(&mut ts, |&t| {
+        p.system.pool.variables(t).iter().any(|v| v.1 == 2)
+    });
     ts
 }
 

@@ -49,7 +49,7 @@ pub(crate) fn canonical(part: &Part, p: &mut Prepared, input: &str) -> Option<St
                 format!("{s}{value}")
             })
             .collect();
-        shown.sort();
+        crate::sort::sort(&mut shown);
         return Some(format!("[{}]", shown.join("; ")));
     }
     let parsed = parse(input, &p.context).ok()?;
@@ -128,7 +128,7 @@ pub(crate) fn fingerprint(part: &Part, p: &mut Prepared, input: &str) -> Option<
                 .join(" ");
             keys.push(format!("{s}{key}"));
         }
-        keys.sort();
+        crate::sort::sort(&mut keys);
         return Some(format!("[{}]", keys.join("; ")));
     }
     let r = read(input, &p.context, &mut p.system.pool).ok()?;
@@ -215,7 +215,7 @@ fn equations_key(p: &mut Prepared, res: &[Id], pts: &PointSet) -> Option<String>
     let mut keys: Vec<String> = (0..res.len())
         .map(|i| normalised(&affine, i))
         .collect::<Option<_>>()?;
-    keys.sort();
+    crate::sort::sort(&mut keys);
     Some(format!("each:{}", keys.join("; ")))
 }
 

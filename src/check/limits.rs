@@ -110,7 +110,7 @@ pub(super) fn applicable(p: &mut Prepared, e: Id) -> Vec<Limit> {
             found.push((k, rank, limit));
         }
     }
-    found.sort_by_key(|&(k, rank, _)| (k, rank));
+    crate::sort::sort_by_key(&mut found, |&(k, rank, _)| (k, rank));
     found.into_iter().map(|(_, _, l)| l).collect()
 }
 

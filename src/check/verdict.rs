@@ -315,7 +315,7 @@ impl Verdict {
 
     /// Orders the diagnoses most specific first and removes repeats.
     pub fn sort(&mut self) {
-        self.diagnoses.sort_by_key(|d| d.code);
+        crate::sort::sort_by_key(&mut self.diagnoses, |d| d.code);
         self.diagnoses.dedup();
     }
 }

@@ -130,7 +130,7 @@ impl Pool {
             let term = self.with_coeff(c, k);
             out.push(term);
         }
-        out.sort_unstable();
+        crate::sort::sort_unstable(&mut out);
         if !constant.is_zero() {
             let n = self.num(constant);
             out.insert(0, n);
@@ -339,7 +339,7 @@ impl Pool {
         if coeff.is_zero() {
             return self.zero();
         }
-        out.sort_unstable();
+        crate::sort::sort_unstable(&mut out);
         if out.is_empty() {
             return self.num(coeff);
         }
@@ -497,8 +497,8 @@ impl Pool {
         let fy = self.factors_without_coeff(y);
         let mut fx = fx.to_vec();
         let mut fy = fy.to_vec();
-        fx.sort_by(|&a, &b| order::cmp(self, a, b));
-        fy.sort_by(|&a, &b| order::cmp(self, a, b));
+        crate::sort::sort_by(&mut fx, |&a, &b| order::cmp(self, a, b));
+        crate::sort::sort_by(&mut fy, |&a, &b| order::cmp(self, a, b));
         for (a, b) in fx.iter().zip(&fy) {
             let o = order::cmp(self, *a, *b);
             if o != Ordering::Equal {

@@ -78,7 +78,7 @@ impl Pool {
                 self.push_children(n, &mut stack);
             }
         }
-        reach.sort_unstable();
+        crate::sort::sort_unstable(&mut reach);
         let start = self.len();
         let mut d: FxHashMap<Id, Id> = FxHashMap::default();
         for n in reach {

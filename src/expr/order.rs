@@ -88,8 +88,8 @@ pub(crate) fn cmp(pool: &Pool, a: Id, b: Id) -> Ordering {
 fn cmp_lists(pool: &Pool, x: &[Id], y: &[Id]) -> Ordering {
     let mut xs = x.to_vec();
     let mut ys = y.to_vec();
-    xs.sort_by(|&p, &q| cmp(pool, p, q));
-    ys.sort_by(|&p, &q| cmp(pool, p, q));
+    crate::sort::sort_by(&mut xs, |&p, &q| cmp(pool, p, q));
+    crate::sort::sort_by(&mut ys, |&p, &q| cmp(pool, p, q));
     for (p, q) in xs.iter().zip(&ys) {
         let o = cmp(pool, *p, *q);
         if o != Ordering::Equal {

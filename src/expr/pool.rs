@@ -335,7 +335,7 @@ impl Pool {
                 _ => self.push_children(n, &mut stack),
             }
         }
-        vars.sort();
+        crate::sort::sort(&mut vars);
         vars.dedup();
         vars
     }

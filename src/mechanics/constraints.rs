@@ -224,7 +224,9 @@ impl System {
                 residual: s.value,
             })
             .collect();
-        found.sort_by_key(|v| (v.level == ConstraintLevel::Velocity, v.index));
+        crate::sort::sort_by_key(&mut found, |v| {
+            (v.level == ConstraintLevel::Velocity, v.index)
+        });
         Ok(found.first().copied())
     }
 

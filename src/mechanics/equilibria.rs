@@ -254,7 +254,7 @@ impl System {
         }
         let found = blocks::product(&blocks, &roots, &rest)?;
         let mut grouped = families::group(&statics, found, &periodic, &widths, force);
-        grouped.sort_by(|(a, _), (b, _)| {
+        crate::sort::sort_by(&mut grouped, |(a, _), (b, _)| {
             a.iter()
                 .zip(b)
                 .map(|(x, y)| x.total_cmp(y))

@@ -81,7 +81,9 @@ pub(crate) fn generalized_eigen(
     a = (&a + a.transpose()) * 0.5;
     let eig = SymmetricEigen::new(a);
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    crate::sort::sort_by(&mut order, |&i, &j| {
+        eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j])
+    });
     let values = DVector::from_fn(n, |i, _| eig.eigenvalues[order[i]]);
     let y = DMatrix::from_fn(n, n, |r, c| eig.eigenvectors[(r, order[c])]);
     let v = linv.transpose() * y;

@@ -221,7 +221,7 @@ fn reachable(pool: &Pool, roots: &[Id]) -> Vec<Id> {
             stack.extend(children.iter().copied());
         }
     }
-    out.sort_unstable();
+    crate::sort::sort_unstable(&mut out);
     out
 }
 

@@ -128,8 +128,7 @@ pub(crate) fn solve(
     out.frequencies.sort_by(f64::total_cmp);
     out.growth_rates.sort_by(f64::total_cmp);
     out.decay_rates.sort_by(f64::total_cmp);
-    out.damped
-        .sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
+    crate::sort::sort_by(&mut out.damped, |a, b| a.frequency.total_cmp(&b.frequency));
     out.stability = if !out.growth_rates.is_empty() {
         Stability::Unstable
     } else if zeros > 0 {

@@ -285,7 +285,9 @@ impl System {
                 }
             }
         }
-        names.sort_by(|a, b| crate::expr::order::natural_cmp(&a.0, &b.0));
+        crate::sort::sort_by(&mut names, |a, b| {
+            crate::expr::order::natural_cmp(&a.0, &b.0)
+        });
         for (name, sym) in names {
             if !self.parameters.iter().any(|p| p.sym == sym) {
                 self.parameters.push(Parameter {

@@ -179,8 +179,8 @@ fn names(pool: &Pool, roots: &[Id], ctx: &Context) -> (Vec<String>, Vec<String>)
         }
     }
     parameters.retain(|p| !coordinates.contains(p));
-    coordinates.sort();
-    parameters.sort();
+    crate::sort::sort(&mut coordinates);
+    crate::sort::sort(&mut parameters);
     (coordinates, parameters)
 }
 

@@ -361,6 +361,50 @@ test('progress exports and imports as the REPL\'s progress.json', async () => {
   await page.waitForFunction((b) => document.querySelector('#summary').textContent === b, before);
 });
 
+test('a problem with variants: fresh numbers, judged with them, the seed kept with the progress', async () => {
+  // The documented example of per-student variants (m, l and g vary; `potential` takes numbers).
+  const example = join(here, '..', '..', 'examples', 'variants', 'pendulum-numbers.toml');
+  await page.setInputFiles('#file-input', [{ name: 'pendulum-numbers.toml', mimeType: 'text/plain', buffer: await readFile(example) }]);
+  await page.waitForFunction(() => /added as pendulum-numbers/.test(document.querySelector('#findings').innerText));
+  await openProblem('pendulum-numbers');
+  assert.equal(await page.isVisible('#variant-button'), true, 'a problem with variants offers fresh numbers');
+  assert.match(await page.textContent('#numbers'), /numbers of g, l, m vary/);
+  const numbers = async () => Object.fromEntries(
+    (await page.textContent('#numbers')).replace(/^Your numbers: |\.$/g, '').split(', ')
+      .map((s) => s.split(' = ')).map(([k, v]) => [k, v.split(' ')[0]]));
+  // Keyboard: the button is reached and pressed like any other.
+  const fresh = async () => {
+    const before = await page.textContent('#numbers');
+    await page.focus('#variant-button');
+    await page.keyboard.press('Enter');
+    await page.waitForFunction((b) => document.querySelector('#numbers').textContent !== b, before);
+    return numbers();
+  };
+  const first = await fresh();
+  const second = await fresh();
+  assert.notDeepEqual(second, first, 'fresh numbers differ from the last ones');
+  assert.equal(await page.getAttribute('#variant-button', 'aria-describedby'), 'numbers');
+  // The statement shows the numbers practised, typeset without a KaTeX error.
+  assert.match(await page.innerText('#statement'), new RegExp(`mass ${second.m} kg`));
+  assert.equal(await page.locator('.katex-error').count(), 0);
+  // The seed is kept in the browser's progress, in the REPL's progress.json format.
+  const saved = await page.evaluate(() => localStorage.getItem('lagrange.progress'));
+  assert.match(saved, /"pendulum-numbers": \{\s*"parts": \{\},\s*"variant_seed": \d+/);
+  // Judged with these numbers: the last numbers' answer is wrong now, these are right.
+  await page.click('#parts li:nth-child(2) button');
+  await page.waitForFunction(() => /— potential/.test(document.querySelector('#prompt-title').textContent));
+  await enter(`-${first.m}*${first.g}*${first.l}*cos(theta)`);
+  assert.equal(await page.locator('#feedback .verdict').getAttribute('data-status'), 'incorrect');
+  await enter(`-${second.m}*${second.g}*${second.l}*cos(theta)`);
+  assert.equal(await page.locator('#feedback .verdict').getAttribute('data-status'), 'correct');
+  await shot('10b-variant');
+  // A reload practises the same numbers.
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+  await page.waitForFunction(() => /^Your numbers: /.test(document.querySelector('#numbers').textContent));
+  assert.deepEqual(await numbers(), second);
+});
+
 test('one column at 360 px, labelled controls, live verdicts', async () => {
   await page.setViewportSize({ width: 360, height: 780 });
   await openProblem('simple-pendulum');

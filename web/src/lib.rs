@@ -14,6 +14,7 @@
 use lagrange::bank::{Bank, Finding, embedded, load_str, verify::verify};
 use lagrange::chart::unicode;
 use lagrange::expr::Style;
+use lagrange::problem::variant;
 use lagrange::report::{Plain, ReadOptions, reading};
 use lagrange::tutor::response::{AnalysisReport, json_object};
 use lagrange::tutor::{Progress, Response, Session};
@@ -103,9 +104,11 @@ impl Engine {
             .flatten()
             .map(|r| r.forms.latex);
         let bank = self.session.bank();
+        let progress = self.session.progress();
+        let seed = |id: &str| progress.problems.get(id).and_then(|p| p.variant_seed);
         let value = json_object(&responses, |r, map| {
             extend(r, map, line);
-            with_tex(r, map, bank);
+            with_tex(r, map, bank, &seed);
             if let (Response::Verdict(_) | Response::StepVerdict(_), Some(t)) = (r, &reading_tex) {
                 map.insert("reading_tex".into(), json!(t));
             }
@@ -331,31 +334,48 @@ fn extend(r: &Response, map: &mut Map<String, Value>, line: &str) {
 /// The problem file's own text with its `$…$` mathematics, beside the Unicode rendering the
 /// protocol carries (made for a terminal): `statement_tex` and each part's `prompt_tex` on a
 /// statement, `prompt_tex` on a part, `hint_tex` on a part's hint. The page typesets them.
-fn with_tex(r: &Response, map: &mut Map<String, Value>, bank: &Bank) {
+/// A problem with variants has its `{{name}}` filled with the numbers being practised (the
+/// seed `seed` gives for the problem, as `:variant` keeps it), or with the names without one.
+fn with_tex(
+    r: &Response,
+    map: &mut Map<String, Value>,
+    bank: &Bank,
+    seed: &dyn Fn(&str) -> Option<u64>,
+) {
     let part_of = |problem: &str, part: &str| {
         bank.problem(problem)
             .and_then(|p| p.parts.iter().find(|q| q.id == part))
     };
+    let practised = |p: &lagrange::Problem| seed(&p.id).and_then(|s| variant::pick(p, s, ""));
     match r {
         Response::Statement(s) => {
             let Some(p) = bank.problem(&s.sheet.id) else {
                 return;
             };
-            map.insert("statement_tex".into(), json!(p.statement.trim()));
-            let prompts: Vec<&str> = p.parts.iter().map(|q| q.prompt.as_str()).collect();
+            let v = practised(p);
+            let fill = |text: &str| variant::fill(text, &p.variants, v.as_ref());
+            map.insert("statement_tex".into(), json!(fill(p.statement.trim())));
+            let prompts: Vec<String> = p.parts.iter().map(|q| fill(&q.prompt)).collect();
             map.insert("prompts_tex".into(), json!(prompts));
         }
         Response::Part(q) => {
-            if let Some(part) = part_of(&q.problem, &q.part) {
-                map.insert("prompt_tex".into(), json!(part.prompt));
+            if let (Some(p), Some(part)) = (bank.problem(&q.problem), part_of(&q.problem, &q.part))
+            {
+                let v = practised(p);
+                let text = variant::fill(&part.prompt, &p.variants, v.as_ref());
+                map.insert("prompt_tex".into(), json!(text));
             }
         }
         // A tutor's hint (`reveal` is `:show`) is generated from the physics, not the file.
         Response::Hint(h) if h.reveal == ":solution" => {
             let raw = part_of(&h.problem, &h.part)
                 .and_then(|part| part.hints.get(h.number.checked_sub(1)?));
-            if let (Some(raw), Some(_)) = (raw, &h.hint) {
-                map.insert("hint_tex".into(), json!(raw));
+            if let (Some(raw), Some(_), Some(p)) = (raw, &h.hint, bank.problem(&h.problem)) {
+                let v = practised(p);
+                map.insert(
+                    "hint_tex".into(),
+                    json!(variant::fill(raw, &p.variants, v.as_ref())),
+                );
             }
         }
         _ => {}

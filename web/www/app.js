@@ -17,6 +17,7 @@ const els = {
   answerLabel: $('answer-label'), preview: $('preview'), completions: $('completions'),
   feedback: $('feedback'), history: $('history'), simulation: $('simulation'), plots: $('plots'),
   simSummary: $('simulation-summary'), findings: $('findings'), progressNote: $('progress-note'),
+  variantBox: $('variant-box'), numbers: $('numbers'),
 };
 
 /** Timings for the end-to-end test's report (performance.now() milliseconds). */
@@ -139,6 +140,7 @@ function refresh() {
   const s = JSON.parse(guarded(() => engine.state()) ?? '{}');
   const open = Boolean(s.problem);
   for (const b of els.form.querySelectorAll('button')) b.disabled = !open;
+  if (!open) els.variantBox.hidden = true;
   els.answer.disabled = !open;
   for (const b of els.form.querySelectorAll('.tutor-only')) b.hidden = !s.tutor;
   $('tutor-button').hidden = Boolean(s.tutor);
@@ -303,6 +305,11 @@ function bind() {
     b.addEventListener('click', () => send(b.dataset.line));
   }
   $('simulate').addEventListener('click', () => send(':simulate'));
+  // Fresh numbers for the open problem: the REPL's `:variant`, its seed kept in the progress.
+  $('variant-button').addEventListener('click', () => {
+    send(':variant');
+    els.answer.focus();
+  });
   $('file-input').addEventListener('change', (e) => openFiles([...e.target.files]));
   $('import-input').addEventListener('change', (e) => importProgress(e.target.files[0]));
   $('export').addEventListener('click', exportProgress);

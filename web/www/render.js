@@ -183,4 +183,10 @@ export function statement(r, els) {
     h('dt', {}, 'Parameters'), h('dd', {}, (r.parameters ?? []).join(', ') || '—'),
     ...(r.assumptions && r.assumptions.length ? [h('dt', {}, 'Assumptions'), h('dd', {}, r.assumptions.join('; '))] : []),
   );
+  // A problem whose numbers vary: the numbers being practised (`:variant` picks fresh ones).
+  const varies = r.varies ?? [];
+  els.variantBox.hidden = varies.length === 0;
+  els.numbers.textContent = r.numbers && r.numbers.length
+    ? `Your numbers: ${r.numbers.join(', ')}.`
+    : `The numbers of ${varies.join(', ')} vary: practise with fresh numbers to get your own.`;
 }

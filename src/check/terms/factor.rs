@@ -14,7 +14,7 @@ pub(super) fn state_vars(p: &Prepared, e: Id) -> Vec<(Sym, u8)> {
         .into_iter()
         .filter(|(s, _)| *s == time || coords.contains(s))
         .collect();
-    v.sort();
+    crate::sort::sort(&mut v);
     v.dedup();
     v
 }

@@ -299,7 +299,9 @@ fn scalings(
             usable.then_some((numeric_only, !one, rank, c))
         })
         .collect();
-    found.sort_by_key(|&(numeric_only, not_one, rank, _)| (numeric_only, not_one, rank));
+    crate::sort::sort_by_key(&mut found, |&(numeric_only, not_one, rank, _)| {
+        (numeric_only, not_one, rank)
+    });
     found.into_iter().map(|(_, _, _, c)| c).collect()
 }
 

@@ -128,7 +128,7 @@ impl Program {
                 pool.push_children(n, &mut stack);
             }
         }
-        reach.sort_unstable();
+        crate::sort::sort_unstable(&mut reach);
         let mut prog = Program {
             inputs: inputs.to_vec(),
             consts: Vec::new(),
@@ -159,7 +159,7 @@ impl Program {
     /// Compiles `roots` with every variable they contain as an input, sorted.
     pub fn compile_all(pool: &Pool, roots: &[Id]) -> Program {
         let mut vars: Vec<(Sym, u8)> = roots.iter().flat_map(|&r| pool.variables(r)).collect();
-        vars.sort();
+        crate::sort::sort(&mut vars);
         vars.dedup();
         // Every variable is an input, so compiling cannot fail.
         Program::compile(pool, roots, &vars).unwrap_or_else(|_| Program {

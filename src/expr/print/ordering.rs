@@ -27,7 +27,9 @@ impl Pool {
     pub(crate) fn display_sort_terms(&self, terms: &mut [Id]) {
         let mut keyed: Vec<(Id, TermKey<'_>)> =
             terms.iter().map(|&t| (t, self.term_key(t))).collect();
-        keyed.sort_by(|(a, ka), (b, kb)| self.display_cmp_keyed(*a, ka, *b, kb));
+        crate::sort::sort_by(&mut keyed, |(a, ka), (b, kb)| {
+            self.display_cmp_keyed(*a, ka, *b, kb)
+        });
         for (slot, (t, _)) in terms.iter_mut().zip(keyed) {
             *slot = t;
         }

@@ -169,8 +169,8 @@ impl Printer<'_> {
             }
             num.push(f);
         }
-        num.sort_by(|&a, &b| pool.display_cmp_factors(a, b));
-        den.sort_by(|a, b| pool.display_cmp_factors(a.0, b.0));
+        crate::sort::sort_by(&mut num, |&a, &b| pool.display_cmp_factors(a, b));
+        crate::sort::sort_by(&mut den, |a, b| pool.display_cmp_factors(a.0, b.0));
         let (mut num_items, den_from_coeff) = self.numerator_items(&coeff, &num, den.is_empty());
         // −m g l (cos θ − 1) is shown m g l (1 − cos θ), −(m₁ − m₂) g as (m₂ − m₁) g: a
         // negative product standing alone with one difference among its factors takes the

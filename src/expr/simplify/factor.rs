@@ -108,7 +108,7 @@ impl Pool {
         // lone numeric factor over the sum.
         let mut rest: Vec<Id> = rest.into_iter().filter(|&f| f != self.one()).collect();
         rest.push(inner);
-        rest.sort_unstable();
+        crate::sort::sort_unstable(&mut rest);
         let mut parts = Vec::with_capacity(rest.len() + 1);
         if !coeff.is_one() {
             parts.push(self.num(coeff));

@@ -71,7 +71,7 @@ impl Pool {
 
     fn simplify_unbounded(&mut self, e: Id, positive: &[Sym]) -> Id {
         let mut sorted_positive = positive.to_vec();
-        sorted_positive.sort_unstable();
+        crate::sort::sort_unstable(&mut sorted_positive);
         if self.caches.roots_positive != sorted_positive {
             self.caches.roots.clear();
             self.caches.roots_positive = sorted_positive;
@@ -130,7 +130,7 @@ impl Pool {
                 }
             }
         }
-        reach.sort_unstable();
+        crate::sort::sort_unstable(&mut reach);
         let new = cache;
         for n in reach {
             if new.contains_key(&n) {

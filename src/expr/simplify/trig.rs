@@ -200,6 +200,6 @@ fn without(v: &[Id], i: usize) -> Vec<Id> {
 }
 
 fn sorted(mut v: Vec<Id>) -> Vec<Id> {
-    v.sort_unstable();
+    crate::sort::sort_unstable(&mut v);
     v
 }

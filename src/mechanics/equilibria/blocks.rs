@@ -59,7 +59,7 @@ impl System {
                 }
                 k += 1;
             }
-            members.sort_unstable();
+            crate::sort::sort_unstable(&mut members);
             blocks.push(members);
         }
         blocks

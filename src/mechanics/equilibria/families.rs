@@ -114,7 +114,7 @@ fn singular_coordinates(m: &nalgebra::DMatrix<f64>) -> Vec<usize> {
             }
         }
     }
-    out.sort_unstable();
+    crate::sort::sort_unstable(&mut out);
     out
 }
 

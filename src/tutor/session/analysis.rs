@@ -202,7 +202,7 @@ fn moving_names(l: &str) -> Vec<String> {
         .filter(|v| v.1 >= 1)
         .map(|v| pool.name(v.0).to_string())
         .collect();
-    names.sort();
+    crate::sort::sort(&mut names);
     names.dedup();
     names
 }

@@ -254,7 +254,7 @@ impl Session {
             .into_iter()
             .filter(|c| c.starts_with(word))
             .collect();
-        found.sort();
+        crate::sort::sort(&mut found);
         found.dedup();
         // A unique command is completed with the space its argument follows, as shells do.
         if head.is_empty()
