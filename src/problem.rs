@@ -163,6 +163,13 @@ pub struct Part {
     /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
     /// the stated equilibria are the ones).
     pub assumptions: Vec<Assumption>,
+    /// A linearized part: the point to expand about, one value per named coordinate (the
+    /// others about 0); the answer is the second-order Taylor polynomial in q − q₀ and q̇.
+    pub about: Option<Vec<(String, String)>>,
+    /// For frequencies: the zero modes (free motions) are not listed.
+    pub omit_zero_modes: bool,
+    /// For frequencies: the answers are growth rates λ (q ~ e^{λt}), not frequencies.
+    pub growth: bool,
     /// Line of the part in its file.
     pub line: usize,
 }

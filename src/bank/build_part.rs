@@ -137,6 +137,7 @@ pub(super) fn build_part(
             ));
         }
     }
+    let extra = super::build_linearized::options(sp, kind, quantity, sys)?;
     Ok(Part {
         id: sp.id.clone(),
         kind,
@@ -161,6 +162,9 @@ pub(super) fn build_part(
         require_stability: sp.require_stability,
         // Read by the builder, which holds the system mutably.
         assumptions: Vec::new(),
+        about: extra.about,
+        omit_zero_modes: extra.omit_zero_modes,
+        growth: extra.growth,
         line,
     })
 }

@@ -112,6 +112,7 @@ pub(crate) fn check_prepared(
     if let Some(l) = &label {
         named::finish(p, part, l, &mut v);
     }
+    super::linearize::diagnose(part, p, input, &mut v);
     never_correct_with_unlike_dimensions(&mut v);
     drop_superseded(&mut v);
     fold_definitions(p, input, &mut v);

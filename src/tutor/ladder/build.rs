@@ -74,6 +74,9 @@ impl Builder<'_> {
             same_motion: false,
             require_stability: false,
             assumptions: Vec::new(),
+            about: None,
+            omit_zero_modes: false,
+            growth: false,
             line: self.problem.lagrangian_line,
         };
         self.steps.push(Step {
