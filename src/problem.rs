@@ -170,6 +170,14 @@ pub struct Part {
     pub omit_zero_modes: bool,
     /// For frequencies: the answers are growth rates λ (q ~ e^{λt}), not frequencies.
     pub growth: bool,
+    /// A numeric part (`values` give every parameter a number): the dimension of the answer,
+    /// whose units are read in square brackets (`4.43 [rad/s]`) and converted to SI.
+    pub units: Option<Dimension>,
+    /// The parameters' values as the file gives them (`l = 50 [cm]`), for display.
+    pub values: Vec<(String, String)>,
+    /// A numeric part's reference answers as the file writes them, with their units
+    /// (`answers` holds them in SI).
+    pub answers_with_units: Vec<String>,
     /// Line of the part in its file.
     pub line: usize,
 }
@@ -193,6 +201,9 @@ impl Part {
     /// The reference answer's items as a student writes them: an equilibrium with the
     /// stability the part requires (`r = 0 (unstable)`).
     pub fn reference_items(&self) -> Vec<String> {
+        if !self.answers_with_units.is_empty() {
+            return self.answers_with_units.clone();
+        }
         if self.require_stability {
             return self
                 .answers

@@ -165,6 +165,10 @@ pub(super) fn build_part(
         about: extra.about,
         omit_zero_modes: extra.omit_zero_modes,
         growth: extra.growth,
+        // Set by `build_numeric`, which knows the parameters' dimensions.
+        units: None,
+        values: Vec::new(),
+        answers_with_units: Vec::new(),
         line,
     })
 }

@@ -275,4 +275,8 @@ pub struct PartSpec {
     /// For frequencies: the answers are the growth rates λ (q ~ e^{λt}) of the unstable modes.
     #[serde(default)]
     pub growth: bool,
+    /// A numeric part: a number (with a unit in brackets, `"50 [cm]"`) for every parameter;
+    /// answers are then numbers, with units in brackets.
+    #[serde(default)]
+    pub values: BTreeMap<String, BoundSpec>,
 }

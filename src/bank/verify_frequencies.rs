@@ -25,7 +25,9 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
     } else {
         Dimension::new(0, 0, -1)
     };
-    for &s in &stated {
+    // A numeric part's numbers are dimensionless; their units were checked when the file was
+    // read.
+    for &s in stated.iter().filter(|_| part.units.is_none()) {
         check_dimension(problem, p, s, Some(per_time))?;
     }
     let at = equilibrium_of(p, part)?;

@@ -288,6 +288,8 @@ pub(super) fn classify_unmatched(
     }
     // An item of the wrong dimension says so.
     let want = match part.kind {
+        // A numeric part's units were checked before its numbers were read.
+        _ if part.units.is_some() => None,
         PartKind::Frequencies if part.squared => Some(Dimension::new(0, 0, -2)),
         PartKind::Frequencies => Some(Dimension::new(0, 0, -1)),
         _ => None,

@@ -21,7 +21,7 @@ mod item_reading;
 mod items;
 mod lagrangian;
 mod limits;
-pub(crate) mod linearize;
+pub mod linearize;
 mod lists;
 mod misconception;
 mod modes_lists;
@@ -32,6 +32,7 @@ mod residual;
 mod stability;
 mod terms;
 pub mod tolerance;
+pub mod units;
 pub mod verdict;
 
 pub use crate::problem::Assumption;

@@ -185,7 +185,10 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
                 id: part.id.clone(),
                 kind: part.kind.name().to_string(),
                 points: part.points,
-                prompt: terminal_math(&part.prompt),
+                prompt: match crate::check::units::answer_form(part) {
+                    Some(form) => format!("{} ({form})", terminal_math(&part.prompt)),
+                    None => terminal_math(&part.prompt),
+                },
                 answers: answers.then(|| part.reference_items()),
             })
             .collect(),

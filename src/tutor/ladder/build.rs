@@ -77,6 +77,9 @@ impl Builder<'_> {
             about: None,
             omit_zero_modes: false,
             growth: false,
+            units: None,
+            values: Vec::new(),
+            answers_with_units: Vec::new(),
             line: self.problem.lagrangian_line,
         };
         self.steps.push(Step {

@@ -308,7 +308,10 @@ impl Session {
             part: part.id.clone(),
             number,
             part_kind: part.kind.name().to_string(),
-            prompt: terminal_math(&part.prompt),
+            prompt: match crate::check::units::answer_form(part) {
+                Some(form) => format!("{} ({form})", terminal_math(&part.prompt)),
+                None => terminal_math(&part.prompt),
+            },
             solved: self.progress.is_solved(&problem.id, &part.id),
         }))
     }
