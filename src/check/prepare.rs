@@ -34,7 +34,7 @@ pub struct Prepared {
     /// The reference answer's items, read once (one id per item; several per equilibrium).
     pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
     /// For a linearized part (`about`): where `system` was expanded.
-    pub expansion: Option<super::linearize::Expansion>,
+    pub expansion: Option<super::taylor::Expansion>,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -45,7 +45,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         .map_err(|error| CheckError::Substitution { error })?;
     // A linearized part is checked against the expanded system.
     let expansion = match &part.about {
-        Some(about) => Some(super::linearize::linearize(&mut system, about)?),
+        Some(about) => Some(super::taylor::linearize(&mut system, about)?),
         None => None,
     };
     // The problem's assumptions and the part's own.

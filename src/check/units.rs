@@ -182,7 +182,12 @@ pub fn convert(input: &str, want: Dimension) -> Result<Converted, UnitError> {
             )));
         }
         if factor != 1.0 {
-            notes.push(format!("{} [{}] in SI", value.trim(), unit.trim()));
+            let number = value.split_once('=').map_or(value, |(_, v)| v);
+            let shown = match numbers(number).first().copied().flatten() {
+                Some(x) => format!("{}", x * factor),
+                None => format!("({})·{factor}", number.trim()),
+            };
+            notes.push(format!("{} [{}] = {shown}", number.trim(), unit.trim()));
         }
         // A label (`ω = 4.4 [rad/s]`) stays in front of the converted value.
         match value.split_once('=') {

@@ -39,6 +39,13 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
     Ok(b.steps)
 }
 
+/// A frequencies part whose list is every root of det(K − ω² M) = 0 in symbols (not only
+/// the nonzero ones, not growth rates, not numbers with units), which the characteristic
+/// and frequencies steps can adopt.
+fn plain_frequencies(p: &Part) -> bool {
+    !p.omit_zero_modes && !p.growth && p.units.is_none()
+}
+
 /// Builds the steps in order.
 struct Builder<'a> {
     problem: &'a Problem,
@@ -261,7 +268,7 @@ impl Builder<'_> {
         let Some(freq) = problem
             .parts
             .iter()
-            .find(|p| p.kind == PartKind::Frequencies && !p.squared)
+            .find(|p| p.kind == PartKind::Frequencies && !p.squared && plain_frequencies(p))
         else {
             return Ok(());
         };
@@ -279,10 +286,9 @@ impl Builder<'_> {
             return Ok(());
         }
         self.linearized(freq)?;
-        let squared = problem
-            .parts
-            .iter()
-            .find(|p| p.kind == PartKind::Frequencies && p.squared && p.at == freq.at);
+        let squared = problem.parts.iter().find(|p| {
+            p.kind == PartKind::Frequencies && p.squared && p.at == freq.at && plain_frequencies(p)
+        });
         let mut part = match squared {
             Some(s) => s.clone(),
             None => {
@@ -515,7 +521,11 @@ mod tests {
     fn m_and_k_give_the_problems_frequencies() {
         for p in &crate::bank::embedded::bank().problems {
             let steps = ladder(p).unwrap();
-            let Some(freq) = p.parts.iter().find(|x| x.kind == PartKind::Frequencies) else {
+            let Some(freq) = p
+                .parts
+                .iter()
+                .find(|x| x.kind == PartKind::Frequencies && plain_frequencies(x))
+            else {
                 continue;
             };
             let mut sys = p.system.clone();
