@@ -1,8 +1,9 @@
-//! The layering test: reads the `crate::…` and `super::…` paths of every library file and fails
-//! when a lower layer imports a higher one ([`crate::LAYERS`]) or when the files of one module
-//! import each other in a loop. Files in a folder below a module (a file split by concept) are
-//! checked for upward imports; the loop check is between a module's top-level files, where
-//! such a folder counts as one file. Test-only: the library itself reads no files.
+//! The layering test: reads the `crate::…` and `super::…` paths of every file under `src/` and
+//! fails when a lower layer of the library imports a higher one ([`crate::LAYERS`]), when a
+//! face of the binary imports another face (they share only the face-support module), or when
+//! the files of one folder import each other in a loop. The loop check runs in every folder,
+//! library and faces alike, between the folder's entries (a sub-folder counts as one).
+//! Test-only: the library itself reads no files.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -102,9 +103,10 @@ fn paths_in(code: &str) -> Vec<String> {
     out
 }
 
-/// What `path` (seen from `from`) names: a top-level module and maybe one of its files.
-/// `files` lists the files of each module folder; `reexports` maps `module::Item` to the file
-/// whose `pub use` makes it visible at the module root.
+/// What `path` (seen from `from`) names: a top-level module and maybe one of its files (the
+/// longest known file path the path starts with: `crate::tutor::ladder::build::teach::x` →
+/// `tutor/ladder/build/teach.rs`). `files` lists the files of each module folder; `reexports`
+/// maps `module::Item` to the file whose `pub use` makes it visible at the module root.
 fn target(
     from: &Unit,
     path: &str,
@@ -112,25 +114,48 @@ fn target(
     reexports: &BTreeMap<(String, String), String>,
 ) -> Option<Unit> {
     let segs: Vec<&str> = path.split("::").filter(|s| !s.is_empty()).collect();
-    let (module, rest) = match *segs.first()? {
-        "crate" => (segs.get(1)?.to_string(), &segs[2.min(segs.len())..]),
-        "super" if from.file.is_some() => (from.module.clone(), &segs[1..]),
+    let (module, rest): (String, Vec<&str>) = match *segs.first()? {
+        "crate" => (segs.get(1)?.to_string(), segs[2.min(segs.len())..].to_vec()),
+        "super" => {
+            // `super` is the parent of the file's own module path (`ladder/checker` → `ladder`);
+            // from a module's root file it is the crate root, outside the module.
+            let mut base: Vec<&str> = from
+                .file
+                .as_deref()
+                .map_or(Vec::new(), |f| f.split('/').collect());
+            let ups = segs.iter().take_while(|s| **s == "super").count();
+            for _ in 0..ups {
+                base.pop()?;
+            }
+            base.extend(&segs[ups..]);
+            (from.module.clone(), base)
+        }
         _ => return None,
     };
-    let file = rest.first().and_then(|first| {
-        let in_folder = files.get(&module).is_some_and(|f| f.contains(*first));
-        if in_folder {
-            Some(first.to_string())
-        } else {
+    let known = files.get(&module);
+    let file = (1..=rest.len())
+        .rev()
+        .map(|n| rest[..n].join("/"))
+        .find(|f| known.is_some_and(|k| k.contains(f)))
+        .or_else(|| {
+            let first = rest.first()?;
             reexports.get(&(module.clone(), first.to_string())).cloned()
-        }
-    });
+        });
     Some(Unit { module, file })
 }
 
-/// The library's files: (unit, code). Faces (`main.rs`, `cli/`, `repl/`, `grade/`, `plot/`) are the
-/// binary's, not the library's, and are left out.
-fn library_files(src: &Path) -> Vec<(Unit, String)> {
+/// The faces of the binary (`src/main.rs` declares them): each may use the library and the
+/// shared face-support module [`FACE_SUPPORT`], never another face.
+const FACES: &[&str] = &["cli", "repl", "grade"];
+
+/// The one module the faces share (output files, the progress bar, pictures, the terminal):
+/// it may use the library, never a face.
+const FACE_SUPPORT: &str = "face";
+
+/// The source files under `src/`: (unit, code), the library's modules and the binary's faces
+/// and face support alike. `lib.rs`, `main.rs` (the binary's root, which dispatches to every
+/// face) and this test are left out.
+fn source_files(src: &Path) -> Vec<(Unit, String)> {
     let mut out = Vec::new();
     let Ok(entries) = std::fs::read_dir(src) else {
         return out;
@@ -144,9 +169,6 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
             .unwrap_or("")
             .to_string();
         if path.is_dir() {
-            if name == "cli" || name == "repl" || name == "grade" || name == "plot" {
-                continue;
-            }
             for (file, text) in rs_files(&path) {
                 let file = (file != "mod").then_some(file);
                 out.push((
@@ -158,9 +180,7 @@ fn library_files(src: &Path) -> Vec<(Unit, String)> {
                 ));
             }
         } else if path.extension().is_some_and(|e| e == "rs")
-            // `outfile.rs` and `bar.rs` belong to the binary (the faces' file writing and
-            // progress bar), like main.rs.
-            && !["lib", "main", "layers", "outfile", "bar"].contains(&name.as_str())
+            && !["lib", "main", "layers"].contains(&name.as_str())
         {
             let text = std::fs::read_to_string(&path).unwrap_or_default();
             out.push((
@@ -236,31 +256,38 @@ fn violations(units: &[(Unit, String)], layers: &[&str]) -> Vec<String> {
     let mut out = Vec::new();
     let mut edges: BTreeMap<Unit, BTreeSet<Unit>> = BTreeMap::new();
     for (from, code) in units {
-        let Some(from_rank) = rank(&from.module) else {
+        let from_face = FACES.contains(&from.module.as_str());
+        let from_support = from.module == FACE_SUPPORT;
+        let from_rank = rank(&from.module);
+        if from_rank.is_none() && !from_face && !from_support {
             out.push(format!(
-                "`{}` is in no layer: add it to LAYERS in src/lib.rs",
+                "`{}` is in no layer: add it to LAYERS in src/lib.rs (or to FACES in src/layers.rs)",
                 from.module
             ));
             continue;
-        };
+        }
         for path in paths_in(code) {
             let Some(to) = target(from, &path, &files, &reexports) else {
                 continue;
             };
-            match rank(&to.module) {
-                Some(r) if r > from_rank => out.push(format!(
+            let to_face = FACES.contains(&to.module.as_str());
+            if to.module != from.module && to_face && (from_face || from_support) {
+                out.push(format!(
+                    "{from} imports `{path}`: a face may use the library and `{FACE_SUPPORT}`, never another face"
+                ));
+            }
+            if let (Some(from_rank), Some(r)) = (from_rank, rank(&to.module))
+                && r > from_rank
+            {
+                out.push(format!(
                     "{from} imports `{path}`: `{}` is a higher layer than `{}`",
                     to.module, from.module
-                )),
-                Some(_)
-                    if to.module == from.module
-                        && from.file.as_ref().is_some_and(|f| !f.contains('/'))
-                        && to.file.is_some()
-                        && to.file != from.file =>
-                {
-                    edges.entry(from.clone()).or_default().insert(to);
-                }
-                _ => {}
+                ));
+            }
+            if to.module == from.module
+                && let Some(edge) = sibling_edge(from, &to)
+            {
+                edges.entry(edge.0).or_default().insert(edge.1);
             }
         }
     }
@@ -268,6 +295,23 @@ fn violations(units: &[(Unit, String)], layers: &[&str]) -> Vec<String> {
     out.sort();
     out.dedup();
     out
+}
+
+/// The import of `to` by `from` as an edge between two siblings of one folder: the two
+/// entries (file or sub-folder, a sub-folder counting as one) below their deepest common
+/// folder. `None` when one contains the other (a folder's `mod.rs` and its own files).
+fn sibling_edge(from: &Unit, to: &Unit) -> Option<(Unit, Unit)> {
+    let a: Vec<&str> = from.file.as_deref()?.split('/').collect();
+    let b: Vec<&str> = to.file.as_deref()?.split('/').collect();
+    let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    if common >= a.len() || common >= b.len() {
+        return None;
+    }
+    let unit = |segs: &[&str]| Unit {
+        module: from.module.clone(),
+        file: Some(segs.join("/")),
+    };
+    Some((unit(&a[..=common]), unit(&b[..=common])))
 }
 
 /// One sentence per group of files that import each other in a loop (a strongly connected
@@ -305,7 +349,7 @@ fn cycles(edges: &BTreeMap<Unit, BTreeSet<Unit>>) -> Vec<String> {
 #[test]
 fn the_library_respects_its_layers() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let units = library_files(&src);
+    let units = source_files(&src);
     assert!(
         units.len() > 20,
         "read only {} files under {}",
@@ -389,4 +433,65 @@ fn an_import_loop_between_files_is_caught() {
         unit("check", Some("common"), ""),
     ];
     assert!(violations(&tree, &layers).is_empty());
+}
+
+#[test]
+fn a_face_importing_another_face_is_caught() {
+    let layers = ["expr"];
+    let table: &[(&str, Option<&str>, &str, usize)] = &[
+        ("repl", None, "use crate::face::Terminal;", 0),
+        ("repl", Some("store"), "use lagrange::expr::Pool;", 0),
+        ("repl", None, "use crate::cli::system_args::Terminal;", 1),
+        ("grade", None, "fn f() { crate::cli::emit(\"\") }", 1),
+        ("cli", Some("simulate"), "use crate::repl::Options;", 1),
+        ("face", Some("plot"), "use crate::grade::Lms;", 1),
+        ("face", Some("plot"), "use crate::face::outfile::check;", 0),
+        ("gui", None, "use crate::face::Terminal;", 1),
+    ];
+    for (module, file, code, expected) in table {
+        let v = violations(&[unit(module, *file, code)], &layers);
+        assert_eq!(v.len(), *expected, "{module}/{file:?}: {code:?} gave {v:?}");
+    }
+}
+
+#[test]
+fn an_import_loop_inside_a_sub_folder_or_across_it_is_caught() {
+    let layers = ["tutor"];
+    // Inside `tutor/ladder/`: two of its files import each other.
+    let inside = [
+        unit("tutor", Some("ladder/build"), "use super::checker::x;"),
+        unit(
+            "tutor",
+            Some("ladder/checker"),
+            "use crate::tutor::ladder::build::y;",
+        ),
+    ];
+    let v = violations(&inside, &layers);
+    assert_eq!(v.len(), 1, "{v:?}");
+    assert!(
+        v[0].contains("tutor/ladder/build.rs, tutor/ladder/checker.rs"),
+        "{v:?}"
+    );
+    // Across it: a file of the folder and a top-level file import each other.
+    let across = [
+        unit(
+            "tutor",
+            Some("ladder/build/teach"),
+            "use crate::tutor::follow::z;",
+        ),
+        unit("tutor", Some("follow"), "use super::ladder::Step;"),
+        unit("tutor", Some("ladder"), ""),
+    ];
+    let v = violations(&across, &layers);
+    assert_eq!(v.len(), 1, "{v:?}");
+    // A folder's root and its own files use each other freely.
+    let own = [
+        unit(
+            "tutor",
+            Some("ladder"),
+            "use self::checker::x; fn f() { checker::y() }",
+        ),
+        unit("tutor", Some("ladder/checker"), "use super::Step;"),
+    ];
+    assert!(violations(&own, &layers).is_empty());
 }

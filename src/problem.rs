@@ -5,6 +5,8 @@
 use crate::expr::{Context, Dimension, Dimensions, Id, read_expr};
 use crate::mechanics::System;
 
+pub mod variant;
+
 /// An inequality between two expressions of the parameters.
 #[derive(Clone, Debug)]
 pub struct Assumption {
@@ -17,7 +19,7 @@ pub struct Assumption {
 
 impl Assumption {
     /// Reads `lhs > rhs`, `lhs < rhs`, `>=`, `<=` (also `≥`, `≤`).
-    pub fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
+    pub(crate) fn parse(text: &str, ctx: &Context, sys: &mut System) -> Result<Assumption, String> {
         let ops: [(&str, bool); 6] = [
             (">=", true),
             ("<=", false),
@@ -180,6 +182,9 @@ pub struct Part {
     pub answers_with_units: Vec<String>,
     /// Line of the part in its file.
     pub line: usize,
+    /// The answer may be written with the student's numbers (`1.5*9.81*1.2`) as well as in
+    /// symbols: it is judged against the problem pinned to the student's variant.
+    pub numbers: bool,
 }
 
 impl Part {
@@ -243,6 +248,9 @@ pub struct Problem {
     pub lagrangian_line: usize,
     /// What `simulate` starts from when the user gives nothing else.
     pub simulation: SimulationDefaults,
+    /// How parameters vary from student to student (`[variants]`; empty: one set of symbols
+    /// for everyone).
+    pub variants: Vec<variant::Varied>,
 }
 
 /// A problem's suggested numbers for simulating it: parameter values, an initial state and a

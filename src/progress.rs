@@ -99,7 +99,7 @@ thread_local! {
 }
 
 /// Runs `f` with `p` as the callback of the long calls inside it that take none (the plain
-/// entry points, such as [`crate::report::simulation`], report to it): how a face reaches a
+/// entry points, such as [`crate::report::simulation()`], report to it): how a face reaches a
 /// call made for it by a layer that does not pass a callback (the tutor's `:simulate`).
 /// Scoped to this thread and to `f`; returns `f`'s result.
 pub fn with_ambient<R>(p: Box<dyn Progress>, f: impl FnOnce() -> R) -> R {

@@ -413,6 +413,7 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
 const OUTPUTS: &[&str] = &[
     "results.csv",
     "gradebook.csv",
+    "review.csv",
     "summary.md",
     "summary.json",
     "canvas.csv",

@@ -10,6 +10,7 @@ use crate::mechanics::system::{Coordinate, Parameter};
 use crate::problem::Assumption;
 use crate::problem::{Part, Problem};
 
+use super::FindingCode;
 use super::build_part::{build_part, check_id, reserved};
 use super::build_reader::{Builder, Reader};
 use super::finding::{Finding, line_of};
@@ -22,7 +23,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         problem: None,
         part: None,
         line: line_of(text, pf.id.span().start),
-        code: "bad-id",
+        code: FindingCode::BadId,
         message: why,
     })?;
     let b = Builder {
@@ -34,7 +35,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     if pf.coordinates.is_empty() {
         return Err(b.fail(
             b.id_line,
-            "no-coordinates",
+            FindingCode::NoCoordinates,
             "the problem declares no coordinate".into(),
         ));
     }
@@ -66,7 +67,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     } else {
         return Err(b.fail(
             b.id_line,
-            "no-system",
+            FindingCode::NoSystem,
             "give `lagrangian`, or `bodies` (and `potentials`)".into(),
         ));
     };
@@ -78,9 +79,13 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
         }
     }
     system.parameters = declared;
-    system
-        .check_first_order()
-        .map_err(|e| b.fail(lagrangian_line, e.code(), e.to_string()))?;
+    system.check_first_order().map_err(|e| {
+        b.fail(
+            lagrangian_line,
+            FindingCode::Engine(e.code()),
+            e.to_string(),
+        )
+    })?;
     let assumptions = b.forces_constraints_assumptions(&pf, &mut system)?;
     // Before the parts, whose answers and hints may use the defined names.
     b.definitions(&pf, &mut system, &dims)?;
@@ -91,6 +96,7 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     Ok(Problem {
         // First: it reads `pf` and `system`, which the fields below move.
         simulation: b.simulation(&pf, &system)?,
+        variants: b.variants(&pf, &system)?,
         file: file.to_string(),
         id: b.id,
         title: pf.title,
@@ -136,19 +142,19 @@ impl Builder<'_> {
         for c in &pf.coordinates {
             let name = crate::expr::names::normalize(&c.name);
             if let Err(why) = crate::mechanics::system::check_coordinate_name(&name) {
-                return Err(self.fail(self.id_line, "reserved-name", why.to_string()));
+                return Err(self.fail(self.id_line, FindingCode::ReservedName, why.to_string()));
             }
             if coordinates.iter().any(|x| x.name == name) {
                 return Err(self.fail(
                     self.id_line,
-                    "duplicate-coordinate",
+                    FindingCode::DuplicateCoordinate,
                     format!("coordinate `{name}` is declared twice"),
                 ));
             }
             let d = match &c.dimension {
-                Some(d) => {
-                    Dimension::parse(d).map_err(|e| self.fail(self.id_line, "bad-dimension", e))?
-                }
+                Some(d) => Dimension::parse(d).map_err(|e| {
+                    self.fail(self.id_line, FindingCode::BadDimension, e.to_string())
+                })?,
                 None if c.periodic => Dimension::NONE,
                 None => Dimension::new(0, 1, 0),
             };
@@ -158,7 +164,7 @@ impl Builder<'_> {
                 Some(r) => {
                     return Err(self.fail(
                         self.id_line,
-                        "bad-range",
+                        FindingCode::BadRange,
                         format!(
                             "coordinate `{name}` has range {r:?}; it needs [low, high] with low < high"
                         ),
@@ -191,7 +197,7 @@ impl Builder<'_> {
             if let Some(why) = reserved(&name) {
                 return Err(self.fail(
                     self.id_line,
-                    "reserved-name",
+                    FindingCode::ReservedName,
                     format!("parameter `{name}`: {why}; rename the parameter"),
                 ));
             }
@@ -202,14 +208,14 @@ impl Builder<'_> {
             {
                 return Err(self.fail(
                     self.id_line,
-                    "reserved-name",
+                    FindingCode::ReservedName,
                     format!("parameter `{name}` is also declared as a coordinate"),
                 ));
             }
             let d = Dimension::parse(&p.dimension).map_err(|e| {
                 self.fail(
                     self.id_line,
-                    "bad-dimension",
+                    FindingCode::BadDimension,
                     format!("parameter `{name}`: {e}"),
                 )
             })?;
@@ -218,7 +224,7 @@ impl Builder<'_> {
                 _ => {
                     return Err(self.fail(
                         self.id_line,
-                        "bad-range",
+                        FindingCode::BadRange,
                         format!(
                             "parameter `{name}` has range {:?}; it needs a positive range [low, high]",
                             p.range
@@ -249,18 +255,23 @@ impl Builder<'_> {
             if i >= system.n() {
                 return Err(self.fail(
                     self.id_line,
-                    "bad-force",
+                    FindingCode::BadForce,
                     "more forces than coordinates".into(),
                 ));
             }
-            system.forces[i] = read_expr(f, &ctx, &mut system.pool)
-                .map_err(|e| self.fail(self.id_line, "unreadable", format!("force `{f}`: {e}")))?;
+            system.forces[i] = read_expr(f, &ctx, &mut system.pool).map_err(|e| {
+                self.fail(
+                    self.id_line,
+                    FindingCode::Unreadable,
+                    format!("force `{f}`: {e}"),
+                )
+            })?;
         }
         for c in &pf.constraints {
             system.add_constraint(c).map_err(|e| {
                 self.fail(
                     self.id_line,
-                    "bad-constraint",
+                    FindingCode::BadConstraint,
                     format!("constraint `{c}`: {e}"),
                 )
             })?;
@@ -268,12 +279,12 @@ impl Builder<'_> {
         // The multipliers are lambda1, lambda2, …: a parameter of that name would merge with one.
         system
             .check_multiplier_names(system.constraints.len())
-            .map_err(|e| self.fail(self.id_line, e.code(), e.to_string()))?;
+            .map_err(|e| self.fail(self.id_line, FindingCode::Engine(e.code()), e.to_string()))?;
         let mut assumptions = Vec::new();
         for a in &pf.assume {
             assumptions.push(
                 Assumption::parse(a, &ctx, system)
-                    .map_err(|e| self.fail(self.id_line, "bad-assumption", e))?,
+                    .map_err(|e| self.fail(self.id_line, FindingCode::BadAssumption, e))?,
             );
         }
         Ok(assumptions)
@@ -286,7 +297,7 @@ impl Builder<'_> {
         for sp in &pf.parts {
             let line = line_of(self.text, sp.span().start);
             if let Err(why) = check_id(&sp.get_ref().id, "part") {
-                return Err(self.fail(line, "bad-id", why));
+                return Err(self.fail(line, FindingCode::BadId, why));
             }
             let in_part = |(code, m)| Finding {
                 part: Some(sp.get_ref().id.clone()),
@@ -295,7 +306,7 @@ impl Builder<'_> {
             let mut part = build_part(sp.get_ref(), line, system).map_err(in_part)?;
             for a in &sp.get_ref().assume {
                 let a = Assumption::parse(a, &ctx, system)
-                    .map_err(|e| in_part(("bad-assumption", e)))?;
+                    .map_err(|e| in_part((FindingCode::BadAssumption, e)))?;
                 part.assumptions.push(a);
             }
             parts.push(part);
@@ -307,7 +318,7 @@ impl Builder<'_> {
                     part: Some(p.id.clone()),
                     ..self.fail(
                         p.line,
-                        "duplicate-part",
+                        FindingCode::DuplicatePart,
                         format!("two parts are called `{}`", p.id),
                     )
                 });

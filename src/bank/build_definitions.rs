@@ -9,6 +9,7 @@ use crate::expr::lexer::{Tok, lex};
 use crate::expr::{Dimensions, read_expr};
 use crate::mechanics::System;
 
+use super::FindingCode;
 use super::build_part::reserved;
 use super::build_reader::Builder;
 use super::finding::{Finding, line_of};
@@ -26,7 +27,7 @@ impl Builder<'_> {
         let ctx = system.context();
         for (raw, value) in &pf.definitions {
             let line = line_of(self.text, value.span().start);
-            let bad = |why: String| self.fail(line, "bad-definition", why);
+            let bad = |why: String| self.fail(line, FindingCode::BadDefinition, why);
             let name = crate::expr::names::normalize(raw.trim());
             let one_word = matches!(
                 lex(raw.trim()).ok().as_deref(),

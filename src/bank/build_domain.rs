@@ -5,6 +5,7 @@
 use crate::expr::{Context, Dimension, Dimensions, Id, Pool, read_expr};
 use crate::mechanics::system::{Coordinate, Domain, Parameter};
 
+use super::FindingCode;
 use super::build_reader::Builder;
 use super::finding::Finding;
 use super::schema::{BoundSpec, DomainSpec, ProblemFile};
@@ -86,7 +87,7 @@ fn read_domain(
     let bad = |why: String| {
         at.b.fail(
             at.line,
-            "bad-domain",
+            FindingCode::BadDomain,
             format!("the domain of `{name}` {why}"),
         )
     };
@@ -179,7 +180,7 @@ fn inside(
     if below || above {
         return Err(at.b.fail(
             at.line,
-            "bad-domain",
+            FindingCode::BadDomain,
             format!(
                 "{what} `{name}` is sampled over [{}, {}], outside its domain; make the range lie inside it",
                 range.0, range.1

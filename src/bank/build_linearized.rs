@@ -6,6 +6,7 @@
 use crate::mechanics::System;
 use crate::problem::{PartKind, Quantity};
 
+use super::FindingCode;
 use super::schema::{BoundSpec, PartSpec};
 
 /// A part's linearization point and frequency options, checked.
@@ -21,7 +22,7 @@ pub(super) fn options(
     kind: PartKind,
     quantity: Quantity,
     sys: &System,
-) -> Result<Options, (&'static str, String)> {
+) -> Result<Options, (FindingCode, String)> {
     let about = match &sp.about {
         None => None,
         Some(map) => Some(about_of(map, kind, quantity, sys)?),
@@ -33,13 +34,13 @@ pub(super) fn options(
             "omit_zero_modes"
         };
         return Err((
-            "bad-frequency-option",
+            FindingCode::BadFrequencyOption,
             format!("`{key}` applies to a frequencies part only"),
         ));
     }
     if sp.omit_zero_modes && sp.growth {
         return Err((
-            "bad-frequency-option",
+            FindingCode::BadFrequencyOption,
             "`growth` lists only the growing modes, so `omit_zero_modes` says nothing there: drop it".into(),
         ));
     }
@@ -57,8 +58,8 @@ fn about_of(
     kind: PartKind,
     quantity: Quantity,
     sys: &System,
-) -> Result<Vec<(String, String)>, (&'static str, String)> {
-    let bad = |m: String| Err(("bad-about", m));
+) -> Result<Vec<(String, String)>, (FindingCode, String)> {
+    let bad = |m: String| Err((FindingCode::BadAbout, m));
     // A quantity of the motion's energy or its equations: what "to second order" means for.
     let expandable = match kind {
         PartKind::Equation | PartKind::Equations | PartKind::Lagrangian => true,

@@ -9,6 +9,7 @@ use crate::expr::{Context, Dimension, Dimensions, Pool, read_expr};
 use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Quantity};
 
+use super::FindingCode;
 use super::build_reader::Builder;
 use super::finding::{Finding, line_of};
 use super::schema::{BoundSpec, ProblemFile};
@@ -28,7 +29,7 @@ pub(super) fn numeric(
         let line = line_of(b.text, sp.span().start);
         let fail = |m: String| Finding {
             part: Some(part.id.clone()),
-            ..b.fail(line, "bad-values", m)
+            ..b.fail(line, FindingCode::BadValues, m)
         };
         let sp = sp.get_ref();
         if sp.tolerance.is_none() {

@@ -5,6 +5,7 @@ use crate::expr::Dimension;
 use crate::mechanics::System;
 use crate::problem::{Part, PartKind, Quantity, is_none_answer};
 
+use super::FindingCode;
 use super::schema::{AnswerSpec, PartSpec};
 
 /// Smallest and largest relative tolerance a part may set: below 1e-15 is under the rounding
@@ -46,13 +47,13 @@ pub(super) fn check_id(id: &str, what: &str) -> Result<(), String> {
 
 /// The part's tolerance and weight, each checked to be a number in its range (a NaN, a
 /// negative or a huge tolerance would let `check` accept wrong answers).
-fn tolerance_and_points(sp: &PartSpec) -> Result<(f64, f64), (&'static str, String)> {
+fn tolerance_and_points(sp: &PartSpec) -> Result<(f64, f64), (FindingCode, String)> {
     let tolerance = match sp.tolerance {
         None => crate::check::tolerance::TOLERANCE,
         Some(t) if (MIN_TOLERANCE..=MAX_TOLERANCE).contains(&t) => t,
         Some(t) => {
             return Err((
-                "bad-tolerance",
+                FindingCode::BadTolerance,
                 format!(
                     "tolerance = {t:?}: a relative tolerance lies between {MIN_TOLERANCE:e} and {MAX_TOLERANCE:e} (default 1e-9); a larger one would accept wrong answers"
                 ),
@@ -64,7 +65,7 @@ fn tolerance_and_points(sp: &PartSpec) -> Result<(f64, f64), (&'static str, Stri
         Some(p) if (0.0..=MAX_POINTS).contains(&p) => p,
         Some(p) => {
             return Err((
-                "bad-points",
+                FindingCode::BadPoints,
                 format!("points = {p:?}: a part's weight is a number from 0 to {MAX_POINTS:e}"),
             ));
         }
@@ -76,9 +77,9 @@ pub(super) fn build_part(
     sp: &PartSpec,
     line: usize,
     sys: &System,
-) -> Result<Part, (&'static str, String)> {
+) -> Result<Part, (FindingCode, String)> {
     let kind = PartKind::parse(&sp.kind).ok_or_else(|| {
-        ("bad-kind", format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force, steady-motion)", sp.kind))
+        (FindingCode::BadKind, format!("unknown part kind `{}` (expression, lagrangian, equation, equations, equilibria, frequencies, values, constraint-force, steady-motion)", sp.kind))
     })?;
     let answers = answers_of(sp, kind)?;
     let quantity = quantity_of(sp, sys)?;
@@ -88,7 +89,7 @@ pub(super) fn build_part(
         Some("constant") => true,
         Some(other) => {
             return Err((
-                "bad-up-to",
+                FindingCode::BadUpTo,
                 format!("up_to = \"{other}\" (only \"constant\")"),
             ));
         }
@@ -98,7 +99,7 @@ pub(super) fn build_part(
         .as_deref()
         .map(Dimension::parse)
         .transpose()
-        .map_err(|e| ("bad-dimension", e))?;
+        .map_err(|e| (FindingCode::BadDimension, e.to_string()))?;
     let same_motion = match sp.accept.as_deref() {
         None => false,
         Some("same-motion") if kind == PartKind::Lagrangian || quantity == Quantity::Lagrangian => {
@@ -106,33 +107,33 @@ pub(super) fn build_part(
         }
         Some("same-motion") => {
             return Err((
-                "bad-accept",
+                FindingCode::BadAccept,
                 "accept = \"same-motion\" applies to a Lagrangian part only".into(),
             ));
         }
         Some(other) => {
             return Err((
-                "bad-accept",
+                FindingCode::BadAccept,
                 format!("accept = \"{other}\" (only \"same-motion\", on a Lagrangian part)"),
             ));
         }
     };
     if sp.require_stability && kind != PartKind::Equilibria {
         return Err((
-            "bad-require-stability",
+            FindingCode::BadRequireStability,
             "require_stability applies to an equilibria part only".into(),
         ));
     }
     if sp.require_stability && sp.stability.len() != answers.len() {
         return Err((
-            "bad-require-stability",
+            FindingCode::BadRequireStability,
             "require_stability needs the stability of every stated point: give `stability`, one word per answer item".into(),
         ));
     }
     for s in &sp.stability {
         if !matches!(s.as_str(), "stable" | "unstable" | "marginal") {
             return Err((
-                "bad-stability",
+                FindingCode::BadStability,
                 format!("stability `{s}` (use stable, unstable or marginal)"),
             ));
         }
@@ -170,18 +171,19 @@ pub(super) fn build_part(
         values: Vec::new(),
         answers_with_units: Vec::new(),
         line,
+        numbers: sp.numbers,
     })
 }
 
 /// The reference answers; `none` (alone) states an empty list, for a list part only.
-fn answers_of(sp: &PartSpec, kind: PartKind) -> Result<Vec<String>, (&'static str, String)> {
+fn answers_of(sp: &PartSpec, kind: PartKind) -> Result<Vec<String>, (FindingCode, String)> {
     let mut answers = match &sp.answer {
         AnswerSpec::One(s) => vec![s.clone()],
         AnswerSpec::Many(v) => v.clone(),
     };
     if answers.is_empty() {
         return Err((
-            "no-answer",
+            FindingCode::NoAnswer,
             "the part has an empty answer (an empty list is written `none`)".into(),
         ));
     }
@@ -193,7 +195,7 @@ fn answers_of(sp: &PartSpec, kind: PartKind) -> Result<Vec<String>, (&'static st
     if answers.len() == 1 && is_none_answer(&answers[0]) {
         if !list {
             return Err((
-                "no-answer",
+                FindingCode::NoAnswer,
                 format!("`none` answers a list part, not a {} part", kind.name()),
             ));
         }
@@ -203,14 +205,19 @@ fn answers_of(sp: &PartSpec, kind: PartKind) -> Result<Vec<String>, (&'static st
 }
 
 /// The quantity an expression part asks for: stated, or implied by the part's id.
-fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, String)> {
+fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (FindingCode, String)> {
     let coordinate = match &sp.coordinate {
         None => 0,
         Some(c) => sys
             .coordinates
             .iter()
             .position(|x| x.name == crate::expr::names::normalize(c))
-            .ok_or_else(|| ("bad-coordinate", format!("`{c}` is not a coordinate")))?,
+            .ok_or_else(|| {
+                (
+                    FindingCode::BadCoordinate,
+                    format!("`{c}` is not a coordinate"),
+                )
+            })?,
     };
     let q = sp.quantity.as_deref().unwrap_or(match sp.id.as_str() {
         "kinetic" => "kinetic",
@@ -233,13 +240,18 @@ fn quantity_of(sp: &PartSpec, sys: &System) -> Result<Quantity, (&'static str, S
         "cyclic" if sp.kind == "values" => Quantity::Cyclic,
         "cyclic" => {
             return Err((
-                "bad-quantity",
+                FindingCode::BadQuantity,
                 "`cyclic` is the quantity of a `values` part (the names of the cyclic coordinates)"
                     .into(),
             ));
         }
         "none" => Quantity::None,
-        other => return Err(("bad-quantity", format!("unknown quantity `{other}`"))),
+        other => {
+            return Err((
+                FindingCode::BadQuantity,
+                format!("unknown quantity `{other}`"),
+            ));
+        }
     };
     check_multiplier(sp.multiplier, quantity, sys.constraints.len())?;
     Ok(quantity)
@@ -251,8 +263,8 @@ fn check_multiplier(
     key: Option<usize>,
     quantity: Quantity,
     constraints: usize,
-) -> Result<(), (&'static str, String)> {
-    let bad = |m: String| Err(("bad-multiplier", m));
+) -> Result<(), (FindingCode, String)> {
+    let bad = |m: String| Err((FindingCode::BadMultiplier, m));
     match quantity {
         Quantity::Multiplier(_) if constraints == 0 => bad(
             "the problem has no constraints, so there is no multiplier to ask for: add `constraints`, or choose another quantity".into(),

@@ -5,6 +5,7 @@
 use crate::expr::{Context, Id, Pool, read_expr};
 use crate::mechanics::bodies::{Anchor, Body, Potential};
 
+use super::FindingCode;
 use super::finding::{Finding, line_of};
 use super::schema::{AnchorSpec, BodySpec, PotentialSpec, ProblemFile};
 
@@ -18,7 +19,7 @@ pub(super) struct Builder<'a> {
 
 impl Builder<'_> {
     /// A finding about the problem (not a part) at `line`.
-    pub(super) fn fail(&self, line: usize, code: &'static str, message: String) -> Finding {
+    pub(super) fn fail(&self, line: usize, code: FindingCode, message: String) -> Finding {
         Finding {
             file: self.file.to_string(),
             problem: Some(self.id.clone()),
@@ -62,9 +63,9 @@ impl Reader<'_> {
             self.b.fail(
                 line,
                 if matches!(e.kind, crate::expr::ParseErrorKind::UnknownName { .. }) {
-                    "undeclared-symbol"
+                    FindingCode::UndeclaredSymbol
                 } else {
-                    "unreadable"
+                    FindingCode::Unreadable
                 },
                 format!("{what} `{src}`: {e} ({})", e.help()),
             )
@@ -82,7 +83,7 @@ impl Reader<'_> {
     }
 
     fn body(&self, b: &BodySpec, line: usize, pool: &mut Pool) -> Result<Body, Finding> {
-        let bad = |m: String| self.b.fail(line, "bad-body", m);
+        let bad = |m: String| self.b.fail(line, FindingCode::BadBody, m);
         match b.kind.as_str() {
             "point" => {
                 let (Some(m), Some(pos)) = (&b.mass, &b.position) else {
@@ -135,7 +136,7 @@ impl Reader<'_> {
         n_bodies: usize,
         pool: &mut Pool,
     ) -> Result<Potential, Finding> {
-        let bad = |m: String| self.b.fail(line, "bad-potential", m);
+        let bad = |m: String| self.b.fail(line, FindingCode::BadPotential, m);
         match p.kind.as_str() {
             "gravity" => {
                 let g = self.read(pool, p.g.as_deref().unwrap_or("g"), line, "gravity")?;
@@ -188,7 +189,7 @@ impl Reader<'_> {
             Some(AnchorSpec::Body(i)) if *i >= 1 && *i <= n_bodies => Ok(Anchor::Body(i - 1)),
             Some(AnchorSpec::Body(i)) => Err(self.b.fail(
                 line,
-                "bad-potential",
+                FindingCode::BadPotential,
                 format!("spring end {i} is not a body number"),
             )),
             Some(AnchorSpec::Point(v)) => Ok(Anchor::Fixed(
@@ -198,7 +199,7 @@ impl Reader<'_> {
             )),
             None => Err(self.b.fail(
                 line,
-                "bad-potential",
+                FindingCode::BadPotential,
                 "a spring needs `from` and `to`".into(),
             )),
         }

@@ -8,6 +8,7 @@ use crate::mechanics::bodies::Body;
 use crate::mechanics::point_force::PointForce;
 use crate::mechanics::rigid::RigidSpec;
 
+use super::FindingCode;
 use super::build_reader::Reader;
 use super::finding::{Finding, line_of};
 use super::schema::{BodySpec, ProblemFile};
@@ -49,9 +50,10 @@ impl Reader<'_> {
             omega_body: all(pool, &b.omega_body, "omega_body")?,
             euler: all(pool, &b.euler, "euler")?,
         };
-        let r = spec
-            .build(pool)
-            .map_err(|e| self.b.fail(line, "bad-body", format!("{e} ({})", e.help())))?;
+        let r = spec.build(pool).map_err(|e| {
+            self.b
+                .fail(line, FindingCode::BadBody, format!("{e} ({})", e.help()))
+        })?;
         Ok(Body::Rigid(Box::new(r)))
     }
 
@@ -68,7 +70,7 @@ impl Reader<'_> {
             let vector = self.read_all(&mut system.pool, &f.vector, line, "force vector")?;
             let force = PointForce::new(&system.pool, at, vector).map_err(|e| {
                 self.b
-                    .fail(line, "bad-force", format!("{e} ({})", e.help()))
+                    .fail(line, FindingCode::BadForce, format!("{e} ({})", e.help()))
             })?;
             system.apply_point_force(&force);
         }

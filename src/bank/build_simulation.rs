@@ -5,6 +5,7 @@
 use crate::mechanics::System;
 use crate::problem::SimulationDefaults;
 
+use super::FindingCode;
 use super::build_reader::Builder;
 use super::finding::{Finding, line_of};
 use super::schema::ProblemFile;
@@ -26,7 +27,7 @@ impl Builder<'_> {
                 if !v.is_finite() {
                     let message =
                         format!("parameter `{}`: value {v} is not a finite number", p.name);
-                    return Err(self.fail(self.id_line, "bad-simulation", message));
+                    return Err(self.fail(self.id_line, FindingCode::BadSimulation, message));
                 }
                 params.push((p.name.clone(), v));
             }
@@ -38,7 +39,7 @@ impl Builder<'_> {
             });
         };
         let line = line_of(self.text, spec.span().start);
-        let fail = |message: String| self.fail(line, "bad-simulation", message);
+        let fail = |message: String| self.fail(line, FindingCode::BadSimulation, message);
         let spec = spec.get_ref();
         let mut init = Vec::new();
         for (name, &v) in &spec.init {

@@ -90,6 +90,17 @@ pub fn problem(id: &str) -> Option<crate::problem::Problem> {
     by_name.or_else(|| bank().problems.into_iter().find(|p| p.id == id))
 }
 
+/// Whether a built-in problem has the id `id`, told from the files' `id` lines without
+/// building any problem.
+pub fn is_built_in(id: &str) -> bool {
+    FILES
+        .iter()
+        .any(|(name, text)| match super::load::declared_id(text) {
+            Some(d) => d == id,
+            None => name.strip_suffix(".toml") == Some(id),
+        })
+}
+
 /// Loads the embedded bank.
 pub fn bank() -> Bank {
     let mut b = Bank::default();

@@ -2,10 +2,12 @@
 
 use std::fmt;
 
+use super::FindingCode;
 use crate::expr::error::{visible, visible_lines};
 
 /// One problem found in a problem file.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct Finding {
     pub file: String,
     /// The problem id, when the file got far enough to have one.
@@ -15,7 +17,7 @@ pub struct Finding {
     /// 1-based line in the file.
     pub line: usize,
     /// A stable code, e.g. `wrong-eom`.
-    pub code: &'static str,
+    pub code: FindingCode,
     pub message: String,
 }
 
@@ -49,6 +51,6 @@ impl From<&Finding> for crate::diagnostic::Diagnostic {
             message.push_str(&format!("part `{}`: ", visible(p)));
         }
         message.push_str(&f.message);
-        crate::diagnostic::Diagnostic::new(f.code, message, "")
+        crate::diagnostic::Diagnostic::new(f.code.as_str(), message, "")
     }
 }

@@ -1,6 +1,7 @@
 //! Loading problem files: from text, from a folder, or the embedded bank. A file that
 //! cannot be read becomes a finding with its line; the other files load regardless.
 
+use super::FindingCode;
 use std::path::Path;
 
 use super::build::build;
@@ -37,7 +38,9 @@ impl Bank {
         let refused = self
             .failures
             .iter()
-            .find(|f| f.code == DUPLICATE_ID && f.problem.as_deref() == Some(p.id.as_str()))
+            .find(|f| {
+                f.code == FindingCode::DuplicateId && f.problem.as_deref() == Some(p.id.as_str())
+            })
             .map(|f| f.file.clone());
         let first = match (earlier, refused) {
             (Some(k), _) => self.problems.remove(k).file,
@@ -52,14 +55,64 @@ impl Bank {
             problem: Some(p.id.clone()),
             part: None,
             line: 1,
-            code: DUPLICATE_ID,
+            code: FindingCode::DuplicateId,
             message: duplicate_message(&p.id, &first, &file),
         });
     }
 }
 
-/// The code of two files defining one problem id.
-pub const DUPLICATE_ID: &str = "duplicate-id";
+/// A built-in problem that a problem of an added folder replaced (same id).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Replaced {
+    /// The problem id.
+    pub id: String,
+    /// The file of the problem that replaces the built-in one.
+    pub file: String,
+}
+
+impl Replaced {
+    /// The note a face shows (on standard error): which file replaces which problem.
+    pub fn note(&self) -> String {
+        format!(
+            "note: {} replaces the built-in problem `{}`",
+            self.file,
+            crate::expr::error::visible(&self.id)
+        )
+    }
+}
+
+/// The built-in bank `base` with the problems of `added` (a folder the instructor adds,
+/// `--add-problems`): a problem whose id is built in replaces the built-in one, listed in the
+/// second value so that the face can say so. The folder's failures are kept, so that two of
+/// its files sharing an id (`duplicate-id`, naming both) still refuse the bank; the built-in
+/// problem of that id is then left out too, so that no command judges by either file.
+pub fn merge(base: Bank, added: Bank) -> (Bank, Vec<Replaced>) {
+    let mut replaced = Vec::new();
+    let clashes = |id: &str| {
+        added.problems.iter().any(|p| p.id == id)
+            || added
+                .failures
+                .iter()
+                .any(|f| f.code == FindingCode::DuplicateId && f.problem.as_deref() == Some(id))
+    };
+    let mut problems: Vec<Problem> = Vec::with_capacity(base.problems.len() + added.problems.len());
+    for p in base.problems {
+        if clashes(&p.id) {
+            if let Some(q) = added.problems.iter().find(|q| q.id == p.id) {
+                replaced.push(Replaced {
+                    id: p.id.clone(),
+                    file: q.file.clone(),
+                });
+            }
+            continue;
+        }
+        problems.push(p);
+    }
+    problems.extend(added.problems);
+    let mut failures = base.failures;
+    failures.extend(added.failures);
+    (Bank { problems, failures }, replaced)
+}
 
 /// Why a problem defined by two files is refused, naming both.
 pub fn duplicate_message(id: &str, first: &str, second: &str) -> String {
@@ -69,9 +122,81 @@ pub fn duplicate_message(id: &str, first: &str, second: &str) -> String {
     )
 }
 
+/// Why a folder of problem files gives no bank, or no answer about one problem.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum BankError {
+    /// The folder cannot be listed.
+    UnreadableFolder {
+        /// The folder.
+        folder: std::path::PathBuf,
+        /// The system's reason.
+        reason: String,
+    },
+    /// Two files define the problem asked for.
+    DuplicateId {
+        /// The problem id.
+        id: String,
+        /// The file read first.
+        first: String,
+        /// The other file.
+        second: String,
+    },
+    /// No file defines the problem, and one that might have could not be loaded.
+    NotLoaded {
+        /// The problem id.
+        id: String,
+        /// The folder.
+        folder: std::path::PathBuf,
+        /// Why the first file that might define it failed.
+        finding: Box<Finding>,
+        /// How many more files failed.
+        more: usize,
+    },
+}
+
+impl std::fmt::Display for BankError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BankError::UnreadableFolder { folder, reason } => {
+                write!(f, "cannot read {}: {reason}", folder.display())
+            }
+            BankError::DuplicateId { id, first, second } => {
+                f.write_str(&duplicate_message(id, first, second))
+            }
+            BankError::NotLoaded {
+                id,
+                folder,
+                finding,
+                more,
+            } => {
+                write!(
+                    f,
+                    "no problem `{}` loaded from {}: {}:{}: [{}] {}",
+                    crate::expr::error::visible(id),
+                    folder.display(),
+                    finding.file,
+                    finding.line,
+                    finding.code,
+                    finding.message,
+                )?;
+                if *more > 0 {
+                    write!(
+                        f,
+                        " (and {more} more files; `lagrange problems verify` lists them)"
+                    )?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+impl std::error::Error for BankError {}
+
 /// Loads one problem from TOML text; `file` names it in findings.
 pub fn load_str(file: &str, text: &str) -> Result<Problem, Finding> {
-    let fail = |line: usize, code: &'static str, message: String| Finding {
+    let fail = |line: usize, code: FindingCode, message: String| Finding {
         file: file.to_string(),
         problem: None,
         part: None,
@@ -82,7 +207,7 @@ pub fn load_str(file: &str, text: &str) -> Result<Problem, Finding> {
     if text.len() > MAX_FILE_BYTES {
         return Err(fail(
             1,
-            "too-large",
+            FindingCode::TooLarge,
             format!(
                 "the file is {} bytes; at most {MAX_FILE_BYTES} are read",
                 text.len()
@@ -92,7 +217,7 @@ pub fn load_str(file: &str, text: &str) -> Result<Problem, Finding> {
     if let Some(at) = too_deep(text) {
         return Err(fail(
             line_of(text, at),
-            "too-deep",
+            FindingCode::TooDeep,
             format!("arrays and tables are nested more than {MAX_NESTING} deep"),
         ));
     }
@@ -100,13 +225,13 @@ pub fn load_str(file: &str, text: &str) -> Result<Problem, Finding> {
         let line = e.span().map_or(1, |s| line_of(text, s.start));
         let msg = e.message().trim().to_string();
         let code = if msg.contains("unknown field") {
-            "unknown-key"
+            FindingCode::UnknownKey
         } else if msg.contains("missing field") {
-            "missing-key"
+            FindingCode::MissingKey
         } else if msg.contains("invalid type") {
-            "wrong-type"
+            FindingCode::WrongType
         } else {
-            "toml-syntax"
+            FindingCode::TomlSyntax
         };
         fail(line, code, msg)
     })?;
@@ -157,7 +282,7 @@ fn too_deep(text: &str) -> Option<usize> {
 /// most that many bytes are read (the file may grow between the check and the read).
 pub fn read_file(path: &Path) -> Result<String, Finding> {
     use std::io::Read;
-    let fail = |code: &'static str, message: String| Finding {
+    let fail = |code: FindingCode, message: String| Finding {
         file: path.display().to_string(),
         problem: None,
         part: None,
@@ -165,11 +290,11 @@ pub fn read_file(path: &Path) -> Result<String, Finding> {
         code,
         message,
     };
-    let unreadable = |e: std::io::Error| fail("unreadable-file", e.to_string());
+    let unreadable = |e: std::io::Error| fail(FindingCode::UnreadableFile, e.to_string());
     let meta = std::fs::metadata(path).map_err(unreadable)?;
     if !meta.is_file() {
         return Err(fail(
-            "not-a-file",
+            FindingCode::NotAFile,
             format!(
                 "this is a {}, not a regular file: a problem file must be a plain TOML file",
                 file_kind(&meta)
@@ -178,7 +303,7 @@ pub fn read_file(path: &Path) -> Result<String, Finding> {
     }
     let too_large = |len: u64| {
         fail(
-            "too-large",
+            FindingCode::TooLarge,
             format!(
                 "the file is {len} bytes; at most {MAX_FILE_BYTES} are read: split it, one problem per file"
             ),
@@ -198,7 +323,7 @@ pub fn read_file(path: &Path) -> Result<String, Finding> {
     }
     String::from_utf8(bytes).map_err(|_| {
         fail(
-            "not-utf8",
+            FindingCode::NotUtf8,
             "the file is not UTF-8 text: save it as UTF-8".into(),
         )
     })
@@ -227,9 +352,12 @@ fn file_kind(meta: &std::fs::Metadata) -> &'static str {
 }
 
 /// The `*.toml` files in `dir`, sorted by name.
-pub fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
+pub(crate) fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, BankError> {
     let mut entries: Vec<_> = std::fs::read_dir(dir)
-        .map_err(|e| format!("cannot read {}: {e}", dir.display()))?
+        .map_err(|e| BankError::UnreadableFolder {
+            folder: dir.to_path_buf(),
+            reason: e.to_string(),
+        })?
         .filter_map(Result::ok)
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
@@ -246,7 +374,7 @@ pub fn toml_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
 /// defines it but one that might have could not be read or loaded (too large, not UTF-8, a
 /// TOML error in a file that mentions the id), the error names that file and why, rather than
 /// "no problem".
-pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
+pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, BankError> {
     let mut unloaded: Vec<Finding> = Vec::new();
     let mut load = |path: &Path| -> Option<Problem> {
         let text = match read_file(path) {
@@ -273,7 +401,11 @@ pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
     for path in toml_files(dir)? {
         if let Some(p) = load(&path) {
             if let Some(first) = &found {
-                return Err(duplicate_message(id, &first.file, &p.file));
+                return Err(BankError::DuplicateId {
+                    id: id.to_string(),
+                    first: first.file.clone(),
+                    second: p.file.clone(),
+                });
             }
             found = Some(p);
         }
@@ -281,22 +413,12 @@ pub fn load_one(dir: &Path, id: &str) -> Result<Option<Problem>, String> {
     if found.is_none()
         && let Some(f) = unloaded.first()
     {
-        return Err(format!(
-            "no problem `{}` loaded from {}: {}:{}: [{}] {}{}",
-            crate::expr::error::visible(id),
-            dir.display(),
-            f.file,
-            f.line,
-            f.code,
-            f.message,
-            match unloaded.len() {
-                1 => String::new(),
-                n => format!(
-                    " (and {} more files; `lagrange problems verify` lists them)",
-                    n - 1
-                ),
-            }
-        ));
+        return Err(BankError::NotLoaded {
+            id: id.to_string(),
+            folder: dir.to_path_buf(),
+            finding: Box::new(f.clone()),
+            more: unloaded.len() - 1,
+        });
     }
     Ok(found)
 }
@@ -338,7 +460,7 @@ fn quoted(v: &str) -> Option<&str> {
 }
 
 /// Loads every `*.toml` file in `dir` (sorted by name).
-pub fn load_dir(dir: &Path) -> Result<Bank, String> {
+pub fn load_dir(dir: &Path) -> Result<Bank, BankError> {
     let mut bank = Bank::default();
     for path in toml_files(dir)? {
         let name = path.display().to_string();

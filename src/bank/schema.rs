@@ -48,6 +48,23 @@ pub struct ProblemFile {
     /// Starting values for `lagrange simulate PROBLEM` (parameters' values are on them).
     #[serde(default)]
     pub simulation: Option<Spanned<SimulationSpec>>,
+    /// How parameters vary from student to student (`[variants.m] values = [1.5, 2]`).
+    #[serde(default)]
+    pub variants: BTreeMap<String, Spanned<VariantSpec>>,
+}
+
+/// How one parameter varies between students: `values` (a set), or `range` with `step` (a
+/// grid) or `digits` (every number of so many significant digits in it); `unit` is shown
+/// after the number.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VariantSpec {
+    pub values: Option<Vec<f64>>,
+    pub range: Option<Vec<f64>>,
+    pub step: Option<f64>,
+    pub digits: Option<u32>,
+    #[serde(default)]
+    pub unit: String,
 }
 
 /// The initial state and duration a simulation of the problem starts from by default.
@@ -279,4 +296,7 @@ pub struct PartSpec {
     /// answers are then numbers, with units in brackets.
     #[serde(default)]
     pub values: BTreeMap<String, BoundSpec>,
+    /// The answer may use the student's numbers instead of the varied parameters' symbols.
+    #[serde(default)]
+    pub numbers: bool,
 }

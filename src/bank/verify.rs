@@ -5,6 +5,7 @@
 //! constraint forces; and every `wrong` example must indeed be wrong. This file holds the entry
 //! point and the per-part dispatch; each kind of part is proved in its own `verify_*` sibling.
 
+use super::FindingCode;
 use super::finding::Finding;
 use super::verify_equilibria::verify_equilibria;
 use super::verify_expression::{verify_equations, verify_expression, verify_values};
@@ -18,10 +19,19 @@ use crate::expr::Dimension;
 use crate::mechanics::sample::seed_from;
 use crate::problem::{Part, PartKind, Problem, Quantity};
 
-/// Verifies a problem; an empty list means every stated answer holds.
+/// Verifies a problem; an empty list means every stated answer holds. A problem with
+/// variants is proved for each student's numbers too (`verify_variants.rs`).
 pub fn verify(problem: &Problem) -> Vec<Finding> {
+    let mut out = verify_one(problem);
+    // `verify_one` is passed in so that the variants' file does not import this one.
+    out.extend(super::verify_variants::verify_variants(problem, verify_one));
+    out
+}
+
+/// Verifies a problem as it stands (with its parameters' ranges, pinned or not).
+pub(super) fn verify_one(problem: &Problem) -> Vec<Finding> {
     let mut out = Vec::new();
-    let whole = |line: usize, code: &'static str, message: String| Finding {
+    let whole = |line: usize, code: FindingCode, message: String| Finding {
         file: problem.file.clone(),
         problem: Some(problem.id.clone()),
         part: None,
@@ -40,7 +50,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
         match sys.pool.dimension(e, &problem.dims) {
             Ok(Some(d)) if d != energy && !sys.pool.is_zero(e) => out.push(whole(
                 problem.lagrangian_line,
-                "dimension",
+                FindingCode::Dimension,
                 format!(
                     "{what} = {} has dimension {d}, not an energy (M L² T⁻²)",
                     sys.pool.unicode(e)
@@ -48,7 +58,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
             )),
             Err(err) => out.push(whole(
                 problem.lagrangian_line,
-                "dimension",
+                FindingCode::Dimension,
                 format!("{what}: {err}"),
             )),
             _ => {}
@@ -71,7 +81,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
                 let derived = s.simplify(s.lagrangian);
                 out.push(whole(
                     problem.lagrangian_line,
-                    "lagrangian-mismatch",
+                    FindingCode::LagrangianMismatch,
                     format!(
                         "the stated L = {} is not the L of the bodies, {}",
                         s.pool.unicode(stated),
@@ -79,7 +89,11 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
                     ),
                 ));
             }
-            Err(e) => out.push(whole(problem.lagrangian_line, "sampling", e.to_string())),
+            Err(e) => out.push(whole(
+                problem.lagrangian_line,
+                FindingCode::Sampling,
+                e.to_string(),
+            )),
         }
     }
     for part in &problem.parts {
@@ -91,7 +105,7 @@ pub fn verify(problem: &Problem) -> Vec<Finding> {
 }
 
 fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
-    let fail = |code: &'static str, message: String| Finding {
+    let fail = |code: FindingCode, message: String| Finding {
         file: problem.file.clone(),
         problem: Some(problem.id.clone()),
         part: Some(part.id.clone()),
@@ -101,17 +115,17 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     };
     // A part the engine derives nothing for would be "proved" without any check.
     if let Some(why) = unprovable(part) {
-        return Err(fail("unprovable", why));
+        return Err(fail(FindingCode::Unprovable, why));
     }
     // A prompt that asks about stability is answered in full only with it.
     if part.kind == PartKind::Equilibria && part.prompt_asks_stability() && !part.require_stability
     {
         return Err(fail(
-            "stability-not-required",
+            FindingCode::StabilityNotRequired,
             "the prompt asks about stability, but the part does not require it: an answer without any stability would get full marks; set `require_stability = true` (with `stability`, one word per point)".into(),
         ));
     }
-    let mut p = prepare(problem, part).map_err(|e| fail("unusable", e.to_string()))?;
+    let mut p = prepare(problem, part).map_err(|e| fail(FindingCode::Unusable, e.to_string()))?;
     let physics = match part.kind {
         PartKind::Expression | PartKind::Lagrangian | PartKind::ConstraintForce => {
             verify_expression(problem, part, &mut p).map_err(|f| fail(f.code, f.message))
@@ -137,7 +151,7 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
     if v.status != crate::check::Status::Correct {
         let why: Vec<String> = v.diagnoses.iter().map(|d| d.message.clone()).collect();
         return Err(fail(
-            "reference-rejected",
+            FindingCode::ReferenceRejected,
             format!(
                 "the checker does not accept the reference answer `{reference}`: {}",
                 why.join("; ")
@@ -150,7 +164,7 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         if v.status == crate::check::Status::Invalid {
             let why: Vec<String> = v.diagnoses.iter().map(|d| d.message.clone()).collect();
             return Err(fail(
-                "unreadable-wrong",
+                FindingCode::UnreadableWrong,
                 format!(
                     "the `wrong` example `{w}` cannot be checked: {}",
                     why.join("; ")
@@ -159,7 +173,7 @@ fn verify_part(problem: &Problem, part: &Part) -> Result<(), Finding> {
         }
         if v.status == crate::check::Status::Correct {
             return Err(fail(
-                "wrong-accepted",
+                FindingCode::WrongAccepted,
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
         }

@@ -2,6 +2,7 @@
 //! dimensions, none is listed twice, and for every parameter sample the engine finds none
 //! missing, none spurious and the stated stabilities.
 
+use super::FindingCode;
 use super::verify_failed::{Check, Failed, check_dimension};
 use crate::check::compare::{fmt_value, parameter_text, values};
 use crate::check::points::PointSet;
@@ -42,35 +43,35 @@ impl EquilibriumFinding {
     fn details(self, pstr: &str) -> Failed {
         match self {
             EquilibriumFinding::Continuum => Failed::new(
-                "not-isolated",
+                FindingCode::NotIsolated,
                 format!(
                     "for {pstr} every point is an equilibrium; restrict the parameters with `assume`"
                 ),
             ),
             EquilibriumFinding::Missing { at } => Failed::new(
-                "missing-equilibrium",
+                FindingCode::MissingEquilibrium,
                 format!(
                     "the physics also has an equilibrium at {at} (for {pstr}), which the answer does not list"
                 ),
             ),
             EquilibriumFinding::Stability { item, want, is } => Failed::new(
-                "wrong-stability",
+                FindingCode::WrongStability,
                 format!("`{item}` is stated {want}, but it is {is} (for {pstr})"),
             ),
             EquilibriumFinding::NotIsolated { item, coordinate } => Failed::new(
-                "not-isolated",
+                FindingCode::NotIsolated,
                 format!(
                     "`{item}` is one of a continuum of equilibria (for {pstr}): {coordinate} is arbitrary there; state it as `{coordinate} = any`"
                 ),
             ),
             EquilibriumFinding::Family { at, direction } => Failed::new(
-                "not-isolated",
+                FindingCode::NotIsolated,
                 format!(
                     "the equilibria through {at} form a continuum along ({direction}) (for {pstr}), which an equilibria part cannot state point by point: fix the free motion (a coordinate relative to another) or ask for the frequencies at one point"
                 ),
             ),
             EquilibriumFinding::Spurious { item } => Failed::new(
-                "spurious-equilibrium",
+                FindingCode::SpuriousEquilibrium,
                 format!("`{item}` is not among the equilibria the engine finds for {pstr}"),
             ),
         }
@@ -103,13 +104,13 @@ fn stated_equilibria(
         if !p
             .system
             .verify_equilibrium_at(&p.derivation, point, &samples)
-            .map_err(|e| Failed::new("unusable", e.to_string()))?
+            .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?
         {
             let at = super::verify_failed::equilibrium_failure(p, point)
                 .map(|w| format!(" ({w})"))
                 .unwrap_or_default();
             return Err(Failed::new(
-                "spurious-equilibrium",
+                FindingCode::SpuriousEquilibrium,
                 format!(
                     "`{item}` is not an equilibrium: the generalized forces do not vanish there{at}"
                 ),
@@ -118,7 +119,7 @@ fn stated_equilibria(
     }
     if !part.stability.is_empty() && part.stability.len() != stated.len() {
         return Err(Failed::new(
-            "bad-stability",
+            FindingCode::BadStability,
             format!(
                 "{} stabilities for {} equilibria",
                 part.stability.len(),
@@ -150,7 +151,7 @@ fn compare_equilibria(
                 item: part.answers[0].clone(),
             }));
         }
-        other => other.map_err(|e| Failed::new("unusable", e.to_string()))?,
+        other => other.map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?,
     };
     if found.continuum {
         return Ok(Some(EquilibriumFinding::Continuum));
@@ -294,10 +295,10 @@ pub(super) fn verify_equilibria(problem: &Problem, part: &Part, p: &mut Prepared
         seed_from(&[&problem.id, &part.id, "equilibria"]),
         EQUILIBRIUM_SAMPLES,
     )
-    .map_err(|e| Failed::new("sampling", e.to_string()))?;
+    .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let flat: Vec<Id> = stated.iter().flatten().copied().collect();
-    let vals =
-        values(&p.system, &flat, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
+    let vals = values(&p.system, &flat, &samples)
+        .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let n = p.system.n();
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
@@ -330,7 +331,7 @@ fn repeated_equilibrium(part: &Part, p: &Prepared, stated_pts: &[&[f64]]) -> Opt
                 .all(|(c, (x, y))| same_coordinate(coords[c].periodic, *x, *y));
             if same {
                 return Some(Failed::new(
-                    "duplicate-equilibrium",
+                    FindingCode::DuplicateEquilibrium,
                     format!(
                         "`{}` and `{}` are the same equilibrium (an angle is periodic): list each point once",
                         part.answers[i], part.answers[j]

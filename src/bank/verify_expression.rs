@@ -2,6 +2,7 @@
 //! derives (symbolic, or numbers per point for accelerations and multipliers), and equations
 //! of motion or a condition at rest against the derivation.
 
+use super::FindingCode;
 use super::verify_failed::{Check, Failed, check_dimension, expected_dimension};
 use crate::check::compare::{Relation, close, relate, values};
 use crate::check::equations::equations_hold;
@@ -22,11 +23,11 @@ fn truth(part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
     let d = &p.derivation;
     Ok(Some(match part.quantity {
         Quantity::Kinetic => Truth::Expr(sys.kinetic.ok_or(Failed::new(
-            "no-truth",
+            FindingCode::NoTruth,
             "a kinetic part needs bodies (or T and V) to check against".to_string(),
         ))?),
         Quantity::Potential => Truth::Expr(sys.potential.ok_or(Failed::new(
-            "no-truth",
+            FindingCode::NoTruth,
             "a potential part needs bodies (or T and V) to check against".to_string(),
         ))?),
         Quantity::Lagrangian => Truth::Expr(sys.lagrangian),
@@ -34,8 +35,8 @@ fn truth(part: &Part, p: &mut Prepared) -> Result<Option<Truth>, Failed> {
         Quantity::EnergyFunction => Truth::Expr(sys.energy(d).function),
         Quantity::Multiplier(j) | Quantity::Acceleration(j) => {
             let rows = sys.constraint_rows();
-            let dynamics =
-                Dynamics::new(sys, d).map_err(|e| Failed::new("unusable", e.to_string()))?;
+            let dynamics = Dynamics::new(sys, d)
+                .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?;
             let mut scratch = dynamics.scratch();
             let nums = p
                 .points
@@ -66,7 +67,7 @@ fn matches_truth(part: &Part, p: &mut Prepared, answer: Id, truth: &Truth) -> Re
     match truth {
         Truth::Expr(t) => {
             let r = relate(&p.system, answer, *t, &p.points, part.tolerance)
-                .map_err(|e| Failed::new("sampling", e.to_string()))?;
+                .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
             Ok(match r {
                 Relation::Equal => true,
                 Relation::UpToConstant(_) => {
@@ -77,7 +78,7 @@ fn matches_truth(part: &Part, p: &mut Prepared, answer: Id, truth: &Truth) -> Re
         }
         Truth::Numbers(nums) => {
             let vals = values(&p.system, &[answer], &p.points)
-                .map_err(|e| Failed::new("sampling", e.to_string()))?;
+                .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
             let scale = nums.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
             Ok(nums.iter().zip(&vals).all(|(t, v)| match (t, v) {
                 (Some(t), Some(v)) => close(v[0], *t, scale, part.tolerance),
@@ -111,7 +112,7 @@ pub(super) fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared
     };
     if !matches_truth(part, p, answer, &t)? {
         return Err(Failed::new(
-            "wrong-answer",
+            FindingCode::WrongAnswer,
             format!(
                 "the stated answer {} is not what the physics gives: {}",
                 p.system.pool.unicode(answer),
@@ -125,7 +126,7 @@ pub(super) fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared
         };
         if matches_truth(part, p, id, &t)? {
             return Err(Failed::new(
-                "wrong-accepted",
+                FindingCode::WrongAccepted,
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
         }
@@ -159,7 +160,7 @@ pub(super) fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             }
         }
         return Err(Failed::new(
-            "wrong-condition",
+            FindingCode::WrongCondition,
             format!(
                 "the stated condition {} = 0 is not a generalized force at rest set to zero",
                 p.system.pool.unicode(res[0])
@@ -182,7 +183,7 @@ pub(super) fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
             })
             .collect();
         return Err(Failed::new(
-            "wrong-eom",
+            FindingCode::WrongEom,
             format!(
                 "the stated equations {} are not the equations of motion ({why}); the physics gives {}",
                 shown.join("; "),
@@ -196,7 +197,7 @@ pub(super) fn verify_equations(part: &Part, p: &mut Prepared) -> Check {
         };
         if equations_hold(p, &r, system)?.is_none() {
             return Err(Failed::new(
-                "wrong-accepted",
+                FindingCode::WrongAccepted,
                 format!("the `wrong` example `{w}` is in fact correct"),
             ));
         }
@@ -223,7 +224,7 @@ pub(super) fn verify_values(part: &Part, p: &mut Prepared) -> Check {
             Some(i) => stated.push(i),
             None => {
                 return Err(Failed::new(
-                    "unreadable",
+                    FindingCode::Unreadable,
                     format!("`{a}` is not a coordinate: list the cyclic coordinates by name"),
                 ));
             }
@@ -232,13 +233,13 @@ pub(super) fn verify_values(part: &Part, p: &mut Prepared) -> Check {
     let cyclic = p.system.energy(&p.derivation).cyclic;
     if let Some(&i) = stated.iter().find(|i| !cyclic.contains(i)) {
         return Err(Failed::new(
-            "not-cyclic",
+            FindingCode::NotCyclic,
             format!("`{}` is not cyclic: {}", names[i], why_not_cyclic(p, i)),
         ));
     }
     if let Some(&i) = cyclic.iter().find(|i| !stated.contains(i)) {
         return Err(Failed::new(
-            "missing-cyclic",
+            FindingCode::MissingCyclic,
             format!(
                 "`{}` is cyclic (L does not depend on it, no force acts on it, and it is in no constraint), but the answer does not list it",
                 names[i]

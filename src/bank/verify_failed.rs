@@ -1,6 +1,7 @@
 //! What a failed verification is (a finding's code and message) and the dimension check every
 //! kind of part shares: the leaf the other verification files build on.
 
+use super::FindingCode;
 use crate::check::CheckError;
 use crate::check::prepare::Prepared;
 use crate::expr::{Dimension, Id};
@@ -8,12 +9,12 @@ use crate::problem::{Part, Problem, Quantity};
 
 /// A failed verification: the finding's code and message.
 pub(super) struct Failed {
-    pub(super) code: &'static str,
+    pub(super) code: FindingCode,
     pub(super) message: String,
 }
 
 impl Failed {
-    pub(super) fn new(code: &'static str, message: String) -> Self {
+    pub(super) fn new(code: FindingCode, message: String) -> Self {
         Failed { code, message }
     }
 }
@@ -21,7 +22,7 @@ impl Failed {
 /// A checker error met while verifying keeps its own code (`unreadable`, `bad-at`, …).
 impl From<CheckError> for Failed {
     fn from(e: CheckError) -> Self {
-        Failed::new(e.code(), e.to_string())
+        Failed::new(FindingCode::Engine(e.code()), e.to_string())
     }
 }
 
@@ -53,12 +54,12 @@ pub(super) fn check_dimension(
 ) -> Check {
     match p.system.pool.dimension(e, &problem.dims) {
         Err(err) => Err(Failed::new(
-            "dimension",
+            FindingCode::Dimension,
             format!("{}: {err}", p.system.pool.unicode(e)),
         )),
         Ok(Some(d)) if want.is_some_and(|w| w != d) && !p.system.pool.is_zero(e) => {
             Err(Failed::new(
-                "dimension",
+                FindingCode::Dimension,
                 format!(
                     "{} has dimension {d}, but this part asks for {}",
                     p.system.pool.unicode(e),

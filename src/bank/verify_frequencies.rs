@@ -1,6 +1,7 @@
 //! Verification of frequencies parts: for every parameter sample, the stated frequencies (or
 //! their squares) against the eigen-solver's at the part's equilibrium.
 
+use super::FindingCode;
 use super::verify_failed::{Check, Failed, check_dimension};
 use crate::check::compare::{close, parameter_text, values};
 use crate::check::points::PointSet;
@@ -37,22 +38,22 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
         seed_from(&[&problem.id, &part.id, "frequencies"]),
         FREQUENCY_SAMPLES,
     )
-    .map_err(|e| Failed::new("sampling", e.to_string()))?;
+    .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let mut roots = stated.clone();
     roots.extend(at.iter().copied());
-    let vals =
-        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
+    let vals = values(&p.system, &roots, &samples)
+        .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     for (k, v) in vals.iter().enumerate() {
         let Some(v) = v else { continue };
         let params = samples.params(&p.system, k).to_vec();
         let q0 = &v[stated.len()..];
         p.system
             .check_equilibrium(&p.derivation, &params, q0)
-            .map_err(|e| Failed::new("not-an-equilibrium", e.to_string()))?;
+            .map_err(|e| Failed::new(FindingCode::NotAnEquilibrium, e.to_string()))?;
         let modes = p
             .system
             .modes_at(&p.derivation, &params, q0)
-            .map_err(|e| Failed::new("unusable", e.to_string()))?;
+            .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?;
         let mut want = wanted(part, &modes);
         let mut got: Vec<f64> = v[..stated.len()].to_vec();
         want.sort_by(f64::total_cmp);
@@ -66,7 +67,7 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
         {
             let pstr = parameter_text(&p.system, &params);
             return Err(Failed::new(
-                "wrong-frequency",
+                FindingCode::WrongFrequency,
                 format!(
                     "for {pstr} the stated {} are {got:.6?}, the eigen-solver gives {want:.6?}{}",
                     if part.growth {

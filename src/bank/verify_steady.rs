@@ -3,6 +3,7 @@
 //! rate; every equation of motion must then hold, at parameter samples that respect the
 //! problem's assumptions.
 
+use super::FindingCode;
 use rustc_hash::FxHashMap;
 
 use super::verify_failed::{Check, Failed, check_dimension};
@@ -25,7 +26,7 @@ pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) ->
     // forces are missing from it): the check below would prove nothing.
     if !p.system.constraints.is_empty() {
         return Err(Failed::new(
-            "unprovable",
+            FindingCode::Unprovable,
             "a steady-motion part is proved for systems without constraints: write the system in independent coordinates".into(),
         ));
     }
@@ -33,7 +34,7 @@ pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) ->
     let name = p.system.coordinates[c].name.clone();
     if !p.system.is_zero(p.derivation.steps[c].force) || !p.system.is_zero(p.system.forces[c]) {
         return Err(Failed::new(
-            "not-cyclic",
+            FindingCode::NotCyclic,
             format!(
                 "{name} is not cyclic (L depends on it, or a force acts on it): it cannot move uniformly while the others stay put"
             ),
@@ -59,10 +60,10 @@ pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) ->
         seed_from(&[&problem.id, &part.id, "steady"]),
         STEADY_SAMPLES,
     )
-    .map_err(|e| Failed::new("sampling", e.to_string()))?;
+    .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let roots: Vec<Id> = moving.iter().chain(&still).copied().collect();
-    let vals =
-        values(&p.system, &roots, &samples).map_err(|e| Failed::new("sampling", e.to_string()))?;
+    let vals = values(&p.system, &roots, &samples)
+        .map_err(|e| Failed::new(FindingCode::Sampling, e.to_string()))?;
     let n = moving.len();
     let mut defined = 0;
     for (k, v) in vals.iter().enumerate() {
@@ -76,7 +77,7 @@ pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) ->
             if v[i].abs() > STEADY_TOLERANCE * scale {
                 let params = samples.params(&p.system, k).to_vec();
                 return Err(Failed::new(
-                    "not-steady",
+                    FindingCode::NotSteady,
                     format!(
                         "for {} the equation of {} does not hold in the stated steady motion (residual {:.3e})",
                         parameter_text(&p.system, &params),
@@ -89,7 +90,7 @@ pub(super) fn verify_steady(problem: &Problem, part: &Part, p: &mut Prepared) ->
     }
     if defined == 0 {
         return Err(Failed::new(
-            "sampling",
+            FindingCode::Sampling,
             "the stated steady motion is undefined at every parameter sample".into(),
         ));
     }
@@ -109,7 +110,7 @@ fn moving_coordinate(part: &Part, p: &Prepared) -> Result<usize, Failed> {
     match free[..] {
         [c] => Ok(c),
         _ => Err(Failed::new(
-            "bad-steady",
+            FindingCode::BadSteady,
             format!(
                 "a steady-motion part gives in `at` every coordinate but the one that moves; here {} are left out",
                 free.len()

@@ -121,6 +121,7 @@ pub(crate) fn check_prepared(
     // `T = …` for a part asking for T: the value after the name is the answer.
     let label = named::label(part, p, input);
     let input = label.as_ref().map_or(input, |l| &input[l.offset..]);
+    p.quotes = super::prepare::Quotes::of(input);
     let mut v = match part.kind {
         PartKind::Equilibria | PartKind::Frequencies | PartKind::Values => {
             lists::check_list(problem, part, p, input)
@@ -318,6 +319,11 @@ fn dimension_check(
     s: Id,
     reference: Id,
 ) -> Option<Diagnosis> {
+    // A number carries no unit: an answer judged with the student's numbers (the problem
+    // pinned to them, without dimensions) has no dimension to check.
+    if part.numbers && problem.dims.is_empty() {
+        return None;
+    }
     let ds = match p.system.pool.dimension(s, &problem.dims) {
         Err(e) => return Some(Diagnosis::new(Code::Dimension, e.to_string())),
         Ok(Some(ds)) => ds,

@@ -12,49 +12,13 @@ use super::diagnose::{sign_in_term, swapped};
 use super::equation_diagnosis::diagnose_equation;
 use super::error::CheckError;
 use super::points::PointSet;
-use super::prepare::Prepared;
+use super::prepare::{Prepared, true_accelerations};
 use super::residual::{Miss, affine, holds, miss};
 use super::terms::{Scaling, Terms, one_term};
 use super::tolerance;
 use super::verdict::{Code, Diagnosis, ReadAs, Status, Verdict};
 use crate::expr::{Id, Node, Reading, Style};
-use crate::mechanics::accel::Dynamics;
 use crate::problem::{Part, PartKind, Problem};
-
-/// True accelerations at every point.
-pub(crate) fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
-    if let Some(a) = p.accelerations.get() {
-        return Ok(a.clone());
-    }
-    let a = compute_accelerations(p)?;
-    Ok(p.accelerations.get_or_init(|| a).clone())
-}
-
-fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
-    let sys = &p.system;
-    if !sys.constraints.is_empty() {
-        let mut s = sys.clone();
-        let rows = s.constraint_rows();
-        return Ok(p
-            .points
-            .points
-            .iter()
-            .map(|x| {
-                s.multipliers_at(&p.derivation, &rows, x)
-                    .ok()
-                    .map(|(a, _)| a)
-            })
-            .collect());
-    }
-    let dynamics =
-        Dynamics::new(sys, &p.derivation).map_err(|error| CheckError::Dynamics { error })?;
-    let mut scratch = dynamics.scratch();
-    Ok(p.points
-        .points
-        .iter()
-        .map(|x| dynamics.accelerations(x, &mut scratch).ok())
-        .collect())
-}
 
 /// Whether the equations `res` determine the true accelerations (`equations`), or hold at
 /// them (`equation`). Returns a description of the failure. The same tests as the checker's:

@@ -17,6 +17,8 @@ use super::compare::values;
 use super::item_reading::read_stated_items;
 use super::points::PointSet;
 use super::prepare::Prepared;
+use crate::expr::lower::lower_statement;
+use crate::expr::parser::parse;
 use crate::expr::{Id, Reading, Style, read};
 use crate::problem::{Part, PartKind};
 
@@ -50,8 +52,13 @@ pub(crate) fn canonical(part: &Part, p: &mut Prepared, input: &str) -> Option<St
         shown.sort();
         return Some(format!("[{}]", shown.join("; ")));
     }
-    let r = read(input, &p.context, &mut p.system.pool).ok()?;
-    Some(show(p, &r))
+    let parsed = parse(input, &p.context).ok()?;
+    let r = lower_statement(&mut p.system.pool, &parsed.statement);
+    // Diagnoses quote the student's terms as they built them (`−(m₂ − m₁) g`, not
+    // `(m₁ − m₂)·g`): answers read the same but built otherwise get verdicts worded otherwise,
+    // so the way they were built is part of the form (spacing and spelling are not).
+    let typed = super::quote::statement_text(input, &parsed.statement);
+    Some(format!("{} | as built: {typed}", show(p, &r)))
 }
 
 fn show(p: &Prepared, r: &Reading) -> String {
@@ -399,8 +406,8 @@ mod tests {
         assert_eq!(c.canonical("eom", "m*(").unwrap(), None);
         // A name the part asks for is not part of the answer; a wrong name is.
         let bare = c.canonical("kinetic", "1/2*m*l^2*theta'^2").unwrap();
-        assert_eq!(c.canonical("kinetic", "T = ½ m l² θ̇²").unwrap(), bare);
-        assert_ne!(c.canonical("kinetic", "V = ½ m l² θ̇²").unwrap(), bare);
+        assert_eq!(c.canonical("kinetic", "T = 1/2 m l² θ̇²").unwrap(), bare);
+        assert_ne!(c.canonical("kinetic", "V = 1/2 m l² θ̇²").unwrap(), bare);
     }
 
     #[test]

@@ -290,6 +290,9 @@ pub(super) fn classify_unmatched(
     let want = match part.kind {
         // A numeric part's units were checked before its numbers were read.
         _ if part.units.is_some() => None,
+        // A number carries no unit: an item judged with the student's numbers (the problem
+        // pinned to them, without dimensions) has no dimension.
+        _ if part.numbers && problem.dims.is_empty() => None,
         PartKind::Frequencies if part.squared => Some(Dimension::new(0, 0, -2)),
         PartKind::Frequencies => Some(Dimension::new(0, 0, -1)),
         _ => None,

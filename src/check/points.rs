@@ -118,7 +118,9 @@ pub(crate) fn wide_point(sys: &System, s: &mut Sampler, free: bool) -> Vec<f64> 
     }
     for (j, p) in sys.parameters.iter().enumerate() {
         let (lo, hi) = p.range;
-        if lo > 0.0 && hi >= lo {
+        // A parameter pinned to one value (a student's variant: `Problem::pinned`) keeps it:
+        // the student's numbers are those of that value alone.
+        if lo > 0.0 && hi > lo {
             let (lo, hi) = if free {
                 (1.0 / FREE_SCALE, FREE_SCALE)
             } else {

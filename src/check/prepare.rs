@@ -2,10 +2,13 @@
 //! seeded sample points that respect the assumptions, and readers for answer items (equations,
 //! equilibrium points, frequencies).
 
+use rustc_hash::FxHashMap;
+
 use super::error::CheckError;
 use super::points::PointSet;
 use super::tolerance;
 use crate::expr::{Context, Id, Node, Reading, read, read_equation, read_expr};
+use crate::mechanics::accel::Dynamics;
 use crate::mechanics::equilibria::wrap_angle;
 use crate::mechanics::sample::seed_from;
 use crate::mechanics::{Derivation, System};
@@ -35,6 +38,8 @@ pub struct Prepared {
     pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
     /// For a linearized part (`about`): where `system` was expanded.
     pub expansion: Option<super::taylor::Expansion>,
+    /// The answer being checked, for quoting the student's own terms in diagnoses.
+    pub quotes: Quotes,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -103,6 +108,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
         expansion,
+        quotes: Quotes::default(),
     })
 }
 
@@ -364,6 +370,59 @@ pub(crate) fn equilibrium_of(p: &mut Prepared, part: &Part) -> Result<Vec<Id>, C
         at[i] = read_one(p, v)?;
     }
     Ok(at)
+}
+
+/// True accelerations at every point, computed once per prepared part (the equation
+/// checks and the misconceptions about motion share them).
+pub(crate) fn true_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
+    if let Some(a) = p.accelerations.get() {
+        return Ok(a.clone());
+    }
+    let a = compute_accelerations(p)?;
+    Ok(p.accelerations.get_or_init(|| a).clone())
+}
+
+fn compute_accelerations(p: &Prepared) -> Result<Vec<Option<Vec<f64>>>, CheckError> {
+    let sys = &p.system;
+    if !sys.constraints.is_empty() {
+        let mut s = sys.clone();
+        let rows = s.constraint_rows();
+        return Ok(p
+            .points
+            .points
+            .iter()
+            .map(|x| {
+                s.multipliers_at(&p.derivation, &rows, x)
+                    .ok()
+                    .map(|(a, _)| a)
+            })
+            .collect());
+    }
+    let dynamics =
+        Dynamics::new(sys, &p.derivation).map_err(|error| CheckError::Dynamics { error })?;
+    let mut scratch = dynamics.scratch();
+    Ok(p.points
+        .points
+        .iter()
+        .map(|x| dynamics.accelerations(x, &mut scratch).ok())
+        .collect())
+}
+
+/// The answer being checked, and its quotes once made.
+#[derive(Clone, Debug, Default)]
+pub struct Quotes {
+    pub(super) source: String,
+    pub(super) table: Option<FxHashMap<Id, String>>,
+}
+
+impl Quotes {
+    /// Quotes for the answer `source` (made when first asked for).
+    pub(crate) fn of(source: &str) -> Quotes {
+        Quotes {
+            source: source.to_string(),
+            table: None,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -88,3 +88,34 @@ pub fn taylor(sys: &mut System, e: Id, point: &[Id], order: u32) -> Id {
     }
     sys.simplify(sum)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::taylor;
+    use crate::expr::{Program, read_expr};
+    use crate::mechanics::System;
+
+    #[test]
+    fn taylor_polynomials_are_exact() {
+        // cos about π to second order: −1 + (θ − π)²/2, compared with that polynomial written
+        // out at points near and far from π (a polynomial identity holds everywhere).
+        let mut sys = System::from_lagrangian("theta'^2/2 + cos(theta)", &["theta"]).unwrap();
+        let ctx = sys.context();
+        let cos = read_expr("cos(theta)", &ctx, &mut sys.pool).unwrap();
+        let pi = sys.pool.pi();
+        let t = taylor(&mut sys, cos, &[pi], 2);
+        let want = read_expr("-1 + (theta - pi)^2/2", &ctx, &mut sys.pool).unwrap();
+        let vars = sys.pool.variables(want);
+        assert_eq!(vars, sys.pool.variables(t));
+        let p = Program::compile(&sys.pool, &[t, want], &vars).unwrap();
+        for th in [0.3, 1.0, 2.5, -0.7] {
+            let v = p.eval(&[th]).unwrap();
+            assert!(
+                (v[0] - v[1]).abs() < 1e-12,
+                "θ = {th}: {} vs {}",
+                v[0],
+                v[1]
+            );
+        }
+    }
+}

@@ -36,6 +36,7 @@ pub struct ReadAs {
 /// Serialised (and displayed) in kebab-case, the strings the documentation and JSON use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum Code {
     /// The answer names a symbol the problem does not declare.
     UnknownSymbol,
@@ -278,6 +279,7 @@ impl From<&Diagnosis> for crate::diagnostic::Diagnostic {
 
 /// The verdict on one answer.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct Verdict {
     pub problem: String,
     pub part: String,
@@ -294,6 +296,32 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// A verdict with no problem or part ids, no plain reading, note or parse error: what a
+    /// face that keeps many verdicts (grading a class) keeps of one, given back whole to the
+    /// library (follow-through reads an earlier answer through it).
+    pub fn kept(
+        status: Status,
+        score: f64,
+        unicode: String,
+        diagnoses: Vec<Diagnosis>,
+        seed: u64,
+    ) -> Verdict {
+        Verdict {
+            problem: String::new(),
+            part: String::new(),
+            status,
+            score,
+            reading: ReadAs {
+                plain: String::new(),
+                unicode,
+                note: None,
+            },
+            diagnoses,
+            seed,
+            parse_error: None,
+        }
+    }
+
     /// Orders the diagnoses most specific first and removes repeats.
     pub fn sort(&mut self) {
         self.diagnoses.sort_by_key(|d| d.code);

@@ -77,7 +77,7 @@ pub fn run(
     for (flag, path) in [("--plot", &args.plot), ("--poincare", &args.poincare)] {
         if let Some(e) = path
             .as_deref()
-            .and_then(|p| crate::plot::check_picture_path(flag, p, false).err())
+            .and_then(|p| crate::face::plot::check_picture_path(flag, p, false).err())
         {
             return Ok(report(&CliError::Usage(e), color));
         }
@@ -90,7 +90,7 @@ pub fn run(
         Ok(o) => o,
         Err(e) => return Ok(report(&e, color)),
     };
-    let mut bar = crate::bar::Bar::percent(!args.json);
+    let mut bar = crate::face::bar::Bar::percent(!args.json);
     let run = lagrange::report::chaos::chaos_with(&mut sys, &opts, &mut bar);
     bar.finish();
     let mut r = match run {
@@ -118,11 +118,11 @@ fn pictures(
     units: &lagrange::report::units::AxisUnits,
 ) -> Result<(), String> {
     if let Some(path) = &args.plot {
-        crate::plot::chaos_svg(r, path)
+        crate::face::plot::chaos_svg(r, path)
             .map_err(|e| format!("--plot {}: cannot draw: {e}", path.display()))?;
     }
     if let Some(path) = &args.poincare {
-        crate::plot::poincare_svg(r, units, path)
+        crate::face::plot::poincare_svg(r, units, path)
             .map_err(|e| format!("--poincare {}: cannot draw: {e}", path.display()))?;
     }
     Ok(())

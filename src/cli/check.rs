@@ -22,6 +22,8 @@ pub struct CheckArgs {
     /// One JSON object instead of text.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    student: super::sheets::StudentArgs,
 }
 
 pub fn run(
@@ -31,8 +33,7 @@ pub fn run(
     out: &mut String,
 ) -> anyhow::Result<ExitCode> {
     // Only the problem asked for is built, from the embedded bank or a folder.
-    let found =
-        super::problems::find_problem(problems, &args.problem).map_err(anyhow::Error::msg)?;
+    let found = crate::face::find_problem(problems, &args.problem).map_err(anyhow::Error::msg)?;
     let Some(problem) = found.as_ref() else {
         eprintln!(
             "error: no problem `{}`\n  help: `lagrange problems list` shows the ids",
@@ -40,7 +41,15 @@ pub fn run(
         );
         return Ok(ExitCode::from(2));
     };
-    let mut checker = Checker::new(problem);
+    // A part that accepts numbers is judged against the student's own numbers.
+    let variant = (args.student.student.as_deref())
+        .and_then(|k| lagrange::problem::variant::pick(problem, args.student.seed, k));
+    let numbers = problem.part(&args.part).is_some_and(|p| p.numbers);
+    let pinned = variant
+        .as_ref()
+        .filter(|_| numbers)
+        .map(|v| problem.pinned(v));
+    let mut checker = Checker::new(pinned.as_ref().unwrap_or(problem));
     let v = match checker.check(&args.part, &args.answer) {
         Ok(v) => v,
         Err(e) => {
@@ -58,6 +67,10 @@ pub fn run(
     if args.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
     } else {
+        if let Some(variant) = variant.as_ref().filter(|_| numbers) {
+            let shown = lagrange::report::sheets::numbers_of(problem, variant).join(", ");
+            writeln!(out, "{} {shown}", "numbers:".bold())?;
+        }
         if !v.reading.unicode.is_empty() {
             writeln!(out, "{} {}", "read as:".bold(), v.reading.unicode)?;
             if let Some(n) = &v.reading.note {
@@ -83,6 +96,11 @@ pub fn run(
         for d in v.diagnoses.iter().filter(|d| !repeats_parse_error(&v, d)) {
             writeln!(out, "  {} {}", format!("[{}]", d.code).dimmed(), d.message)?;
         }
+    }
+    if numbers && pinned.is_none() && v.status != Status::Correct && !problem.variants.is_empty() {
+        eprintln!(
+            "note: this part takes each student's own numbers; give `--student KEY` to be judged with yours"
+        );
     }
     Ok(if v.status == Status::Correct {
         ExitCode::SUCCESS

@@ -5,9 +5,10 @@ use std::process::ExitCode;
 
 use clap::Subcommand;
 
-use super::system_args::Terminal;
-use lagrange::bank::load::{DUPLICATE_ID, load_one, read_file};
-use lagrange::bank::{Bank, Problem, embedded, load_dir, load_str};
+use crate::face::{Terminal, load_bank, load_bank_with_findings};
+use lagrange::bank::FindingCode;
+use lagrange::bank::load::read_file;
+use lagrange::bank::{Bank, load_dir, load_str};
 use lagrange::report::{problem_list, problem_sheet, verification};
 
 #[derive(Subcommand, Debug)]
@@ -21,40 +22,27 @@ pub enum ProblemsCommand {
         /// Also print the reference answers (for instructors).
         #[arg(long)]
         answers: bool,
+        #[command(flatten)]
+        student: super::sheets::StudentArgs,
     },
+    /// Every student's sheets of the given problems, as Markdown and LaTeX files (one pair per
+    /// student, each with that student's numbers).
+    ExportSheets(super::sheets::ExportArgs),
     /// Prove every stated answer against the physics. With no PATH, the bank in use.
     Verify {
         /// Problem files or folders of them.
         paths: Vec<PathBuf>,
     },
-}
-
-/// The bank from `dir`, or the embedded one, refused whole when two files define one
-/// problem id (a grade and a check would otherwise judge by different files).
-pub fn load_bank(dir: Option<&Path>) -> Result<Bank, String> {
-    let bank = load_bank_with_findings(dir)?;
-    match bank.failures.iter().find(|f| f.code == DUPLICATE_ID) {
-        Some(f) => Err(f.message.clone()),
-        None => Ok(bank),
-    }
-}
-
-/// The bank from `dir`, or the embedded one, with every file that failed to load (a
-/// duplicate id among them) as a finding: what `problems verify` reports.
-fn load_bank_with_findings(dir: Option<&Path>) -> Result<Bank, String> {
-    match dir {
-        Some(d) => load_dir(d),
-        None => Ok(embedded::bank()),
-    }
-}
-
-/// The one problem a command is about, from `dir` or the embedded bank, building only that
-/// problem (a folder of 30,000 files is not loaded whole to check one answer).
-pub fn find_problem(dir: Option<&Path>, id: &str) -> Result<Option<Problem>, String> {
-    match dir {
-        Some(d) => load_one(d, id),
-        None => Ok(embedded::problem(id)),
-    }
+    /// Draft a proved problem file from a system: a Lagrangian, or bodies (as for `derive`).
+    New(Box<super::problem_new::NewArgs>),
+    /// Write the built-in problems as TOML files into DIR, to start your own from.
+    Export {
+        /// The folder to write into (created if needed).
+        dir: PathBuf,
+        /// Also replace files there that lagrange did not export, or that were edited since.
+        #[arg(long)]
+        force: bool,
+    },
 }
 
 pub fn run(
@@ -68,15 +56,26 @@ pub fn run(
             out.push_str(&problem_list(&bank).render(&Terminal));
             Ok(ExitCode::SUCCESS)
         }
-        ProblemsCommand::Show { id, answers } => {
-            let found = find_problem(dir, id).map_err(anyhow::Error::msg)?;
+        ProblemsCommand::ExportSheets(args) => super::sheets::export(args, dir),
+        ProblemsCommand::Show {
+            id,
+            answers,
+            student,
+        } => {
+            let found = crate::face::find_problem(dir, id).map_err(anyhow::Error::msg)?;
             let Some(p) = found.as_ref() else {
                 eprintln!(
                     "error: no problem `{id}`\n  help: `lagrange problems list` shows the ids"
                 );
                 return Ok(ExitCode::from(2));
             };
-            out.push_str(&problem_sheet(p, *answers).render(&Terminal));
+            let sheet = match &student.student {
+                Some(key) => {
+                    lagrange::report::sheets::student_sheet(p, *answers, key, student.seed)
+                }
+                None => problem_sheet(p, *answers),
+            };
+            out.push_str(&sheet.render(&Terminal));
             Ok(ExitCode::SUCCESS)
         }
         ProblemsCommand::Verify { paths } => {
@@ -99,7 +98,69 @@ pub fn run(
                 ExitCode::SUCCESS
             })
         }
+        ProblemsCommand::Export { dir, force } => export(dir, *force, out),
+        ProblemsCommand::New(args) => super::problem_new::run(
+            args,
+            colored::control::SHOULD_COLORIZE.should_colorize(),
+            out,
+        ),
     }
+}
+
+/// `problems export DIR`: every built-in problem as a file, all or none. A file already at a
+/// name is replaced only when it is what lagrange exported and nobody has edited it since
+/// (its first line's fingerprint still matches), or with `--force`: an instructor's edits are
+/// never lost to a second export. Files are written whole and renamed into place
+/// (`outfile`), so a reader never sees half a file.
+fn export(dir: &Path, force: bool, out: &mut String) -> anyhow::Result<ExitCode> {
+    use lagrange::bank::export::{Existing, classify, exported};
+    let files = exported();
+    let mut kept = Vec::new();
+    let mut same = 0;
+    let mut todo = Vec::new();
+    for f in &files {
+        let path = dir.join(f.name);
+        let existing = match std::fs::symlink_metadata(&path) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+            // A link, a folder or a device at the name: `outfile` refuses it with the reason.
+            Ok(m) if !m.is_file() => Some(Existing::Other),
+            _ => Some(match read_file(&path) {
+                Ok(text) => classify(&text, f),
+                Err(_) => Existing::Other,
+            }),
+        };
+        match existing {
+            Some(Existing::Same) => same += 1,
+            Some(Existing::Other) if !force => kept.push(path.display().to_string()),
+            _ => todo.push(f),
+        }
+    }
+    if !kept.is_empty() {
+        eprintln!(
+            "error: nothing exported: {} would replace a file that lagrange did not export, or that was edited since\n  help: export into another folder, or give --force to replace {}",
+            kept.join(", "),
+            if kept.len() == 1 { "it" } else { "them" }
+        );
+        return Ok(ExitCode::from(2));
+    }
+    let names: Vec<&str> = todo.iter().map(|f| f.name).collect();
+    let folder = crate::face::outfile::Folder::open(dir, &names).map_err(anyhow::Error::msg)?;
+    let staged = todo
+        .iter()
+        .map(|f| folder.stage(f.name, f.text.as_bytes()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(anyhow::Error::msg)?;
+    crate::face::outfile::commit(staged).map_err(anyhow::Error::msg)?;
+    out.push_str(&format!(
+        "{} problems exported to {} ({} written, {} unchanged)\n  next: `lagrange problems verify {}` proves them; `--add-problems {}` uses them beside the built-in ones\n",
+        files.len(),
+        dir.display(),
+        todo.len(),
+        same,
+        dir.display(),
+        dir.display()
+    ));
+    Ok(ExitCode::SUCCESS)
 }
 
 /// A bank of the given files and folders; a file that cannot be opened is an error of its
@@ -124,7 +185,7 @@ fn load_paths(paths: &[PathBuf]) -> anyhow::Result<Result<Bank, String>> {
                 Ok(p) => b.add(p, name),
                 Err(f) => b.failures.push(f),
             },
-            Err(f) if f.code == "unreadable-file" => {
+            Err(f) if f.code == FindingCode::UnreadableFile => {
                 return Ok(Err(format!("cannot read {name}: {}", f.message)));
             }
             Err(f) => b.failures.push(f),

@@ -7,6 +7,8 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
+mod grid;
+
 use super::system_args::{CliError, SystemArgs, Terminal, report};
 use lagrange::diagnostic::{Diagnostic, render_plain};
 use lagrange::problem::SimulationDefaults;
@@ -111,13 +113,13 @@ pub fn run(
         Err(e) => return Ok(report(&e, color)),
     };
     if let Some(spec) = &args.grid {
-        return super::grid::run(args, &opts, &units, spec, &mut sys, color, out);
+        return grid::run(args, &opts, &units, spec, &mut sys, color, out);
     }
     if args.until_flip {
         let message = "--until-flip goes with --grid (the flip-time map)".into();
         return Ok(report(&CliError::Usage(message), color));
     }
-    let mut bar = crate::bar::Bar::percent(!args.json);
+    let mut bar = crate::face::bar::Bar::percent(!args.json);
     let run = lagrange::report::simulation_with(&mut sys, &opts, &mut bar);
     bar.finish();
     let mut report_ = match run {
@@ -139,7 +141,7 @@ pub fn run(
             Ok(f) => f,
             Err(e) => return Ok(failure(&e)),
         };
-        if let Err(e) = crate::plot::portrait_svg(&family, &report_.units, path) {
+        if let Err(e) = crate::face::plot::portrait_svg(&family, &report_.units, path) {
             let message = format!("--phase {}: cannot draw: {e}", path.display());
             return Ok(report(&CliError::Usage(message), color));
         }
@@ -151,7 +153,7 @@ pub fn run(
         out.push_str(&report_.render(&Terminal));
     }
     if args.plot.as_deref() == Some(Path::new("-")) {
-        out.push_str(&crate::plot::terminal_chart(&report_));
+        out.push_str(&crate::face::plot::terminal_chart(&report_));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -160,13 +162,17 @@ pub fn run(
 fn pictures(args: &SimulateArgs, r: &SimulationReport) -> Result<(), String> {
     type Draw = fn(&SimulationReport, &Path) -> Result<(), String>;
     let asked: [(&str, Option<&PathBuf>, Draw); 3] = [
-        ("--plot", args.plot.as_ref(), crate::plot::qt_svg),
+        ("--plot", args.plot.as_ref(), crate::face::plot::qt_svg),
         (
             "--phase",
             args.phase.as_ref().filter(|_| args.portrait.is_none()),
-            crate::plot::phase_svg,
+            crate::face::plot::phase_svg,
         ),
-        ("--energy", args.energy.as_ref(), crate::plot::energy_svg),
+        (
+            "--energy",
+            args.energy.as_ref(),
+            crate::face::plot::energy_svg,
+        ),
     ];
     for (flag, path, draw) in asked {
         if let Some(path) = path.filter(|p| p.as_path() != Path::new("-")) {
@@ -185,12 +191,13 @@ fn check_pictures(args: &SimulateArgs) -> Result<(), CliError> {
     ];
     for (flag, path, terminal) in asked {
         if let Some(path) = path {
-            crate::plot::check_picture_path(flag, path, terminal).map_err(CliError::Usage)?;
+            crate::face::plot::check_picture_path(flag, path, terminal).map_err(CliError::Usage)?;
         }
     }
     // The CSV's name too: a link or a folder there is refused before any work.
     if let Some(path) = args.out.as_deref().filter(|p| *p != Path::new("-")) {
-        crate::outfile::check(path, true).map_err(|e| CliError::Usage(format!("--out: {e}")))?;
+        crate::face::outfile::check(path, true)
+            .map_err(|e| CliError::Usage(format!("--out: {e}")))?;
     }
     Ok(())
 }
@@ -276,8 +283,8 @@ pub(super) fn failure(e: &SimulationError) -> ExitCode {
     ExitCode::from(if e.along_the_way() { 1 } else { 2 })
 }
 
-/// Writes `bytes` to `path` as [`crate::outfile::write_named`] does: a regular file through a
+/// Writes `bytes` to `path` as [`crate::face::outfile::write_named`] does: a regular file through a
 /// temporary file beside it and a rename, a device or FIFO by streaming, never through a link.
 pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    crate::outfile::write_named(path, bytes)
+    crate::face::outfile::write_named(path, bytes)
 }

@@ -4,12 +4,12 @@
 use std::process::ExitCode;
 
 use clap::Args;
-use colored::Colorize;
+
+pub(crate) mod body_args;
 
 use lagrange::diagnostic::{Diagnostic, render, render_plain};
 use lagrange::mechanics::system::NameError;
 use lagrange::mechanics::{MechError, System};
-use lagrange::report::Paint;
 
 /// A system given on the command line, or a problem of the bank by id.
 #[derive(Args, Debug)]
@@ -92,7 +92,7 @@ impl SystemArgs {
                 "give a problem id or --lagrangian, not both",
             ));
         }
-        let p = super::problems::find_problem(problems, id)
+        let p = crate::face::find_problem(problems, id)
             .map_err(CliError::Usage)?
             .ok_or_else(|| {
                 let ids = lagrange::bank::embedded::FILES
@@ -138,7 +138,7 @@ impl SystemArgs {
         let lagrangian = text("--lagrangian", &self.lagrangian)?;
         let kinetic = text("--kinetic", &self.kinetic)?;
         let potential = text("--potential", &self.potential)?;
-        let bodies = super::body_args::BodyFlags {
+        let bodies = body_args::BodyFlags {
             points: &self.point,
             rigids: &self.rigid,
             gravity: self.gravity.as_deref(),
@@ -170,7 +170,7 @@ impl SystemArgs {
             sys.set_forces(&f)?;
         }
         for f in &self.force_at {
-            super::body_args::force_at(&mut sys, &expression("--force-at", f)?)?;
+            body_args::force_at(&mut sys, &expression("--force-at", f)?)?;
         }
         for c in &self.constraint {
             sys.add_constraint(&expression("--constraint", c)?)?;
@@ -309,26 +309,8 @@ pub fn chosen(
 
 /// "a=1, b=2" as names and numbers (`--params`, `--init` of `simulate` and `chaos`).
 pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, CliError> {
-    lagrange::report::simulation::numbers(flag, text).map_err(CliError::Usage)
+    lagrange::report::simulation::numbers(flag, text).map_err(|e| CliError::Usage(e.to_string()))
 }
 
-/// Colour for a terminal, through `colored` (which honours `--color` and NO_COLOR).
-pub struct Terminal;
-
-impl Paint for Terminal {
-    fn heading(&self, text: &str) -> String {
-        text.bold().to_string()
-    }
-    fn good(&self, text: &str) -> String {
-        text.green().to_string()
-    }
-    fn bad(&self, text: &str) -> String {
-        text.red().to_string()
-    }
-    fn warn(&self, text: &str) -> String {
-        text.yellow().to_string()
-    }
-    fn dim(&self, text: &str) -> String {
-        text.dimmed().to_string()
-    }
-}
+/// The terminal's colours, shared with the other faces.
+pub use crate::face::Terminal;

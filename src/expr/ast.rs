@@ -1,5 +1,5 @@
 //! The syntax tree the parser produces: every node carries the byte span it was read from.
-//! Names are already resolved against the context; lowering to canonical [`Id`]s happens in
+//! Names are already resolved against the context; lowering to canonical [`Id`](super::Id)s happens in
 //! `lower.rs`.
 
 use num_rational::BigRational;

@@ -2,8 +2,6 @@
 //! or wide format with one `PROBLEM/PART` column per part) found by name, whatever their order
 //! and case.
 
-use super::input::BadFile;
-
 /// The columns the header must have, for the error message.
 pub(super) const EXPECTED: &str = "expected the columns `student,problem,part,answer` (long format) or \
                         `student` plus one `PROBLEM/PART` column per part (wide format)";
@@ -30,7 +28,7 @@ pub(super) fn header_name(field: &[u8]) -> String {
 }
 
 /// The layout a header describes, or the error naming the expected columns.
-pub(super) fn layout(names: &[String]) -> Result<Layout, BadFile> {
+pub(super) fn layout(names: &[String]) -> Result<Layout, String> {
     let find = |n: &str| names.iter().position(|h| h == n);
     let found = || {
         // Control characters shown escaped, and a binary file's "header" cut short.
@@ -41,7 +39,7 @@ pub(super) fn layout(names: &[String]) -> Result<Layout, BadFile> {
         format!("found `{shown}`")
     };
     let Some(student) = find("student") else {
-        return Err(BadFile(format!("bad header: {EXPECTED}; {}", found())));
+        return Err(format!("bad header: {EXPECTED}; {}", found()));
     };
     if let (Some(problem), Some(part), Some(answer)) =
         (find("problem"), find("part"), find("answer"))
@@ -64,7 +62,7 @@ pub(super) fn layout(names: &[String]) -> Result<Layout, BadFile> {
         })
         .collect();
     if parts.is_empty() {
-        return Err(BadFile(format!("bad header: {EXPECTED}; {}", found())));
+        return Err(format!("bad header: {EXPECTED}; {}", found()));
     }
     Ok(Layout::Wide { student, parts })
 }

@@ -8,10 +8,10 @@ use std::borrow::Cow;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
+use super::cell::unquote_cell;
 use super::decode::Decoded;
 use super::header::{EXPECTED, Layout, header_name, layout};
 use super::intern::Interner;
-use super::output::unquote_cell;
 
 /// The two layouts a class file may have.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -282,7 +282,7 @@ fn parse_cut(
         Err(e) => return Err(BadFile(format!("cannot read the header: {e}"))),
     };
     let names: Vec<String> = header.iter().map(header_name).collect();
-    let layout = layout(&names)?;
+    let layout = layout(&names).map_err(BadFile)?;
     let width = header.len();
     // The body in pieces that start at record starts (found by the quote check), read in
     // parallel, then joined in file order.

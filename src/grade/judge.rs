@@ -10,17 +10,28 @@ use rustc_hash::FxHashMap;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Code, Status as Checked, Verdict};
+use lagrange::check::{Checker, Code, Status as Checked};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
 use lagrange::tutor::command::did_you_mean;
 
+use lagrange::policy::{Decision, Policy};
+
 use super::input::Table;
 
 mod counted;
-use crate::bar::Shared;
+mod slim;
+use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
+pub use slim::{Messages, Slim, meaning};
+
+/// The instructor's decisions applied to judged rows (`--overrides`, in `overrides.rs`): a
+/// trait so that judging does not import the file that reads the decisions.
+pub trait Override: Sync + std::fmt::Debug {
+    /// Applies the decisions to the rows they name; the rows changed.
+    fn apply(&self, table: &Table, judged: &mut Judged, bank: &Bank) -> Vec<usize>;
+}
 
 /// The status column of results.csv.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -45,13 +56,16 @@ impl Status {
     }
 }
 
-/// How to judge: follow-through credit (`None`: off) and whether the best attempt counts.
+/// How to judge: the assignment's policy (credit per code, follow-through, attempts) and the
+/// instructor's decisions on answers the checker could not settle.
 #[derive(Clone, Copy, Debug)]
-pub struct Settings {
-    /// The follow-through credit as a fraction of the points; `None`: no follow-through.
-    pub follow_through: Option<f64>,
-    /// The best attempt counts instead of the last.
-    pub best: bool,
+pub struct Settings<'s> {
+    /// How verdicts become scores and which attempt counts (`lagrange::policy`).
+    pub policy: &'s Policy,
+    /// The instructor's decisions (`--overrides`), applied before follow-through and counting.
+    pub overrides: Option<&'s dyn Override>,
+    /// The problems pinned to each student's numbers (`variants.rs`).
+    pub variants: &'s super::variants::Variants,
 }
 
 /// One checked representative: the verdict every row of its canonical form shares.
@@ -62,11 +76,12 @@ pub struct Rep {
     pub part: usize,
     /// The answer checked (the first spelling of the form in input order).
     pub answer: String,
-    /// The verdict ([`slim`]: what grading reads of it), or why the part could not be
+    /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
     /// checked.
-    pub verdict: Result<Verdict, String>,
-    /// Equal for answers equal at the sample points: the summary's grouping key.
-    pub fingerprint: Option<String>,
+    pub verdict: Result<Slim, String>,
+    /// Equal for answers equal at the sample points: the summary's grouping key (the
+    /// checker's fingerprint, hashed: see [`meaning`]).
+    pub fingerprint: Option<u128>,
 }
 
 /// What a row is given: shared by every row with the same representative (and the same
@@ -88,6 +103,8 @@ pub struct Outcome {
     pub target: Option<(usize, usize)>,
     /// The representative whose verdict this is.
     pub rep: Option<usize>,
+    /// The instructor's decision that replaced the checker's (`--overrides`), if any.
+    pub decision: Option<Decision>,
 }
 
 /// The outcome of one row of the input.
@@ -107,6 +124,9 @@ pub struct Judged {
     pub outcomes: Vec<Outcome>,
     /// The answers actually checked.
     pub reps: Vec<Rep>,
+    /// The score a counted row counts for when the attempt penalty lowers it below its
+    /// outcome's (few rows: only later attempts, only with a penalty).
+    pub penalised: FxHashMap<u32, f64>,
 }
 
 impl Judged {
@@ -120,15 +140,23 @@ impl Judged {
         match (&o.message, o.rep) {
             (Some(m), _) => m,
             (None, Some(r)) => match &self.reps[r].verdict {
-                Ok(v) => v.diagnoses.first().map_or("", |d| d.message.as_str()),
+                Ok(v) => &v.message,
                 Err(e) => e,
             },
             (None, None) => "",
         }
     }
 
+    /// The score row `i` counts for in the gradebook (after the attempt penalty).
+    pub fn counted_score(&self, i: usize) -> f64 {
+        match self.penalised.get(&(i as u32)) {
+            Some(&s) => s,
+            None => self.outcome(i).score,
+        }
+    }
+
     /// Adds an outcome; its index.
-    fn add(&mut self, o: Outcome) -> u32 {
+    pub(super) fn add(&mut self, o: Outcome) -> u32 {
         self.outcomes.push(o);
         self.outcomes.len() as u32 - 1
     }
@@ -146,7 +174,7 @@ type Resolved = Result<(usize, usize), String>;
 pub fn judge(
     table: &Table,
     bank: &Bank,
-    settings: Settings,
+    settings: Settings<'_>,
     progress: &mut (dyn Progress + Send),
     phases: &mut super::phases::Phases,
 ) -> Result<Judged, Interrupted> {
@@ -155,12 +183,13 @@ pub fn judge(
         rows: Vec::with_capacity(rows.len()),
         outcomes: Vec::new(),
         reps: Vec::new(),
+        penalised: FxHashMap::default(),
     };
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
     let mut distinct: Vec<(usize, usize, &str)> = Vec::new();
-    let mut by_text: FxHashMap<(usize, usize, u32), u32> = FxHashMap::default();
-    // Per row: its own outcome (Err) or its distinct answer (Ok).
+    let mut by_text: FxHashMap<(u32, u32, u32), u32> = FxHashMap::default();
+    // Per row: its own outcome (Err) or its distinct answer (Ok), then its representative.
     let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
     for row in rows {
         let own = |o: Outcome, judged: &mut Judged| Err(judged.add(o));
@@ -185,18 +214,27 @@ pub fn judge(
                         &mut judged,
                     )
                 }
-                Ok((p, q)) => Ok(*by_text.entry((*p, *q, row.answer)).or_insert_with(|| {
-                    distinct.push((*p, *q, table.answers.get(row.answer)));
-                    distinct.len() as u32 - 1
-                })),
+                Ok((p, q)) => {
+                    // The student's own numbers judge a part that accepts them.
+                    let p = settings.variants.problem(bank, row.student, *p, *q);
+                    Ok(*by_text
+                        .entry((p as u32, *q as u32, row.answer))
+                        .or_insert_with(|| {
+                            distinct.push((p, *q, table.answers.get(row.answer)));
+                            distinct.len() as u32 - 1
+                        }))
+                }
             }
         };
         row_distinct.push(slot);
     }
+    // Freed before the answers are checked, which is where a class of all-different answers
+    // needs its memory.
+    drop((by_text, resolved));
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &distinct, |c, part, text| {
+    let canon = par_map(bank, &distinct, |c, part, (_, _, text)| {
         if !bar.tick() {
             return None;
         }
@@ -206,41 +244,48 @@ pub fn judge(
         (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
+    // Each row's distinct answer becomes its representative.
+    for d in row_distinct.iter_mut().flatten() {
+        *d = reps_of[*d as usize] as u32;
+    }
+    drop((reps_of, distinct));
     phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
     }
     bar.start(rep_inputs.len() as u64);
-    let checked = par_map(bank, &rep_inputs, |c, part, text| {
+    let messages = Messages::default();
+    // Each representative made where it is checked (no second list of them).
+    judged.reps = par_map(bank, &rep_inputs, |c, part, (problem, q, text)| {
+        let rep = |verdict, fingerprint| Rep {
+            problem,
+            part: q,
+            answer: text.to_string(),
+            verdict,
+            fingerprint,
+        };
         if !bar.tick() {
-            return (Err(Interrupted.to_string()), None);
+            return rep(Err(Interrupted.to_string()), None);
         }
         let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
         // Only wrong answers are grouped, so a right one needs no fingerprint.
         let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
         let fingerprint = wrong
             .then(|| c.fingerprint(&part.id, text).ok().flatten())
-            .flatten();
-        (verdict.map(slim), fingerprint)
+            .flatten()
+            .map(|f| meaning(&f));
+        rep(verdict.map(|v| Slim::shared(v, &messages)), fingerprint)
     });
+    drop(messages);
     if bar.stopped() {
         return Err(Interrupted);
     }
     phases.end("check");
-    judged.reps = rep_inputs
-        .iter()
-        .zip(checked)
-        .map(|(&(problem, part, answer), (verdict, fingerprint))| Rep {
-            problem,
-            part,
-            answer: answer.to_string(),
-            verdict,
-            fingerprint,
-        })
-        .collect();
+    drop(rep_inputs);
+    judged.outcomes.reserve_exact(judged.reps.len());
     let rep_outcomes: Vec<u32> = (0..judged.reps.len())
         .map(|r| {
-            let o = outcome(r, &judged.reps[r], bank);
+            let o = outcome(r, &judged.reps[r], bank, settings.policy);
             judged.add(o)
         })
         .collect();
@@ -248,7 +293,7 @@ pub fn judge(
         .iter()
         .map(|d| Graded {
             outcome: match d {
-                Ok(d) => rep_outcomes[reps_of[*d as usize]],
+                Ok(r) => rep_outcomes[*r as usize],
                 Err(own) => *own,
             },
             counts: false,
@@ -256,41 +301,28 @@ pub fn judge(
         .collect();
     drop(row_distinct);
     phases.end("outcomes");
-    if let Some(credit) = settings.follow_through {
+    if let Some(o) = settings.overrides {
+        o.apply(table, &mut judged, bank);
+    }
+    if settings.policy.follow_through.is_some() {
         follow_through(
             rows,
             &mut judged,
             bank,
-            credit,
+            settings.policy,
             table.students.len(),
-            settings.best,
         );
         phases.end("follow-through");
     }
-    mark_counted(rows, &mut judged, table.students.len(), settings.best);
+    mark_counted(
+        rows,
+        &mut judged,
+        bank,
+        settings.policy,
+        table.students.len(),
+    );
     phases.end("counted");
     Ok(judged)
-}
-
-/// A verdict with only what grading reads of it: the status, the score, every code, the
-/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer) and
-/// the Unicode reading (the summary). Kept for every representative until the summary is
-/// made, so a class of all-different answers keeps no other message or reading.
-fn slim(mut v: Verdict) -> Verdict {
-    v.problem = String::new();
-    v.part = String::new();
-    v.reading.plain = String::new();
-    v.reading.note = None;
-    v.reading.unicode.shrink_to_fit();
-    v.parse_error = None;
-    for d in v.diagnoses.iter_mut().skip(1) {
-        d.message = String::new();
-    }
-    if let Some(d) = v.diagnoses.first_mut() {
-        d.message.shrink_to_fit();
-    }
-    v.diagnoses.shrink_to_fit();
-    v
 }
 
 /// The outcome of a row that is not checked.
@@ -302,6 +334,7 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
         message: Some(message),
         target,
         rep: None,
+        decision: None,
     }
 }
 
@@ -320,7 +353,7 @@ fn is_list(part: &Part) -> bool {
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
     items: &[(usize, usize, &str)],
-    f: impl Fn(&mut Checker<'b>, &'b Part, &str) -> R + Sync + Send,
+    f: impl Fn(&mut Checker<'b>, &'b Part, (usize, usize, &str)) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -332,7 +365,7 @@ fn par_map<'b, R: Send>(
             |checkers, &(p, q, text)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q], text)
+                f(checker, &problem.parts[q], (p, q, text))
             },
         )
         .collect()
@@ -384,9 +417,13 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
     Ok((p, q))
 }
 
-/// The outcome of representative `r`.
-fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
+/// The outcome of representative `r`: its verdict scored by the policy.
+fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
     let (p, q) = (rep.problem, rep.part);
+    // A problem pinned to a student's numbers counts as its bank problem (the first of its id).
+    let p = (bank.problems[..p].iter())
+        .position(|x| x.id == bank.problems[p].id)
+        .unwrap_or(p);
     let points = bank.problems[p].parts[q].points;
     let (status, score, codes) = match &rep.verdict {
         Ok(v) => (
@@ -395,8 +432,8 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
                 Checked::Incorrect => Status::Incorrect,
                 Checked::Invalid => Status::Invalid,
             },
-            v.score * points,
-            v.diagnoses.iter().map(|d| d.code).collect(),
+            policy.answer_fraction(v.status, v.score, &v.codes) * points,
+            v.codes.to_vec(),
         ),
         Err(_) => (Status::Error, 0.0, Vec::new()),
     };
@@ -408,5 +445,80 @@ fn outcome(r: usize, rep: &Rep, bank: &Bank) -> Outcome {
         message: None,
         target: Some((p, q)),
         rep: Some(r),
+        decision: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lagrange::check::Verdict;
+
+    /// What grading kept of a verdict before [`Slim`] (issue 20 §5): the verdict with its ids,
+    /// plain reading, note, parse error and every message but the first emptied.
+    fn kept(mut v: Verdict) -> Verdict {
+        v.problem = String::new();
+        v.part = String::new();
+        v.reading.plain = String::new();
+        v.reading.note = None;
+        v.parse_error = None;
+        for d in v.diagnoses.iter_mut().skip(1) {
+            d.message = String::new();
+        }
+        v
+    }
+
+    /// A slim verdict gives back exactly what grading kept of the verdict before (follow-through
+    /// reads an earlier answer through it), for right, wrong and unreadable answers.
+    #[test]
+    fn a_slim_verdict_gives_back_what_grading_kept_of_the_verdict() {
+        let bank = crate::face::load_bank(None).unwrap_or_else(|e| panic!("{e}"));
+        let problem = (bank.problems.iter())
+            .find(|p| p.id == "simple-pendulum")
+            .unwrap_or_else(|| panic!("no simple-pendulum in the bank"));
+        let mut checker = Checker::new(problem);
+        let answers = [
+            (
+                "eom",
+                "m*l^2*theta'' + m*g*l*sin(theta) = 0",
+                Checked::Correct,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' + 1.000002*m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
+            (
+                "eom",
+                "m*l^2*theta'' - m*g*l*sin(theta) = 0",
+                Checked::Incorrect,
+            ),
+            ("potential", "m*g*l*cos(theta)", Checked::Incorrect),
+            ("potential", "m*g*(", Checked::Invalid),
+        ];
+        for (part, answer, status) in answers {
+            let v = checker
+                .check(part, answer)
+                .unwrap_or_else(|e| panic!("{answer}: {e}"));
+            assert_eq!(v.status, status, "{answer}");
+            let slim = Slim::new(v.clone());
+            assert_eq!(slim.verdict(), kept(v.clone()), "{answer}");
+            assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
+            assert_eq!(&*slim.unicode, v.reading.unicode.as_str(), "{answer}");
+            if status != Checked::Correct {
+                assert!(
+                    !slim.codes.is_empty() && !slim.message.is_empty(),
+                    "{answer}"
+                );
+            }
+        }
+    }
+
+    /// Equal texts share a meaning and different ones do not (the summary's grouping key).
+    #[test]
+    fn meanings_are_equal_exactly_for_equal_texts() {
+        assert_eq!(meaning("1.5, 2"), meaning("1.5, 2"));
+        assert_ne!(meaning("1.5, 2"), meaning("1.5, 2 "));
+        assert_ne!(meaning(""), meaning("text:"));
     }
 }

@@ -7,19 +7,27 @@
 //! Exit codes: 0 graded (even when rows are wrong or errors: they are in results.csv), 2 the
 //! file cannot be read at all, its header is neither format, or an option is bad.
 
+mod args;
+mod assignment;
+mod cell;
 mod decode;
+mod feedback;
 mod header;
 mod input;
 mod intern;
 mod judge;
 mod output;
+mod overrides;
 mod phases;
+mod review;
 mod summary;
+mod variants;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+pub use args::GradeArgs;
 pub use output::Lms;
 
 /// The largest class file read (a larger one is refused with exit 2).
@@ -43,6 +51,16 @@ pub struct Options {
     pub json: bool,
     /// The parts the instructor set (`PROBLEM/PART`), the gradebook's columns (`--parts`).
     pub parts: Option<Vec<String>>,
+    /// The assignment file (`--assignment`): problems, parts, points, seed and policy; the
+    /// options above, when given, take precedence over it.
+    pub assignment: Option<PathBuf>,
+    /// The instructor's decisions on answers (`--overrides`, a filled-in review.csv).
+    pub overrides: Option<PathBuf>,
+    /// Also write one feedback file per student under `OUT/feedback/` (`--feedback`).
+    pub feedback: bool,
+    /// The course seed (`--seed`) that, with each student's key, picks the student's
+    /// numbers; without it, the assignment file's seed, else 0.
+    pub seed: Option<u64>,
 }
 
 /// Grades a class file; see the module docs for the exit codes.
@@ -53,8 +71,29 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("error: --follow-through-credit must be between 0 and 1, not {c}");
         return Ok(ExitCode::from(2));
     }
+    let (assignment, policy) = match assignment::read(opts) {
+        Ok(a) => a,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let decisions = match opts.overrides.as_deref().map(overrides::Overrides::read) {
+        Some(Err(message)) => {
+            eprintln!("error: --overrides {message}");
+            return Ok(ExitCode::from(2));
+        }
+        Some(Ok(o)) => Some(o),
+        None => None,
+    };
     let dir = out_dir(opts);
     let names = output_names(opts.lms);
+    if opts.feedback
+        && let Err(message) = feedback::check_dir(&dir.join("feedback"))
+    {
+        eprintln!("error: {message}");
+        return Ok(ExitCode::from(2));
+    }
     // Before any work: every output name must be free or a regular file, and none the input.
     if let Err(message) = check_outputs(&dir, &names, &opts.input) {
         eprintln!("error: {message}");
@@ -79,15 +118,28 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
     };
     phases.end("renumber");
-    let bank =
-        crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let mut bank = crate::face::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let set = match assignment::apply(assignment.as_ref(), opts, &mut bank) {
+        Ok(set) => set,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     let columns = match set_parts(opts.parts.as_deref(), &table, &bank) {
+        Ok(_) if opts.parts.is_none() && set.is_some() => set,
         Ok(c) => c,
         Err(message) => {
             eprintln!("error: {message}");
             return Ok(ExitCode::from(2));
         }
     };
+    if opts.feedback
+        && let Err(message) = feedback::names(&table.students)
+    {
+        eprintln!("error: {message}");
+        return Ok(ExitCode::from(2));
+    }
     if opts.lms == Some(Lms::Moodle)
         && let Err(message) = output::moodle_keys(&summary::students(&table))
     {
@@ -102,17 +154,32 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             lagrange::expr::error::visible(kept),
         );
     }
-    let run = run_id(hash, opts, &bank);
+    let extra = assignment::run_key(&policy, assignment.as_ref(), decisions.as_ref());
+    let seed = (opts.seed)
+        .or(assignment.as_ref().and_then(|a| a.seed))
+        .unwrap_or(0);
+    let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
+    let mut bank = bank;
+    let variants = variants::extend(&mut bank, &table.students, seed);
     let settings = judge::Settings {
-        follow_through: opts.follow_through,
-        best: opts.best,
+        policy: &policy,
+        overrides: decisions.as_ref().map(|d| d as &dyn judge::Override),
+        variants: &variants,
     };
-    let mut bar = crate::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
+    let mut bar = crate::face::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
     phases.end("bank");
     let judged = judge::judge(&table, &bank, settings, &mut bar, &mut phases);
     bar.finish();
     let judged = judged?;
+    if opts.feedback {
+        let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
+        if let Err(message) = feedback::write(&dir.join("feedback"), &table, &judged, &bank, &book)
+        {
+            eprintln!("error: {message}");
+            return Ok(ExitCode::from(2));
+        }
+    }
     let results = |w: &mut (dyn std::io::Write + Send)| output::results(w, &table, &judged, &run);
     // The summary, the gradebook and the small files are made while results.csv is
     // formatted and written (on another core when there is one).
@@ -122,8 +189,14 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
         let mut files = vec![("gradebook.csv", output::gradebook_csv(&book)?)];
         if let Some(lms) = opts.lms {
-            let (_, bytes) = output::lms_file(lms, &book, &assignment(&opts.input))?;
+            let title = assignment::title(assignment.as_ref(), &opts.input);
+            let (_, bytes) = output::lms_file(lms, &book, &title)?;
             files.push((lms_name(lms), bytes));
+        }
+        let (queue, unmatched) = review::review_csv(&table, &judged, &bank, decisions.as_ref());
+        files.push(("review.csv", queue));
+        if let Some(d) = &decisions {
+            assignment::unmatched_notes(d, &unmatched);
         }
         files.push(("summary.md", summary::markdown(&summary).into_bytes()));
         files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
@@ -143,7 +216,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     } else {
         table_text(&summary, table.format, &written)
     };
-    crate::cli::emit(&text)?;
+    crate::face::emit(&text)?;
     let errors = summary.status.get("error").copied().unwrap_or(0);
     if errors > 0 {
         let what = if errors == 1 {
@@ -217,6 +290,7 @@ fn output_names(lms: Option<Lms>) -> Vec<&'static str> {
     if let Some(lms) = lms {
         names.push(lms_name(lms));
     }
+    names.push("review.csv");
     names.extend(["summary.md", "summary.json"]);
     names
 }
@@ -245,7 +319,7 @@ fn check_outputs(dir: &Path, names: &[&str], input: &Path) -> Result<(), String>
         .flatten();
     for name in names {
         let path = dir.join(name);
-        crate::outfile::check(&path, false).map_err(|e| {
+        crate::face::outfile::check(&path, false).map_err(|e| {
             format!("{e}; grade writes only regular files it names (choose another --out)")
         })?;
         if let (Some(a), Ok(b)) = (&input_id, std::fs::metadata(&path))
@@ -288,7 +362,7 @@ fn write_outputs<'n>(
     mut results: impl FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()> + Send,
     others: impl FnOnce() -> anyhow::Result<(summary::Summary, Files<'n>)> + Send,
 ) -> anyhow::Result<Result<(summary::Summary, Vec<PathBuf>), String>> {
-    let folder = match crate::outfile::Folder::open(dir, names) {
+    let folder = match crate::face::outfile::Folder::open(dir, names) {
         Ok(f) => f,
         Err(e) => return Ok(Err(e)),
     };
@@ -299,7 +373,7 @@ fn write_outputs<'n>(
         for (name, bytes) in &files {
             staged.push(folder.stage(name, bytes)?);
         }
-        crate::outfile::commit(staged)
+        crate::face::outfile::commit(staged)
     })();
     Ok(written.map(|w| (summary, w)))
 }
@@ -317,9 +391,22 @@ fn file_hash(bytes: &[u8]) -> Fnv {
     h
 }
 
-fn run_id(mut h: Fnv, opts: &Options, bank: &lagrange::bank::Bank) -> String {
+fn run_id(
+    mut h: Fnv,
+    opts: &Options,
+    bank: &lagrange::bank::Bank,
+    extra: &str,
+    seed: u64,
+) -> String {
     let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
     h.add(settings.as_bytes());
+    // The assignment's policy, seed and decisions (empty without them: ids stay as they were).
+    h.add(extra.as_bytes());
+    // The seed decides the students' numbers, so it is part of what the outputs depend on
+    // (the default seed adds nothing: run ids from before it existed stay).
+    if seed != 0 {
+        h.add(format!("|seed {seed}").as_bytes());
+    }
     for p in &bank.problems {
         for part in &p.parts {
             let key = format!(
@@ -411,7 +498,7 @@ fn out_dir(opts: &Options) -> PathBuf {
 }
 
 /// The name of the LMS assignment column: the class file's stem.
-fn assignment(input: &Path) -> String {
+fn lms_title(input: &Path) -> String {
     match input.file_stem().and_then(|s| s.to_str()) {
         Some(s) if input != Path::new("-") => format!("lagrange {s}"),
         _ => "lagrange".to_string(),

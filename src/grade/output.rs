@@ -1,6 +1,6 @@
 //! The files `lagrange grade` writes: results.csv (one row per answer), gradebook.csv (one
 //! row per student), summary.md / summary.json, and an LMS import file, as bytes (written by
-//! [`crate::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
+//! [`crate::face::outfile`]). Every text cell a spreadsheet would run as a formula is neutralised.
 
 use std::io::Write;
 
@@ -8,6 +8,9 @@ use rayon::prelude::*;
 
 use lagrange::bank::Bank;
 
+use super::cell::needs_quote;
+#[cfg(test)]
+use super::cell::quote_cell;
 use super::input::{Row, Table};
 use super::judge::{Judged, Outcome};
 use super::summary::{Summary, num, students};
@@ -21,37 +24,6 @@ pub enum Lms {
     Moodle,
     /// `gradescope.csv`: Gradescope's score upload.
     Gradescope,
-}
-
-/// What a spreadsheet would run as a formula at the start of a cell.
-const FORMULA_START: [char; 6] = ['=', '+', '-', '@', '\t', '\r'];
-
-/// Whether a cell must be neutralised: it starts like a formula, or it is a neutralised cell
-/// already (a `'` before such a start), so that reading back strips exactly one `'`.
-fn needs_quote(s: &str) -> bool {
-    s.starts_with(FORMULA_START) || s.strip_prefix('\'').is_some_and(needs_quote)
-}
-
-/// A text cell a spreadsheet will show rather than run: a leading `'` before `=`, `+`, `-`,
-/// `@`, a tab or a carriage return (`=HYPERLINK(…)` → `'=HYPERLINK(…)`). [`unquote_cell`]
-/// gives the text back. The writers append it directly ([`push_cell`]); this is the
-/// reference their tests compare with.
-#[cfg(test)]
-fn quote_cell(s: &str) -> std::borrow::Cow<'_, str> {
-    if needs_quote(s) {
-        std::borrow::Cow::Owned(format!("'{s}"))
-    } else {
-        std::borrow::Cow::Borrowed(s)
-    }
-}
-
-/// The text of a cell [`quote_cell`] wrote (the class file's own cells are read through it
-/// too, so a results.csv graded again reads `-m g l cos θ` as typed).
-pub fn unquote_cell(s: &str) -> &str {
-    match s.strip_prefix('\'') {
-        Some(rest) if needs_quote(rest) => rest,
-        _ => s,
-    }
 }
 
 /// A CSV document built in memory.
@@ -103,12 +75,12 @@ fn push_csv(out: &mut Vec<u8>, s: &str, formula: bool) {
 }
 
 /// Appends a text cell: neutralised ([`quote_cell`]), then as the csv writer writes it.
-fn push_cell(out: &mut Vec<u8>, s: &str) {
+pub(super) fn push_cell(out: &mut Vec<u8>, s: &str) {
     push_csv(out, s, needs_quote(s));
 }
 
 /// Appends a field that is never neutralised (codes, numbers, the run id).
-fn push_plain(out: &mut Vec<u8>, s: &str) {
+pub(super) fn push_plain(out: &mut Vec<u8>, s: &str) {
     push_csv(out, s, false);
 }
 
@@ -138,7 +110,8 @@ pub fn results(
     run: &str,
 ) -> std::io::Result<()> {
     let header = [
-        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message", "run",
+        "row", "student", "problem", "part", "answer", "status", "score", "codes", "message",
+        "override", "run",
     ];
     out.write_all(&csv_bytes(&header, std::iter::empty()).map_err(std::io::Error::other)?)?;
     // What an outcome writes after the answer: status, score, codes, message, run and the
@@ -154,6 +127,8 @@ pub fn results(
         push_plain(t, &codes.join(";"));
         t.push(b',');
         push_cell(t, judged.message(o));
+        t.push(b',');
+        push_plain(t, &super::review::override_cell(o));
         t.push(b',');
         push_plain(t, run);
         t.push(b'\n');
@@ -253,13 +228,13 @@ pub fn gradebook(
         .collect();
     let names = students(table);
     let mut scores = vec![vec![None; targets.len()]; names.len()];
-    for (r, g) in table.rows.iter().zip(&judged.rows) {
+    for (i, (r, g)) in table.rows.iter().zip(&judged.rows).enumerate() {
         if let (true, Some(c), Some(s)) = (
             g.counts,
             columns[g.outcome as usize],
             scores.get_mut(r.student as usize),
         ) {
-            s[c] = Some(judged.outcomes[g.outcome as usize].score);
+            s[c] = Some(judged.counted_score(i));
         }
     }
     Gradebook {

@@ -16,10 +16,8 @@ use lagrange::bank::Bank;
 use super::input::Table;
 use super::judge::{Judged, Status};
 
-/// How many wrong-answer groups are listed per part.
-const MAX_GROUPS: usize = 10;
-/// How long a spelling may be in the summary before it is cut.
-const MAX_SHOWN: usize = 80;
+mod groups;
+use groups::{Best, GROUP_BATCH, Shown, shown, tally};
 
 /// The whole class at a glance.
 #[derive(Debug, Serialize)]
@@ -87,44 +85,9 @@ pub struct Group {
     pub examples: Vec<String>,
 }
 
-/// A group of wrong answers: its part, its status and its meaning (an index).
-type GroupKey = ((usize, usize), Status, usize);
-
-/// A group counted: rows, distinct students, rows per representative and per spelling (an
-/// interned answer), each list sorted.
-struct Tally {
-    count: usize,
-    students: usize,
-    by_rep: Vec<(usize, usize)>,
-    by_answer: Vec<(u32, usize)>,
-}
-
-/// Runs of equal values in a sorted list, with their lengths.
-fn runs<T: PartialEq + Copy>(sorted: impl IntoIterator<Item = T>) -> Vec<(T, usize)> {
-    let mut out: Vec<(T, usize)> = Vec::new();
-    for x in sorted {
-        match out.last_mut() {
-            Some((y, n)) if *y == x => *n += 1,
-            _ => out.push((x, 1)),
-        }
-    }
-    out
-}
-
-/// Counts each group from its rows' (student, representative, answer), sorted.
-fn tally(rows: &[(u32, u32, u32, u32)]) -> Tally {
-    let students = runs(rows.iter().map(|r| r.1)).len();
-    let mut reps: Vec<u32> = rows.iter().map(|r| r.2).collect();
-    reps.sort_unstable();
-    let mut answers: Vec<u32> = rows.iter().map(|r| r.3).collect();
-    answers.sort_unstable();
-    Tally {
-        count: rows.len(),
-        students,
-        by_rep: runs(reps.into_iter().map(|r| r as usize)),
-        by_answer: runs(answers),
-    }
-}
+/// A group of wrong answers: its part, its status and its meaning (an index), in 16 bytes
+/// (a class of all-different answers has a group per answer).
+type GroupKey = ((u32, u32), Status, u32);
 
 /// The summary of a judged class: counted per outcome and per group, never per row's text.
 pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
@@ -134,30 +97,32 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative, interned: a group is (part, status, meaning).
-    let mut meanings: FxHashMap<std::borrow::Cow<str>, usize> = FxHashMap::default();
-    let meaning: Vec<usize> = judged
+    // Meanings are 128-bit keys ([`super::judge::meaning`]), so none is kept as text.
+    let mut meanings: FxHashMap<u128, u32> = FxHashMap::default();
+    let meaning: Vec<u32> = judged
         .reps
         .iter()
         .map(|r| {
-            let m = r.fingerprint.as_deref().map_or_else(
-                || format!("text:{}", r.answer.trim()).into(),
-                std::borrow::Cow::Borrowed,
-            );
-            let n = meanings.len();
+            let m = r
+                .fingerprint
+                .unwrap_or_else(|| super::judge::meaning(&format!("text:{}", r.answer.trim())));
+            let n = meanings.len() as u32;
             *meanings.entry(m).or_insert(n)
         })
         .collect();
+    drop(meanings);
     // Each outcome's group (wrong and unreadable answers only), numbered once.
     let mut group_ids: FxHashMap<GroupKey, u32> = FxHashMap::default();
     let mut groups: Vec<GroupKey> = Vec::new();
     let group_of: Vec<u32> = (judged.outcomes.iter())
         .map(|o| match (o.target, o.rep, o.status) {
-            (Some(t), Some(rep), Status::Incorrect | Status::Invalid) => *group_ids
-                .entry((t, o.status, meaning[rep]))
-                .or_insert_with(|| {
-                    groups.push((t, o.status, meaning[rep]));
+            (Some((p, q)), Some(rep), Status::Incorrect | Status::Invalid) => {
+                let g = ((p as u32, q as u32), o.status, meaning[rep]);
+                *group_ids.entry(g).or_insert_with(|| {
+                    groups.push(g);
                     groups.len() as u32 - 1
-                }),
+                })
+            }
             _ => u32::MAX,
         })
         .collect();
@@ -182,10 +147,30 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
     }
     members.par_sort_unstable();
-    let tallies: Vec<(GroupKey, Tally)> = members
-        .par_chunk_by(|a, b| a.0 == b.0)
-        .map(|rows| (groups[rows[0].0 as usize], tally(rows)))
-        .collect();
+    let key = |(p, q): (usize, usize)| {
+        let problem = &bank.problems[p];
+        format!("{}/{}", problem.id, problem.parts[q].id)
+    };
+    // Groups counted and shown a batch at a time (in parallel), each batch's kept in the best
+    // few of its part: memory bounded however many groups there are.
+    let mut best = Best::default();
+    let mut chunks = members.chunk_by(|a, b| a.0 == b.0);
+    loop {
+        let batch: Vec<&[(u32, u32, u32, u32)]> = chunks.by_ref().take(GROUP_BATCH).collect();
+        if batch.is_empty() {
+            break;
+        }
+        let shown_batch: Vec<((String, Status), Shown)> = (batch.par_iter())
+            .map(|rows| {
+                let ((p, q), status, _) = groups[rows[0].0 as usize];
+                let t = (p as usize, q as usize);
+                ((key(t), status), shown(status, tally(rows), table, judged))
+            })
+            .collect();
+        for ((k, status), g) in shown_batch {
+            best.push(k, status, g);
+        }
+    }
     drop(members);
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
@@ -218,17 +203,9 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
             sum / s.students as f64 + 0.0
         };
     }
-    let key = |(p, q): (usize, usize)| {
-        let problem = &bank.problems[p];
-        format!("{}/{}", problem.id, problem.parts[q].id)
-    };
     let mut parts: BTreeMap<String, PartSummary> =
         parts.into_iter().map(|(t, s)| (key(t), s)).collect();
-    let tallies = tallies
-        .into_iter()
-        .map(|((t, status, _), tally)| ((key(t), status), tally))
-        .collect();
-    add_groups(&mut parts, tallies, table, judged);
+    best.finish(&mut parts, judged);
     Summary {
         run: String::new(),
         rows: rows.len(),
@@ -261,127 +238,6 @@ fn empty(points: f64) -> PartSummary {
     }
 }
 
-/// Turns the tallies into each part's sorted, truncated group list. Groups are ordered by
-/// their counts and full text ([`Shown`]); only the listed ones are made whole (codes,
-/// diagnosis, cut spellings), so a class of all-different answers keeps no more than the
-/// text each is sorted by.
-fn add_groups(
-    parts: &mut BTreeMap<String, PartSummary>,
-    tallies: Vec<((String, Status), Tally)>,
-    table: &Table,
-    judged: &Judged,
-) {
-    // Per part and kind (wrong, unreadable): the best groups so far and the rows of all.
-    // Cut back to the listed few whenever many have gathered, so a class of all-different
-    // answers never holds every group's text at once (the order is total up to ties, which
-    // a stable sort keeps in order of first appearance, as one sort of all would).
-    let order = |a: &Shown, b: &Shown| {
-        b.students
-            .cmp(&a.students)
-            .then_with(|| b.count.cmp(&a.count))
-            .then_with(|| a.full.cmp(&b.full))
-    };
-    let mut per_part: BTreeMap<(String, bool), (Vec<Shown>, usize)> = BTreeMap::new();
-    for ((key, status), t) in tallies {
-        let (best, rows) = per_part
-            .entry((key, status == Status::Invalid))
-            .or_default();
-        *rows += t.count;
-        best.push(shown(status, t, table, judged));
-        if best.len() >= 8 * MAX_GROUPS {
-            best.sort_by(order);
-            best.truncate(MAX_GROUPS);
-        }
-    }
-    for ((key, unreadable), (mut best, rows)) in per_part {
-        best.sort_by(order);
-        best.truncate(MAX_GROUPS);
-        let other = rows - best.iter().map(|g| g.count).sum::<usize>();
-        let listed: Vec<Group> = best.into_iter().map(|g| group(g, judged)).collect();
-        if let Some(s) = parts.get_mut(&key) {
-            if unreadable {
-                (s.unreadable, s.other_unreadable) = (listed, other);
-            } else {
-                (s.wrong, s.other_wrong) = (listed, other);
-            }
-        }
-    }
-}
-
-/// A group as it is sorted: its counts, its most common reading (ties: the smaller text) and
-/// the representative giving it, and its spellings as typed (trimmed), most common first.
-struct Shown {
-    students: usize,
-    count: usize,
-    status: Status,
-    rep: Option<usize>,
-    /// The reading and spellings uncut: ties in the order are broken by the full text,
-    /// never by the cut one.
-    full: (String, Vec<String>),
-}
-
-/// How a tallied group is sorted and shown.
-fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
-    let shown_of = |rep: usize| {
-        let r = &judged.reps[rep];
-        match &r.verdict {
-            Ok(v) if !v.reading.unicode.is_empty() => v.reading.unicode.clone(),
-            _ => r.answer.trim().to_string(),
-        }
-    };
-    let mut reps: Vec<(usize, String, usize)> =
-        t.by_rep.iter().map(|&(r, n)| (n, shown_of(r), r)).collect();
-    reps.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(&b.1)));
-    let (answer, rep) = reps
-        .into_iter()
-        .next()
-        .map(|(_, s, r)| (s, Some(r)))
-        .unwrap_or_default();
-    let mut by_text: FxHashMap<&str, usize> = FxHashMap::default();
-    for &(a, n) in &t.by_answer {
-        *by_text.entry(table.answers.get(a).trim()).or_insert(0) += n;
-    }
-    let mut texts: Vec<(&str, usize)> = by_text.into_iter().collect();
-    texts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
-    Shown {
-        students: t.students,
-        count: t.count,
-        status,
-        rep,
-        full: (answer, texts.iter().map(|(s, _)| s.to_string()).collect()),
-    }
-}
-
-/// One listed group: shown as its most common reading, with that reading's codes and first
-/// diagnosis and its two most common spellings.
-fn group(g: Shown, judged: &Judged) -> Group {
-    let verdict = g.rep.and_then(|r| judged.reps[r].verdict.as_ref().ok());
-    Group {
-        students: g.students,
-        count: g.count,
-        status: g.status.name().to_string(),
-        answer: cut(&g.full.0),
-        codes: verdict.map_or(Vec::new(), |v| {
-            v.diagnoses.iter().map(|d| d.code.to_string()).collect()
-        }),
-        diagnosis: verdict
-            .and_then(|v| v.diagnoses.first())
-            .map_or(String::new(), |d| d.message.clone()),
-        examples: g.full.1.iter().take(2).map(|s| cut(s)).collect(),
-    }
-}
-
-/// A text cut to [`MAX_SHOWN`] characters, on one line.
-fn cut(s: &str) -> String {
-    let one: String = s.split_whitespace().collect::<Vec<_>>().join(" ");
-    if one.chars().count() <= MAX_SHOWN {
-        return one;
-    }
-    let mut t: String = one.chars().take(MAX_SHOWN - 1).collect();
-    t.push('…');
-    t
-}
-
 /// A number as the outputs print it: at most 4 decimals, no trailing zeros.
 pub fn num(x: f64) -> String {
     let s = format!("{x:.4}");
@@ -397,7 +253,7 @@ pub fn num(x: f64) -> String {
 /// `& < >` as entities and the marks Markdown acts on inside a line (`\ ` * _ [ ] | ~`)
 /// backslash-escaped, so a student's text is shown, never run (no link, no image, no tag, no
 /// emphasis, no broken table). Nothing in a cell is at the start of a line.
-fn cell(s: &str) -> String {
+pub(super) fn cell(s: &str) -> String {
     let s = lagrange::expr::error::visible(s);
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -510,78 +366,5 @@ fn groups_table(out: &mut String, key: &str, groups: &[Group], other: usize, wha
     }
     if other > 0 {
         let _ = writeln!(out, "\n{other} more {what} answers in smaller groups.");
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::grade::judge::Rep;
-
-    /// Many wrong-answer groups in one part, most of them tied (one student, one attempt
-    /// each, as in a class of all-different answers): the groups listed and the count of the
-    /// others are those one sort of every group gives, though only the best few are kept
-    /// while counting.
-    #[test]
-    fn the_listed_groups_are_the_best_of_all_however_many() {
-        let mut csv = String::from("student,problem,part,answer\n");
-        let n = 500;
-        for i in 0..n {
-            csv.push_str(&format!("s{i},p,q,answer {:03}\n", (i * 7919) % n));
-        }
-        let table = super::super::input::parse(csv.as_bytes(), &mut Default::default());
-        let table = table.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
-        let reps: Vec<Rep> = (0..n)
-            .map(|a| Rep {
-                problem: 0,
-                part: 0,
-                answer: table.answers.get(a as u32).to_string(),
-                verdict: Err(String::new()),
-                fingerprint: None,
-            })
-            .collect();
-        let judged = Judged {
-            rows: Vec::new(),
-            outcomes: Vec::new(),
-            reps,
-        };
-        // Group g holds representative g; a few groups have more students and attempts.
-        let tallies = |k: usize| -> Vec<((String, Status), Tally)> {
-            (0..k)
-                .map(|g| {
-                    let extra = usize::from(g % 97 == 3) * (g % 5 + 1);
-                    let tally = Tally {
-                        count: 1 + extra,
-                        students: 1 + extra / 2,
-                        by_rep: vec![(g, 1 + extra)],
-                        by_answer: vec![(g as u32, 1 + extra)],
-                    };
-                    (("p/q".to_string(), Status::Incorrect), tally)
-                })
-                .collect()
-        };
-        let mut parts = BTreeMap::from([("p/q".to_string(), empty(1.0))]);
-        add_groups(&mut parts, tallies(n), &table, &judged);
-        // The reference: every group shown, one stable sort, the first ten.
-        let mut all: Vec<Shown> = (tallies(n).into_iter())
-            .map(|((_, status), t)| shown(status, t, &table, &judged))
-            .collect();
-        all.sort_by(|a, b| {
-            b.students
-                .cmp(&a.students)
-                .then_with(|| b.count.cmp(&a.count))
-                .then_with(|| a.full.cmp(&b.full))
-        });
-        let want: Vec<(usize, usize, String)> = (all.iter().take(MAX_GROUPS))
-            .map(|g| (g.students, g.count, g.full.0.clone()))
-            .collect();
-        let other: usize = all.iter().skip(MAX_GROUPS).map(|g| g.count).sum();
-        let p = &parts["p/q"];
-        let got: Vec<(usize, usize, String)> = (p.wrong.iter())
-            .map(|g| (g.students, g.count, g.answer.clone()))
-            .collect();
-        assert_eq!(got, want);
-        assert_eq!(p.other_wrong, other);
-        assert!(want[0].0 > 1 && want[MAX_GROUPS - 1].0 == 1, "{want:?}");
     }
 }

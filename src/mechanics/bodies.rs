@@ -42,7 +42,7 @@ pub enum Anchor {
 #[derive(Clone, Debug)]
 pub enum Potential {
     /// Uniform gravity of strength `g` pointing down along `axis` (0 = x, 1 = y, 2 = z):
-    /// V = Σ m g r[axis] over point masses.
+    /// V = Σ m g r\[axis\] over point masses.
     Gravity { g: Id, axis: usize },
     /// A spring of stiffness `k` and natural length `natural` between two anchors.
     Spring {

@@ -8,24 +8,27 @@ pub mod bodies;
 pub(crate) mod constraint_check;
 pub(crate) mod constraints;
 pub(crate) mod coordinate;
-pub mod derive;
+pub(crate) mod derive;
 pub(crate) mod energy;
 pub mod equilibria;
-pub mod error;
+pub(crate) mod error;
+// Standard systems for the benches, the fuzzer and the tests: public because they live outside
+// the crate, hidden because they are not part of the API.
+#[doc(hidden)]
 pub mod fixtures;
 pub(crate) mod linalg;
 pub(crate) mod linearize;
 pub(crate) mod magnitude;
 pub mod modes;
 pub mod naming;
-pub mod point_force;
-pub mod quadratic;
-pub mod rigid;
+pub(crate) mod point_force;
+pub(crate) mod quadratic;
+pub(crate) mod rigid;
 pub(crate) mod sample;
 pub(crate) mod singular;
-pub mod state;
+pub(crate) mod state;
 pub mod steady;
-pub mod symbolic_modes;
+pub(crate) mod symbolic_modes;
 pub mod system;
 
 pub use bodies::{Body, Potential};

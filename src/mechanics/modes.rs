@@ -1,11 +1,11 @@
 //! Small oscillations about an equilibrium: the linearized equations M δq̈ + C δq̇ + K δq = 0
-//! (see [`linearize`](super::linearize), on the constraint manifold when there are
+//! (see `linearize`, on the constraint manifold when there are
 //! constraints). Without velocity terms and with a symmetric K, the generalized symmetric
 //! eigenproblem K v = ω² M v gives frequencies, mode shapes and growth rates; otherwise the
-//! quadratic eigenproblem (see [`quadratic`](super::quadratic)) gives frequencies, damping and
+//! quadratic eigenproblem (see `quadratic`) gives frequencies, damping and
 //! growth. ω² = 0 (a free direction: a cart, a translating chain) is decided relative to the
 //! matrices' scale, never by the sign of rounding. The symbolic analysis is in
-//! [`symbolic_modes`](super::symbolic_modes).
+//! `symbolic_modes`.
 
 use nalgebra::DMatrix;
 

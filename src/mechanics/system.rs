@@ -457,7 +457,7 @@ impl System {
 
     /// Whether `e` vanishes identically, decided at 12 seeded random points (points where
     /// it is undefined are skipped). At each point the value must be negligible relative to
-    /// the size of its own terms (see [`magnitude`](super::magnitude)), never relative to 1:
+    /// the size of its own terms (see `mechanics::magnitude`), never relative to 1:
     /// a mass of 1e-30 is not zero, rounding in a sum of terms of 1e30 is.
     pub fn is_zero(&self, e: Id) -> bool {
         if self.pool.is_zero(e) {

@@ -17,10 +17,24 @@ use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
+use clap::Args;
 use lagrange::report::{Paint, Plain};
 use lagrange::tutor::{Progress, Response, Session};
 
-use crate::cli::system_args::Terminal;
+use crate::face::Terminal;
+
+/// `lagrange repl [PROBLEM] [--json] [--no-save]`.
+#[derive(Args, Debug, Default)]
+pub struct ReplArgs {
+    /// A problem id to open first.
+    pub problem: Option<String>,
+    /// One JSON object per input line (JSON lines; see docs/repl-protocol.md).
+    #[arg(long)]
+    pub json: bool,
+    /// Keep no progress file.
+    #[arg(long)]
+    pub no_save: bool,
+}
 
 /// How the REPL was asked to run.
 pub struct Options {
@@ -91,8 +105,7 @@ pub use lagrange::tutor::response::json_line;
 
 /// Runs the REPL until `:quit`, Ctrl-D or the end of input.
 pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
-    let bank =
-        crate::cli::problems::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
+    let bank = crate::face::load_bank(opts.problems.as_deref()).map_err(anyhow::Error::msg)?;
     let (store, progress) = open_store(opts.no_save);
     let session = Rc::new(RefCell::new(Session::new(bank, progress)));
     let terminal = std::io::stdin().is_terminal();
@@ -226,7 +239,7 @@ fn interactive(session: &Rc<RefCell<Session>>, out: &mut Output) -> anyhow::Resu
 fn interruptible<R>(bar: bool, f: impl FnOnce() -> R) -> R {
     let flag = Arc::new(AtomicBool::new(false));
     let id = signal_hook::flag::register(signal_hook::consts::SIGINT, flag.clone()).ok();
-    let bar = crate::bar::Bar::percent(bar).stopped_by(flag);
+    let bar = crate::face::bar::Bar::percent(bar).stopped_by(flag);
     let r = lagrange::progress::with_ambient(Box::new(bar), f);
     if let Some(id) = id {
         signal_hook::low_level::unregister(id);

@@ -287,7 +287,9 @@ fn analysis(o: &mut String, a: &AnalysisReply, paint: &dyn Paint) -> std::fmt::R
         AnalysisReport::Derive(r) => r.render(Style::Unicode, paint),
         AnalysisReport::Modes(r) => r.render(Style::Unicode, paint),
         // The summary first, then the chart, as `lagrange simulate --plot -` prints them.
-        AnalysisReport::Simulate(r) => r.render_unicode(paint) + &crate::plot::terminal_chart(r),
+        AnalysisReport::Simulate(r) => {
+            r.render_unicode(paint) + &crate::face::plot::terminal_chart(r)
+        }
     };
     o.push_str(&text);
     if !text.ends_with('\n') {

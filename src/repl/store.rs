@@ -1,6 +1,6 @@
 //! Where the REPL keeps the student's progress and line history: `LAGRANGE_HOME` if set,
 //! else the platform data directory (`directories::ProjectDirs`). Progress is read at start
-//! and saved after every change through [`crate::outfile`] (a unique temporary name, then a
+//! and saved after every change through [`crate::face::outfile`] (a unique temporary name, then a
 //! rename, the folder locked), merged into what is on disk so that two REPLs open at once both
 //! keep their progress; a corrupt or unreadable file is moved aside as
 //! `progress.json.corrupt-N`, never lost, never a crash; a FIFO, a folder or a link at the
@@ -9,7 +9,6 @@
 use std::path::{Path, PathBuf};
 
 use lagrange::tutor::Progress;
-use lagrange::tutor::progress::KEPT_ANSWERS;
 
 /// The data directory, or `None` when the platform has none.
 pub fn data_dir() -> Option<PathBuf> {
@@ -45,7 +44,7 @@ impl Store {
             base: Progress::new(),
             enabled: true,
         };
-        if let Err(e) = crate::outfile::check(&path, false) {
+        if let Err(e) = crate::face::outfile::check(&path, false) {
             store.enabled = false;
             let warning = format!("error: {e}; progress will not be saved this session");
             return (store, Progress::new(), Some(warning));
@@ -66,16 +65,16 @@ impl Store {
             return Ok(());
         }
         let fail = |e: String| std::io::Error::other(e);
-        let folder = crate::outfile::Folder::open(&self.dir, &[NAME]).map_err(fail)?;
-        crate::outfile::check(&self.path, false).map_err(fail)?;
+        let folder = crate::face::outfile::Folder::open(&self.dir, &[NAME]).map_err(fail)?;
+        crate::face::outfile::check(&self.path, false).map_err(fail)?;
         // A file another session made unreadable meanwhile is not merged into (it is kept
         // by `open`'s move-aside on the next start): this session's progress is written.
         let disk = read(&self.path).unwrap_or_else(|_| self.base.clone());
-        let merged = merge(&disk, &self.base, progress);
+        let merged = Progress::merged(&disk, &self.base, progress);
         let staged = folder
             .stage(NAME, merged.to_json().as_bytes())
             .map_err(fail)?;
-        crate::outfile::commit(vec![staged]).map_err(fail)?;
+        crate::face::outfile::commit(vec![staged]).map_err(fail)?;
         self.base = progress.clone();
         Ok(())
     }
@@ -92,33 +91,6 @@ fn read(path: &Path) -> Result<Progress, String> {
             Err(e) => Err(e.to_string()),
         },
     }
-}
-
-/// `disk` plus what `mine` added to `base`: attempts and hints add up, solved and revealed
-/// stay true once true, the new answers follow the ones on disk (the latest kept).
-fn merge(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
-    let mut out = disk.clone();
-    for (problem, pp) in &mine.problems {
-        for (part, rec) in &pp.parts {
-            let before = base.part(problem, part).cloned().unwrap_or_default();
-            let new_attempts = rec.attempts.saturating_sub(before.attempts);
-            let new_hints = rec.hints_used.saturating_sub(before.hints_used);
-            let target = out.part_mut(problem, part);
-            target.attempts = target.attempts.saturating_add(new_attempts);
-            target.hints_used = target.hints_used.saturating_add(new_hints);
-            target.solved |= rec.solved;
-            target.revealed |= rec.revealed;
-            let fresh = (new_attempts as usize).min(rec.answers.len());
-            target
-                .answers
-                .extend(rec.answers[rec.answers.len() - fresh..].iter().cloned());
-            if target.answers.len() > KEPT_ANSWERS {
-                let extra = target.answers.len() - KEPT_ANSWERS;
-                target.answers.drain(..extra);
-            }
-        }
-    }
-    out
 }
 
 /// Moves a bad progress file to the first free `progress.json.corrupt-N`; the warning.

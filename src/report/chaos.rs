@@ -141,6 +141,7 @@ pub struct SectionReport {
 
 /// Everything `chaos` shows.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct ChaosReport {
     /// The estimate at t_end.
     pub exponent: f64,

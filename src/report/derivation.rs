@@ -16,6 +16,7 @@ use crate::mechanics::{Conservation, ConstraintKind, MechError, System};
 
 /// Everything `derive` shows about a system.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct DerivationReport {
     /// The accelerations and multipliers at the state given (`derive --at`).
     #[serde(skip_serializing_if = "Option::is_none")]

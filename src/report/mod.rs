@@ -2,19 +2,20 @@
 //!
 //! A face (the command line today; a REPL, a batch grader or a browser later) parses its own
 //! arguments into the plain option types here, calls one builder — [`reading`],
-//! [`derivation`], [`modes()`], [`problem_list`], [`problem_sheet`], [`verification`] — and
+//! [`derivation()`], [`modes()`], [`problem_list`], [`problem_sheet`], [`verification`] — and
 //! either renders the report as text (each report has exactly one text rendering) or
 //! serializes it. The builders do all the mathematics; the faces do none.
 //!
 //! Colour is a face concern: renderers call a [`Paint`], and [`Plain`] paints nothing, so the
 //! library does not depend on a terminal crate.
 //!
-//! - [`formula`]: an expression shown in every notation, serialized as plain syntax;
-//! - [`read`]: [`Reading`], how an input is understood (`lagrange read`);
-//! - [`derivation`]: [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
-//! - [`modes`]: [`ModesReport`], equilibria and normal modes (`lagrange modes`);
-//! - [`problems`]: the bank's list, one problem's sheet and the verification of answers;
-//! - [`simulation`]: [`SimulationReport`], an integrated motion (`lagrange simulate`), and a
+//! - `formula`: [`Formula`], an expression shown in every notation, serialized as plain syntax;
+//! - [`read`]: [`ReadReport`], how an input is understood (`lagrange read`);
+//! - [`derivation`](mod@derivation): [`DerivationReport`], the Euler–Lagrange derivation (`lagrange derive`);
+//! - [`modes`](mod@modes): [`ModesReport`], equilibria and normal modes (`lagrange modes`);
+//! - `problems`: the bank's list ([`ProblemList`]), one problem's sheet ([`ProblemSheet`]) and
+//!   the verification of answers ([`Verification`]);
+//! - [`simulation`](mod@simulation): [`SimulationReport`], an integrated motion (`lagrange simulate`), and a
 //!   phase-portrait family ([`portrait::portrait_family`]);
 //! - [`units`]: the SI units of the pictures' axes, from a bank problem's dimensions;
 //! - [`chaos`]: [`ChaosReport`](chaos::ChaosReport), Lyapunov exponent, separation and
@@ -25,13 +26,14 @@ mod constraint_watch;
 pub mod derivation;
 pub mod derivation_at;
 pub mod flip_map;
-pub mod formula;
+pub(crate) mod formula;
 pub mod modes;
 pub mod portrait;
-pub mod problems;
+pub(crate) mod problems;
 pub mod read;
+pub mod sheets;
 pub mod simulation;
-pub mod steady;
+pub(crate) mod steady;
 pub mod units;
 
 pub use derivation::{DerivationReport, derivation};
@@ -41,7 +43,7 @@ pub use problems::{
     ProblemList, ProblemSheet, Verification, problem_list, problem_sheet, terminal_math,
     verification,
 };
-pub use read::{ReadOptions, Reading, reading};
+pub use read::{ReadOptions, ReadReport, reading};
 pub use simulation::{
     SimulationError, SimulationOptions, SimulationReport, simulation, simulation_with,
 };

@@ -37,7 +37,7 @@ pub struct ModesOptions {
     /// Also the characteristic polynomial and ω² in closed form (needs `at`).
     pub symbolic: bool,
     /// Steady motions: fixed momenta `p_phi = value` of cyclic coordinates; the analysis is
-    /// of the Routhian (see [`steady`](super::steady)).
+    /// of the Routhian (see `report::steady`).
     pub steady: Vec<(String, String)>,
 }
 
@@ -114,6 +114,7 @@ pub fn assignments(text: &str) -> Result<Vec<(String, String)>, BadAssignment> {
 
 /// Everything `modes` shows.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct ModesReport {
     /// det(K − ω²M), when closed forms were asked for.
     #[serde(skip_serializing_if = "Option::is_none")]

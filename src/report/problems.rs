@@ -10,6 +10,7 @@ use super::{Paint, text};
 use crate::bank::{Bank, Problem, verify::verify};
 use crate::expr::error::{visible, visible_lines};
 use crate::expr::names;
+use crate::problem::variant::fill;
 
 /// One line per problem of a bank, and the files that failed to load.
 #[derive(Clone, Debug, Serialize)]
@@ -104,6 +105,15 @@ pub struct ProblemSheet {
     pub definitions: Vec<String>,
     /// The parts.
     pub parts: Vec<SheetPart>,
+    /// The parameters that vary from student to student (empty: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub varies: Vec<String>,
+    /// The student this sheet is for (`--student`), with their numbers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub student: Option<String>,
+    /// The student's numbers, each `m = 1.5 kg`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub numbers: Vec<String>,
 }
 
 /// A part of a problem sheet.
@@ -119,6 +129,18 @@ pub struct SheetPart {
     pub prompt: String,
     /// The reference answers, when asked for.
     pub answers: Option<Vec<String>>,
+    /// The answer may use the student's numbers.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub numbers: bool,
+}
+
+/// A part's prompt followed by how its answer is written, where that is not plain (a numeric
+/// part's units, a growth-rates part's λ): every sheet shows the same words.
+pub(crate) fn with_answer_form(part: &crate::problem::Part, prompt: String) -> String {
+    match crate::check::units::answer_form(part) {
+        Some(form) => format!("{prompt} ({form})"),
+        None => prompt,
+    }
 }
 
 /// The sheet of `p`; with `answers`, the reference answers too.
@@ -160,7 +182,7 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
         id: p.id.clone(),
         title: p.title.clone(),
         source: p.source.clone(),
-        statement: terminal_math(p.statement.trim()),
+        statement: terminal_math(&fill(p.statement.trim(), &p.variants, None)),
         coordinates,
         parameters,
         // In Unicode, as everything else on the sheet (R ω² > g, not R*omega^2 > g).
@@ -185,13 +207,17 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
                 id: part.id.clone(),
                 kind: part.kind.name().to_string(),
                 points: part.points,
-                prompt: match crate::check::units::answer_form(part) {
-                    Some(form) => format!("{} ({form})", terminal_math(&part.prompt)),
-                    None => terminal_math(&part.prompt),
-                },
+                prompt: with_answer_form(
+                    part,
+                    terminal_math(&fill(&part.prompt, &p.variants, None)),
+                ),
                 answers: answers.then(|| part.reference_items()),
+                numbers: part.numbers,
             })
             .collect(),
+        varies: p.variants.iter().map(|v| v.name.clone()).collect(),
+        student: None,
+        numbers: Vec::new(),
     }
 }
 
@@ -219,6 +245,7 @@ impl ProblemSheet {
         if !self.definitions.is_empty() {
             writeln!(o, "{} {}", h("defined:    "), self.definitions.join(", "))?;
         }
+        write_numbers(self, paint, o)?;
         for (i, part) in self.parts.iter().enumerate() {
             writeln!(
                 o,
@@ -230,16 +257,58 @@ impl ProblemSheet {
                 if part.points == 1.0 { "" } else { "s" }
             )?;
             writeln!(o, "   {}", visible_lines(&part.prompt))?;
+            if part.numbers {
+                writeln!(o, "   {}", paint.dim("(in symbols, or with your numbers)"))?;
+            }
             if let Some(answers) = &part.answers {
                 let shown = visible(&answers.join("; "));
                 writeln!(o, "   {} {shown}", paint.dim("answer:"))?;
             }
         }
+        let student = self.student.as_deref().map_or(String::new(), |k| {
+            format!(" --student {}", shell_word(&visible(k)))
+        });
         writeln!(
             o,
-            "\nAnswer with `lagrange check {} <part> \"<answer>\"`.",
+            "\nAnswer with `lagrange check {} <part> \"<answer>\"{student}`.",
             visible(&self.id)
         )
+    }
+}
+
+/// The `varies:` line of a sheet for no student, or the student and their numbers.
+fn write_numbers(s: &ProblemSheet, paint: &dyn Paint, o: &mut String) -> fmt::Result {
+    let h = |t: &str| paint.heading(t);
+    if let Some(student) = &s.student {
+        writeln!(o, "{} {}", h("student:    "), visible(student))?;
+    }
+    if !s.numbers.is_empty() {
+        writeln!(
+            o,
+            "{} {}",
+            h("numbers:    "),
+            visible(&s.numbers.join(", "))
+        )?;
+    } else if !s.varies.is_empty() && s.student.is_none() {
+        writeln!(
+            o,
+            "{} {} (each student's own numbers: --student KEY; :variant to practise)",
+            h("varies:     "),
+            s.varies.join(", ")
+        )?;
+    }
+    Ok(())
+}
+
+/// `s` quoted for a POSIX shell when it holds anything but safe characters.
+pub(super) fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "@._-+".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
     }
 }
 
@@ -343,6 +412,7 @@ fn braces(text: &str) -> String {
 
 /// Every problem of a bank checked against the physics, and the files that failed to load.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct Verification {
     /// One entry per loaded problem, in bank order.
     pub problems: Vec<VerifiedProblem>,
@@ -381,7 +451,7 @@ pub fn verification(bank: &Bank) -> Verification {
                         problem: Some(p.id.clone()),
                         part: None,
                         line: 1,
-                        code: "duplicate-id",
+                        code: crate::bank::FindingCode::DuplicateId,
                         message: format!("{} already defines the problem `{}`", first.file, p.id),
                     };
                     findings.push(f.to_string());
@@ -391,7 +461,10 @@ pub fn verification(bank: &Bank) -> Verification {
                     id: p.id.clone(),
                     parts: p.parts.len(),
                     findings,
-                    notes: undecided_dimensions(p),
+                    notes: undecided_dimensions(p)
+                        .into_iter()
+                        .chain(crate::bank::verify_variants::coverage(p))
+                        .collect(),
                 }
             })
             .collect(),

@@ -1,6 +1,6 @@
-//! [`Reading`]: what `read` shows — how an input is understood in every notation, its kind,
+//! [`ReadReport`]: what `read` shows — how an input is understood in every notation, its kind,
 //! which names are coordinates and which parameters, its dimension, and optionally a partial
-//! and the time derivative — built by [`reading`], rendered by [`Reading::render`].
+//! and the time derivative — built by [`reading`], rendered by [`ReadReport::render`].
 
 use std::fmt::{self, Write as _};
 
@@ -28,7 +28,8 @@ pub struct ReadOptions {
 
 /// How an input was understood.
 #[derive(Clone, Debug, Serialize)]
-pub struct Reading {
+#[non_exhaustive]
+pub struct ReadReport {
     /// The input in plain syntax, Unicode and LaTeX.
     pub forms: Formula,
     /// `expression`, `equation`, `list of n` or `system of n`.
@@ -77,7 +78,7 @@ pub enum Partial {
 
 /// Reads `input` and works out everything `read` shows. A parse error is returned as is,
 /// for the face to render against the input.
-pub fn reading(input: &str, opts: &ReadOptions) -> Result<Reading, ParseError> {
+pub fn reading(input: &str, opts: &ReadOptions) -> Result<ReadReport, ParseError> {
     let mut dims = Dimensions::new();
     let declared: Vec<String> = opts
         .dims
@@ -146,7 +147,7 @@ pub fn reading(input: &str, opts: &ReadOptions) -> Result<Reading, ParseError> {
             })
             .collect()
     });
-    Ok(Reading {
+    Ok(ReadReport {
         forms,
         kind: kind(&parsed),
         coordinates,
@@ -212,7 +213,7 @@ fn partial(
     }
 }
 
-impl Reading {
+impl ReadReport {
     /// Whether the input is inconsistent (its dimensions do not agree).
     pub fn failed(&self) -> bool {
         matches!(self.dimension, Some(DimensionFinding::Inconsistent(_)))

@@ -73,6 +73,7 @@ pub struct TimedState {
 
 /// Everything `simulate` shows.
 #[derive(Clone, Debug, Serialize)]
+#[non_exhaustive]
 pub struct SimulationReport {
     /// The initial state (given values, zeros elsewhere).
     pub start: State,
@@ -111,20 +112,61 @@ pub struct SimulationReport {
     pub units: AxisUnits,
 }
 
+/// Why a list of `name=number` values (`--params`, `--init`) cannot be read; each names its
+/// flag.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum NumbersError {
+    /// An item that is not `name=value`.
+    #[error("{flag}: {bad}")]
+    NotAnAssignment {
+        /// The flag the list was given to.
+        flag: String,
+        /// The item.
+        bad: super::modes::BadAssignment,
+    },
+    /// One name given two values.
+    #[error("{flag}: `{name}` is given twice")]
+    GivenTwice {
+        /// The flag the list was given to.
+        flag: String,
+        /// The name.
+        name: String,
+    },
+    /// A value that is not a finite number.
+    #[error("{flag}: the value of `{name}` must be a finite number, not `{value}`")]
+    NotFinite {
+        /// The flag the list was given to.
+        flag: String,
+        /// The name.
+        name: String,
+        /// The value as written.
+        value: String,
+    },
+}
+
 /// "a=1, b=2" as names and finite numbers (`--params`, `--init`); the error names `flag`.
-pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, String> {
-    let pairs = super::modes::assignments(text).map_err(|e| format!("{flag}: {e}"))?;
+pub fn numbers(flag: &str, text: &str) -> Result<Vec<(String, f64)>, NumbersError> {
+    let pairs = super::modes::assignments(text).map_err(|bad| NumbersError::NotAnAssignment {
+        flag: flag.to_string(),
+        bad,
+    })?;
     let mut out: Vec<(String, f64)> = Vec::with_capacity(pairs.len());
     for (name, value) in pairs {
         if out.iter().any(|(n, _)| *n == name) {
-            return Err(format!("{flag}: `{name}` is given twice"));
+            return Err(NumbersError::GivenTwice {
+                flag: flag.to_string(),
+                name,
+            });
         }
         match value.parse::<f64>() {
             Ok(v) if v.is_finite() => out.push((name, v)),
             _ => {
-                return Err(format!(
-                    "{flag}: the value of `{name}` must be a finite number, not `{value}`"
-                ));
+                return Err(NumbersError::NotFinite {
+                    flag: flag.to_string(),
+                    name,
+                    value,
+                });
             }
         }
     }

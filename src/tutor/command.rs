@@ -38,6 +38,8 @@ pub enum Command {
     Simulate(String),
     /// `:progress` — the student's progress over the bank.
     Progress,
+    /// `:variant` — practise the open problem with fresh numbers (one with variants).
+    Variant,
     /// `:help [COMMAND]` — the commands, or one command's usage.
     Help(Option<String>),
     /// `:quit` / `:exit` — end the session.
@@ -175,6 +177,12 @@ pub const COMMANDS: &[CommandInfo] = &[
         "your progress over the whole bank",
     ),
     info(
+        "variant",
+        ":variant",
+        Arg::None,
+        "practise the open problem with fresh numbers (a problem whose numbers vary by student)",
+    ),
+    info(
         "help",
         ":help [COMMAND]",
         Arg::Optional,
@@ -289,6 +297,7 @@ fn command(name: &str, rest: &str) -> Result<Command, CommandError> {
         "modes" => Command::Modes(arg),
         "simulate" => Command::Simulate(arg),
         "progress" => Command::Progress,
+        "variant" => Command::Variant,
         "help" => Command::Help((!arg.is_empty()).then_some(arg)),
         _ => Command::Quit,
     })

@@ -9,9 +9,9 @@ pub mod follow;
 pub mod ladder;
 pub mod progress;
 pub mod response;
-pub mod session;
+pub(crate) mod session;
 
 pub use command::{Command, CommandError, parse};
 pub use progress::{PartProgress, Progress, ProgressError};
 pub use response::Response;
-pub use session::Session;
+pub use session::{Session, first_hint};

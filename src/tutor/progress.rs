@@ -61,6 +61,10 @@ impl PartProgress {
 pub struct ProblemProgress {
     /// The parts attempted, hinted or revealed, by id.
     pub parts: BTreeMap<String, PartProgress>,
+    /// The seed of the numbers being practised (`:variant`), for a problem whose numbers
+    /// vary; absent until the student asks for numbers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub variant_seed: Option<u64>,
 }
 
 /// A student's progress over every problem, by problem id (ordered, so the JSON is stable).
@@ -166,6 +170,45 @@ fn malformed(e: serde_json::Error) -> ProgressError {
     }
 }
 
+impl Progress {
+    /// Two sessions' records as one: `disk` (what another session saved since) plus what
+    /// `mine` added to `base` (the record `mine` started from). Attempts and hints add up,
+    /// solved and revealed stay true once true, and the new answers follow the ones on disk
+    /// (the latest [`KEPT_ANSWERS`] kept).
+    pub fn merged(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
+        let mut out = disk.clone();
+        for (problem, pp) in &mine.problems {
+            // The numbers practised last in this session win (a `:variant` here).
+            let before = base.problems.get(problem).and_then(|b| b.variant_seed);
+            if pp.variant_seed.is_some() && pp.variant_seed != before {
+                out.problems
+                    .entry(problem.clone())
+                    .or_default()
+                    .variant_seed = pp.variant_seed;
+            }
+            for (part, rec) in &pp.parts {
+                let before = base.part(problem, part).cloned().unwrap_or_default();
+                let new_attempts = rec.attempts.saturating_sub(before.attempts);
+                let new_hints = rec.hints_used.saturating_sub(before.hints_used);
+                let target = out.part_mut(problem, part);
+                target.attempts = target.attempts.saturating_add(new_attempts);
+                target.hints_used = target.hints_used.saturating_add(new_hints);
+                target.solved |= rec.solved;
+                target.revealed |= rec.revealed;
+                let fresh = (new_attempts as usize).min(rec.answers.len());
+                target
+                    .answers
+                    .extend(rec.answers[rec.answers.len() - fresh..].iter().cloned());
+                if target.answers.len() > KEPT_ANSWERS {
+                    let extra = target.answers.len() - KEPT_ANSWERS;
+                    target.answers.drain(..extra);
+                }
+            }
+        }
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -205,5 +248,29 @@ mod tests {
             Err(ProgressError::Malformed { .. })
         ));
         assert_eq!(Progress::from_json("{\"version\": 1}"), Ok(Progress::new()));
+    }
+
+    #[test]
+    fn merging_adds_what_each_session_did_since_it_started() {
+        let base = Progress::new();
+        let mut disk = base.clone();
+        disk.record_attempt("simple-pendulum", "kinetic", "a", false);
+        let mut mine = base.clone();
+        mine.record_attempt("simple-pendulum", "kinetic", "b", true);
+        mine.record_attempt("simple-pendulum", "eom", "c", false);
+        let m = Progress::merged(&disk, &base, &mine);
+        let kinetic = m
+            .part("simple-pendulum", "kinetic")
+            .cloned()
+            .unwrap_or_default();
+        assert_eq!(kinetic.attempts, 2);
+        assert!(kinetic.solved, "solved in one session is solved");
+        assert_eq!(kinetic.answers, ["a", "b"]);
+        assert_eq!(
+            m.part("simple-pendulum", "eom").map(|p| p.attempts),
+            Some(1)
+        );
+        // A session that did nothing leaves the disk's record as it is.
+        assert_eq!(Progress::merged(&disk, &base, &base), disk);
     }
 }

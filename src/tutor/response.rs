@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::check::Verdict;
 use crate::report::problems::ProblemSheet;
-use crate::report::{DerivationReport, ModesReport, Reading};
+use crate::report::{DerivationReport, ModesReport, ReadReport};
 
 /// One thing a session answers with.
 #[derive(Clone, Debug, Serialize)]
@@ -243,7 +243,7 @@ pub struct AnalysisReply {
 #[serde(untagged)]
 pub enum AnalysisReport {
     /// How an expression is read (`:read`).
-    Read(Box<Reading>),
+    Read(Box<ReadReport>),
     /// The derivation of the open problem (`:derive`).
     Derive(Box<DerivationReport>),
     /// The equilibria and normal modes of the open problem (`:modes`).

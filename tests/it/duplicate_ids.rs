@@ -26,7 +26,7 @@ fn a_folder_with_two_files_of_one_id_loads_neither() {
     for file in ["simple-pendulum.toml", "z-copy.toml"] {
         assert!(f[0].message.contains(file), "{}", f[0].message);
     }
-    let err = one.expect_err("two files define the id");
+    let err = one.expect_err("two files define the id").to_string();
     assert!(
         err.contains("simple-pendulum.toml") && err.contains("z-copy.toml"),
         "{err}"

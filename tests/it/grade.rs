@@ -78,7 +78,7 @@ fn long_format_grades_the_physics_and_ignores_extra_columns() {
     let header = &records(&dir.join("results.csv"))[0];
     assert_eq!(
         header.join(","),
-        "row,student,problem,part,answer,status,score,codes,message,run"
+        "row,student,problem,part,answer,status,score,codes,message,override,run"
     );
     let rows = results(&dir);
     assert_eq!(rows.len(), 6);
@@ -276,7 +276,8 @@ fn outputs_are_byte_identical_across_runs_and_thread_counts() {
         assert_eq!(code, 0, "{err}");
         seen.push(outputs(&out));
     }
-    assert_eq!(seen[0].len(), 5);
+    // results, gradebook, canvas, review, summary.md, summary.json.
+    assert_eq!(seen[0].len(), 6);
     assert_eq!(seen[0], seen[1], "1 thread vs 2");
     assert_eq!(seen[1], seen[2], "two runs");
 }

@@ -2,6 +2,7 @@
 //! concept, sharing the helpers in `helpers.rs`.
 
 mod bank;
+mod bank_folders;
 mod chaos_cli;
 mod cli;
 mod conventions;
@@ -18,6 +19,7 @@ mod fuzz_replay;
 mod grade;
 mod grade_consistency;
 mod grade_input;
+mod grade_policy;
 mod helpers;
 mod higher_order_lagrangian;
 mod hostile;
@@ -34,9 +36,11 @@ mod natural_answers;
 mod normal_modes;
 mod notation;
 mod notation_lists;
+mod own_terms;
 mod phase_portrait;
 mod plot;
 mod practice_session;
+mod problem_new;
 mod properties;
 mod pty;
 mod repl;
@@ -55,3 +59,4 @@ mod sympy_systems;
 mod syntax;
 mod tutor_corpus;
 mod tutor_session;
+mod variants;

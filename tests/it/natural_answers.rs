@@ -204,7 +204,9 @@ fn the_echo_shows_the_students_names() {
     let v = verdict("atwood", "eom", "(m₂ − m₁) g = (m1 + m2) x''");
     assert_eq!(v.reading.unicode, "(m₂ − m₁)·g = (m₁ + m₂)·x\u{308}");
     assert!(
-        v.diagnoses[0].message.contains("(m₂ − m₁)·g"),
+        v.diagnoses[0]
+            .message
+            .contains("your term (m₂ − m₁) g on the left "),
         "{:?}",
         v.diagnoses
     );

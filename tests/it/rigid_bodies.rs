@@ -545,3 +545,28 @@ fn command_line_points_and_a_spring() {
     assert_eq!(code, 2);
     assert!(err.contains("act on bodies"), "{err}");
 }
+
+/// Regression (found by using `problems new` as an instructor): a body's fields written with
+/// commas instead of `;` are refused with the form that works, not only "needs mass and
+/// position".
+#[test]
+fn body_fields_separated_by_commas_are_told_the_semicolon_form() {
+    for spec in ["mass=m,position=(l*sin(theta), -l*cos(theta))", "m at x"] {
+        let (code, out, err) = lagrange(&["derive", "-q", "theta", "--point", spec]);
+        assert_eq!(code, 2, "{spec}");
+        assert!(out.is_empty(), "{out}");
+        assert!(err.contains("separated by `;`"), "{spec}: {err}");
+    }
+    // The form the message shows is read.
+    let (code, out, _) = lagrange(&[
+        "derive",
+        "-q",
+        "theta",
+        "--point",
+        "mass=m; position=l*sin(theta), -l*cos(theta)",
+        "--gravity",
+        "g",
+    ]);
+    assert_eq!(code, 0);
+    assert!(out.contains("sin(θ)"), "{out}");
+}

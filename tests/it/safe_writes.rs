@@ -91,6 +91,7 @@ fn out_dot_replaces_only_the_files_grade_names() {
             "notes.txt",
             "results.csv",
             "results.csv.bak",
+            "review.csv",
             "summary.json",
             "summary.md",
         ]

@@ -197,6 +197,12 @@ test('a simulation is drawn as q(t) and a phase portrait', async () => {
   const d = await page.getAttribute('#plots svg.chart >> nth=0 >> path.curve', 'd');
   assert.ok(d.split('L').length > 300, 'the curve has the grid\'s points');
   assert.match(await page.textContent('#simulation-summary'), /dop853/i);
+  // Names as the REPL shows them: θ and θ̇, never the typed `theta`.
+  const summary = await page.textContent('#simulation-summary');
+  assert.match(summary, /θ = /);
+  assert.doesNotMatch(summary, /theta/);
+  const labels = await page.locator('#plots svg.chart text.label').allTextContents();
+  assert.deepEqual(labels, ['t [s]', 'θ [rad]', 'θ [rad]', 'θ\u0307 [rad s⁻¹]']);
   await page.locator('#simulation').scrollIntoViewIfNeeded();
   await shot('07-simulation');
 });
@@ -271,8 +277,28 @@ test('an engine panic is caught, said and survived', async () => {
   await shot('10-panic-survived');
 });
 
-test('with the network off after load, practice goes on', async () => {
+test('with the network off, the page reopens from its service worker and practice goes on', async () => {
+  // The server sends every file with no-store, so only the service worker can bring them back.
+  const scope = await page.evaluate(async () => (await navigator.serviceWorker.ready).scope);
+  assert.equal(scope, `${server.origin}/`);
   await context.setOffline(true);
+  const asked = server.requests.length;
+  // This page's URL still names sets/my-pendulum.toml: its last copy comes back too.
+  assert.match(page.url(), /\?problems=sets\/my-pendulum\.toml/);
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+  const nav = await page.evaluate(() => performance.getEntriesByType('navigation')[0].startTime);
+  figures.ready_ms_offline_reload = await page.evaluate((s) => globalThis.lagrangePage.timings.ready - s, nav);
+  assert.equal(await page.evaluate(() => Boolean(navigator.serviceWorker.controller)), true, 'the page came from its service worker');
+  // Only the browser's own update check of the worker's script may get through: Chromium's
+  // offline emulation covers the page and the worker's fetches, not that check (which, really
+  // offline, just fails).
+  assert.deepEqual(server.requests.slice(asked).filter((u) => u !== '/sw.js'), [], 'no page file reached the server');
+  await page.waitForFunction(() => document.querySelector('#problem-title').textContent === 'My pendulum (a copy)');
+  assert.match(await page.innerText('#findings'), /added as my-pendulum/);
+  assert.equal(await page.locator('#problem-list button').count() >= 17, true);
+  await page.waitForFunction(() => document.fonts.status === 'loaded');
+  await shot('12-offline-reload');
   await openProblem('double-pendulum');
   await page.fill('#answer', '');
   const eom = "(m1+m2)*l1*theta1'' + m2*l2*theta2''*cos(theta1-theta2) + m2*l2*theta2'^2*sin(theta1-theta2) + (m1+m2)*g*sin(theta1) = 0; l2*theta2'' + l1*theta1''*cos(theta1-theta2) - l1*theta1'^2*sin(theta1-theta2) + g*sin(theta2) = 0";

@@ -308,9 +308,10 @@ fn extend(r: &Response, map: &mut Map<String, Value>, line: &str) {
                     Some(r.render(Style::Latex, &Plain)),
                 ),
                 AnalysisReport::Modes(r) => (r.render(Style::Unicode, &Plain), None),
+                // The REPL's summary, with the coordinates' Unicode names (θ, θ̇).
                 AnalysisReport::Simulate(r) => {
                     map.insert("series".into(), series(r));
-                    (r.render(&Plain), None)
+                    (r.render_unicode(&Plain), None)
                 }
             };
             map.insert("text".into(), Value::String(text));
@@ -367,7 +368,8 @@ fn error_span(e: Option<&lagrange::ParseError>, map: &mut Map<String, Value>, li
 }
 
 /// A simulation's even grid for drawing: `t`, per coordinate `q` and `v` (its rate), `h`,
-/// the coordinates' names and the axes' units. Non-finite samples become null.
+/// the coordinates' names as typed (`names`) and as shown (`labels`: `θ₁`; `rate_labels`:
+/// `θ̇₁`), and the axes' units. Non-finite samples become null.
 fn series(r: &lagrange::report::SimulationReport) -> Value {
     let n = r.grid.first().map_or(0, |row| row.1.len() / 2);
     let num = |x: f64| if x.is_finite() { json!(x) } else { Value::Null };
@@ -379,6 +381,8 @@ fn series(r: &lagrange::report::SimulationReport) -> Value {
     };
     json!({
         "names": r.names.iter().take(n).collect::<Vec<_>>(),
+        "labels": r.names.iter().take(n).map(|q| shown_name(q, 0)).collect::<Vec<_>>(),
+        "rate_labels": r.names.iter().take(n).map(|q| shown_name(q, 1)).collect::<Vec<_>>(),
         "t": r.grid.iter().map(|row| num(row.0)).collect::<Vec<_>>(),
         "q": (0..n).map(column).collect::<Vec<_>>(),
         "v": (n..2 * n).map(column).collect::<Vec<_>>(),
@@ -392,6 +396,20 @@ fn series(r: &lagrange::report::SimulationReport) -> Value {
     })
 }
 
+/// A coordinate's name (`theta1`) as the library prints it in Unicode, differentiated `order`
+/// times (`θ₁`, `θ̇₁`): read as the coordinate and printed by the expression printer, as the
+/// REPL's summary and charts name it; the name itself if it cannot be read.
+fn shown_name(name: &str, order: u8) -> String {
+    use lagrange::expr::{Context, Node, Pool, read_expr};
+    let mut pool = Pool::new();
+    let coordinate = Context::new().with_coordinates([name]);
+    match read_expr(name, &coordinate, &mut pool).map(|id| pool.node(id).clone()) {
+        Ok(Node::Var(sym, 0)) => pool.var_name(sym, order, Style::Unicode),
+        _ if order == 0 => name.to_string(),
+        _ => format!("{name}{}", "'".repeat(usize::from(order))),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -402,5 +420,15 @@ mod tests {
         assert_eq!(utf16_span("θ+(", 3..4), (2, 3));
         assert_eq!(utf16_span("𝜃(", 4..5), (2, 3));
         assert_eq!(utf16_span("ab", 7..9), (2, 2));
+    }
+
+    #[test]
+    fn coordinates_are_shown_as_the_repl_names_them() {
+        assert_eq!(shown_name("theta", 0), "θ");
+        assert_eq!(shown_name("theta", 1), "θ\u{307}");
+        assert_eq!(shown_name("theta1", 0), "θ₁");
+        assert_eq!(shown_name("theta2", 1), "θ\u{307}₂");
+        assert_eq!(shown_name("x", 1), "x\u{307}");
+        assert_eq!(shown_name("r", 0), "r");
     }
 }

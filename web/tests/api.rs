@@ -149,6 +149,23 @@ fn a_simulation_carries_its_grid() {
     assert_eq!(s["v"][0][0], 0.0);
     assert_eq!(s["units"]["coordinates"][0], "rad");
     assert!(r["text"].as_str().is_some_and(|t| t.contains("dop853")));
+    // Shown as the REPL shows them: θ and θ̇ in the labels and the summary, never `theta`.
+    assert_eq!(s["labels"], serde_json::json!(["θ"]));
+    assert_eq!(s["rate_labels"], serde_json::json!(["θ\u{307}"]));
+    let text = r["text"].as_str().unwrap_or_default();
+    assert!(text.contains("θ = 1") && !text.contains("theta"), "{text}");
+}
+
+#[wasm_bindgen_test]
+fn a_double_pendulums_coordinates_are_shown_with_subscripts() {
+    let mut e = Engine::new();
+    e.handle(":open double-pendulum");
+    let r = parse(&e.handle(":simulate --t-end 1"));
+    assert_eq!(r["series"]["labels"], serde_json::json!(["θ₁", "θ₂"]));
+    assert_eq!(
+        r["series"]["rate_labels"],
+        serde_json::json!(["θ\u{307}₁", "θ\u{307}₂"])
+    );
 }
 
 #[wasm_bindgen_test]

@@ -397,6 +397,18 @@ async function fromUrl() {
   return params.get('open');
 }
 
+/**
+ * Registers the service worker (sw.js) that keeps this build's files, so the page opens again
+ * with the network off. After the page is ready, so it never delays the first check; a browser
+ * without service workers (or a page on plain HTTP away from localhost) still works online.
+ */
+function offline() {
+  if (!('serviceWorker' in navigator)) return;
+  navigator.serviceWorker.register(new URL('sw.js', import.meta.url)).catch((e) => {
+    console.warn(`lagrange: no offline copy (${e})`);
+  });
+}
+
 async function main() {
   try {
     module = await WebAssembly.compileStreaming(fetch(new URL('pkg/engine_bg.wasm', import.meta.url)));
@@ -416,6 +428,7 @@ async function main() {
   refresh();
   timings.ready = performance.now();
   document.body.dataset.ready = 'true';
+  offline();
   const asked = await fromUrl();
   const open = asked ?? load(KEY.open);
   if (open) send(`:open ${open}`);

@@ -87,6 +87,8 @@ function chart(title, xLabel, yLabel, curves) {
     svg.append(el('path', { d, fill: 'none', stroke: COLOURS[k % COLOURS.length], 'stroke-width': 1.6, class: 'curve' }));
   });
   if (curves.length > 1) {
+    // The legend on a white card, so the curves passing under it do not cross its names.
+    svg.append(el('rect', { x: W - M.right - 96, y: M.top + 2, width: 94, height: 16 * curves.length + 6, fill: '#fff', 'fill-opacity': 0.9, stroke: '#c9ccd1' }));
     curves.forEach((c, k) => {
       const y = M.top + 14 + 16 * k;
       svg.append(el('line', { x1: W - M.right - 90, x2: W - M.right - 70, y1: y - 4, y2: y - 4, stroke: COLOURS[k % COLOURS.length], 'stroke-width': 2 }));
@@ -100,18 +102,21 @@ function unit(u) {
   return u ? ` [${u}]` : '';
 }
 
-/** The simulation's pictures: q(t) of every coordinate, then one phase portrait per coordinate. */
+/** The simulation's pictures: q(t) of every coordinate, then one phase portrait per coordinate.
+ * Names are shown as the engine names them (`labels`: θ₁, `rate_labels`: θ̇₁), as the REPL does. */
 export function plots(series) {
   const out = [];
   const t = series.t ?? [];
   const names = series.names ?? [];
+  const shown = names.map((n, i) => series.labels?.[i] ?? n);
+  const rates = names.map((n, i) => series.rate_labels?.[i] ?? `${n}'`);
   const units = series.units ?? {};
-  const curves = names.map((n, i) => ({ name: n, xs: t, ys: series.q[i] }));
+  const curves = shown.map((n, i) => ({ name: n, xs: t, ys: series.q[i] }));
   const sameUnit = new Set((units.coordinates ?? []).map((u) => u ?? '')).size <= 1;
-  const qLabel = names.length === 1 ? `${names[0]}${unit(units.coordinates?.[0])}` : `coordinates${sameUnit ? unit(units.coordinates?.[0]) : ''}`;
-  out.push(chart(`The coordinates against time: ${names.join(', ')}`, `t${unit(units.time)}`, qLabel, curves));
-  names.forEach((n, i) => {
-    out.push(chart(`Phase portrait of ${n}: its rate against its value`, `${n}${unit(units.coordinates?.[i])}`, `${n}'${unit(units.velocities?.[i])}`,
+  const qLabel = shown.length === 1 ? `${shown[0]}${unit(units.coordinates?.[0])}` : `coordinates${sameUnit ? unit(units.coordinates?.[0]) : ''}`;
+  out.push(chart(`The coordinates against time: ${shown.join(', ')}`, `t${unit(units.time)}`, qLabel, curves));
+  shown.forEach((n, i) => {
+    out.push(chart(`Phase portrait of ${n}: ${rates[i]} against ${n}`, `${n}${unit(units.coordinates?.[i])}`, `${rates[i]}${unit(units.velocities?.[i])}`,
       [{ name: n, xs: series.q[i], ys: series.v[i] }]));
   });
   return out;

@@ -3,8 +3,8 @@
 //! momentum put into L before differentiating (`premature-substitution`), and in another sign
 //! convention (`convention`). Answers are compared through the accelerations each implies.
 
-use super::super::equations::true_accelerations;
 use super::super::prepare::Prepared;
+use super::super::prepare::true_accelerations;
 use super::super::verdict::{Code, Diagnosis};
 use super::numeric::{accelerations, differ, full_rank, holds_at};
 use super::{Candidate, energies};

@@ -18,7 +18,7 @@ impl Program {
     /// one `[f64; K]` per instruction (from [`scratch_lanes`](Self::scratch_lanes)); no
     /// allocation. Returns the bit mask of the lanes where some instruction was not finite
     /// (bit `l` for lane `l`; 0 when every lane is defined): exactly the lanes where
-    /// [`run`](Self::run) would return [`Undefined`] (run that lane alone to learn the node).
+    /// [`run`](Self::run) would return `Undefined` (run that lane alone to learn the node).
     /// The other lanes' outputs are read with [`output_lanes`](Self::output_lanes).
     pub fn run_lanes<const K: usize>(&self, inputs: &[[f64; K]], scratch: &mut [[f64; K]]) -> u64 {
         const { assert!(K >= 1 && K <= 64, "1 to 64 lanes") };

@@ -1,4 +1,4 @@
-//! The parser: tokens to a span-carrying [`Statement`], resolving names against a
+//! The parser: tokens to a span-carrying `Statement`, resolving names against a
 //! [`Context`].
 //!
 //! Precedence, loosest first: `;`, `,`, `=`, `+ -`, `* /` and juxtaposition (one level, left

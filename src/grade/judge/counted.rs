@@ -1,6 +1,8 @@
 //! Which rows count — each student's last (or best) attempt at each part — and the
 //! follow-through credit given to a counted wrong answer that follows from the same student's
-//! own counted answers to the problem's other parts.
+//! own counted answers to the problem's other parts. The rules (which attempt, the penalty,
+//! the credit) are the library's `lagrange::policy`; this file finds the rows they apply to,
+//! in parallel.
 
 use rustc_hash::FxHashMap;
 
@@ -8,13 +10,14 @@ use rayon::prelude::*;
 
 use lagrange::bank::Bank;
 use lagrange::check::{Diagnosis, Status as Checked, Verdict};
+use lagrange::policy::Policy;
 use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::super::input::Row;
-use super::{Judged, Rep, Status};
+use super::{Judged, Rep, Slim, Status};
 
-/// The row that counts for each (student, problem, part): the last graded attempt, or with
-/// `best` the highest-scoring one (the later of equals). Error rows never count. Rows are
+/// The row that counts for each (student, problem, part), as the policy chooses it (the last
+/// graded attempt, or the best after the attempt penalty). Error rows never count. Rows are
 /// bucketed by student (a counting sort: no hash map, memory of one index per row), then each
 /// student's rows are sorted by part and chosen from, students in parallel.
 struct Finals {
@@ -25,11 +28,13 @@ struct Finals {
     count: Vec<u32>,
     /// Row indices per bucket: first the rows that count, sorted by (problem, part).
     order: Vec<u32>,
+    /// Counted rows whose score the attempt penalty lowers, with the score they count for.
+    penalised: Vec<(u32, f64)>,
 }
 
 impl Finals {
     /// The rows that count, per student.
-    fn new(rows: &[Row], judged: &Judged, students: usize, best: bool) -> Finals {
+    fn new(rows: &[Row], judged: &Judged, bank: &Bank, policy: &Policy, students: usize) -> Finals {
         let bucket = |row: &Row| (row.student as usize).min(students);
         let target = |i: u32| judged.outcome(i as usize).target;
         let graded = |i: usize| {
@@ -62,36 +67,46 @@ impl Finals {
             slices.push(head);
             rest = tail;
         }
-        let count: Vec<u32> = slices
+        let chosen: Vec<(u32, Vec<(u32, f64)>)> = slices
             .into_par_iter()
             .with_min_len(256)
             .map(|rows| {
-                // A stable sort: each part's rows stay in input order.
+                // A stable sort: each part's rows stay in input order (attempt order).
                 rows.sort_by_key(|&i| target(i));
+                let mut penalised = Vec::new();
                 let mut kept = 0;
                 let mut i = 0;
                 while i < rows.len() {
                     let t = target(rows[i]);
-                    let mut slot = rows[i];
                     let mut j = i + 1;
                     while j < rows.len() && target(rows[j]) == t {
-                        let score = judged.outcome(rows[j] as usize).score;
-                        if !best || judged.outcome(slot as usize).score <= score {
-                            slot = rows[j];
-                        }
                         j += 1;
+                    }
+                    let points = t.map_or(0.0, |(p, q)| bank.problems[p].parts[q].points);
+                    let scores = rows[i..j].iter().map(|&r| judged.outcome(r as usize).score);
+                    let (k, score) = policy.counted(scores, points).unwrap_or((j - i - 1, 0.0));
+                    let slot = rows[i + k];
+                    if score != judged.outcome(slot as usize).score {
+                        penalised.push((slot, score));
                     }
                     rows[kept] = slot;
                     kept += 1;
                     i = j;
                 }
-                kept as u32
+                (kept as u32, penalised)
             })
             .collect();
+        let mut count = Vec::with_capacity(chosen.len());
+        let mut penalised = Vec::new();
+        for (n, p) in chosen {
+            count.push(n);
+            penalised.extend(p);
+        }
         Finals {
             start,
             count,
             order,
+            penalised,
         }
     }
 
@@ -120,12 +135,19 @@ impl Finals {
     }
 }
 
-/// Sets `counts` on the rows that count.
-pub(super) fn mark_counted(rows: &[Row], judged: &mut Judged, students: usize, best: bool) {
-    let finals = Finals::new(rows, judged, students, best);
+/// Sets `counts` on the rows that count, and the score of those the attempt penalty lowers.
+pub(super) fn mark_counted(
+    rows: &[Row],
+    judged: &mut Judged,
+    bank: &Bank,
+    policy: &Policy,
+    students: usize,
+) {
+    let finals = Finals::new(rows, judged, bank, policy, students);
     for i in finals.rows() {
         judged.rows[i].counts = true;
     }
+    judged.penalised = finals.penalised.into_iter().collect();
 }
 
 /// One follow-through question: a wrong answer (by representative) and the student's final
@@ -139,11 +161,10 @@ pub(super) fn follow_through(
     rows: &[Row],
     judged: &mut Judged,
     bank: &Bank,
-    credit: f64,
+    policy: &Policy,
     students: usize,
-    best: bool,
 ) {
-    let finals = Finals::new(rows, judged, students, best);
+    let finals = Finals::new(rows, judged, bank, policy, students);
     // An earlier answer follow-through can start from: a wrong one, or a Lagrangian accepted
     // though it is not T − V (`accepts`). `follows_from_earlier` passes over every other one
     // without looking further, so leaving them out of a question changes no answer, and
@@ -152,7 +173,7 @@ pub(super) fn follow_through(
         .map(|r| match &r.verdict {
             Ok(v) => match v.status {
                 Checked::Incorrect => true,
-                Checked::Correct => v.diagnoses.first().is_some_and(accepts),
+                Checked::Correct => v.first().as_ref().is_some_and(accepts),
                 Checked::Invalid => false,
             },
             Err(_) => false,
@@ -225,7 +246,8 @@ pub(super) fn follow_through(
                 g.codes = vec![d.code];
             } else {
                 // A list already partly right keeps the larger of its own score and the credit.
-                g.score = g.score.max(credit * points);
+                let own = if points > 0.0 { g.score / points } else { 0.0 };
+                g.score = policy.follow_through_fraction(own).unwrap_or(own) * points;
                 g.codes.insert(0, d.code);
             }
             g.message = Some(d.message.clone());
@@ -251,7 +273,10 @@ fn follows(key: &FollowKey, reps: &[Rep], bank: &Bank) -> Option<Diagnosis> {
         .map(|&r| {
             let e = &reps[r];
             let id = problem.parts[e.part].id.clone();
-            (Earlier::new(id, e.answer.clone()), e.verdict.clone().ok())
+            (
+                Earlier::new(id, e.answer.clone()),
+                e.verdict.as_ref().ok().map(Slim::verdict),
+            )
         })
         .collect();
     let list: Vec<Earlier> = earlier.iter().map(|(e, _)| e.clone()).collect();

@@ -23,7 +23,8 @@
 
 mod section;
 
-pub use section::{SectionOptions, SectionOrbit, energy_state, section, section_with};
+pub(crate) use section::energy_state;
+pub use section::{SectionOptions, SectionOrbit, section, section_with};
 
 use super::{Ode, SimError, Stats, Tolerances, dop853, dop853_with};
 use crate::progress::{Progress, Silent, tick};

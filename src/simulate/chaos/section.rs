@@ -18,7 +18,12 @@ const CHUNK: f64 = 20.0;
 
 /// The state on the section q₁ = 0 with q₂ = `s` (the rest of `base`, velocities 0) at
 /// energy `energy`, q̇₁ > 0 solved; `Err` says why there is none.
-pub fn energy_state(rhs: &mut Rhs, base: &[f64], s: f64, energy: f64) -> Result<Vec<f64>, String> {
+pub(crate) fn energy_state(
+    rhs: &mut Rhs,
+    base: &[f64],
+    s: f64,
+    energy: f64,
+) -> Result<Vec<f64>, String> {
     let layout = rhs.layout();
     if layout.coordinates() < 2 {
         return Err("a section needs at least two coordinates".into());

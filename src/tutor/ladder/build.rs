@@ -11,9 +11,10 @@ use crate::problem::{Part, PartKind, Problem, Quantity};
 mod bodies;
 mod statics;
 mod teach;
+mod velocity_terms;
 
+use statics::point_of;
 use statics::{at_text, displacement, mass_and_stiffness};
-pub(super) use statics::{point_of, second};
 
 /// The ladder of `problem`, in the order a student climbs it.
 pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
@@ -44,6 +45,24 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
 /// and frequencies steps can adopt.
 fn plain_frequencies(p: &Part) -> bool {
     !p.omit_zero_modes && !p.growth && p.units.is_none()
+}
+
+/// A frequencies part the ladder can end on: every root in symbols, or (where the problem asks
+/// only for those, as for a free cart) the nonzero roots; not growth rates nor numbers with
+/// units, which the linearized equations and det(K − ω² M) do not lead to.
+fn ladder_frequencies(p: &Part) -> bool {
+    !p.growth && p.units.is_none()
+}
+
+/// The problem's frequencies part the ladder ends on: a plain one, else one that omits the
+/// zero modes (so that a problem asking only for the nonzero frequencies still gets the
+/// linearized, characteristic and frequencies steps).
+fn frequencies_part(problem: &Problem) -> Option<&Part> {
+    let unsquared = |p: &&Part| p.kind == PartKind::Frequencies && !p.squared;
+    let parts = || problem.parts.iter().filter(unsquared);
+    parts()
+        .find(|p| plain_frequencies(p))
+        .or_else(|| parts().find(|p| ladder_frequencies(p)))
 }
 
 /// Builds the steps in order.
@@ -88,6 +107,7 @@ impl Builder<'_> {
             values: Vec::new(),
             answers_with_units: Vec::new(),
             line: self.problem.lagrangian_line,
+            numbers: false,
         };
         self.steps.push(Step {
             id,
@@ -265,29 +285,38 @@ impl Builder<'_> {
             eq.require_stability = false;
             self.adopt(&eq, "equilibria", prompt);
         }
-        let Some(freq) = problem
-            .parts
-            .iter()
-            .find(|p| p.kind == PartKind::Frequencies && !p.squared && plain_frequencies(p))
-        else {
+        let Some(freq) = frequencies_part(problem) else {
             return Ok(());
+        };
+        // Where the problem omits the zero modes, so do its last two steps.
+        let (nonzero, omitted) = if freq.omit_zero_modes {
+            (
+                "nonzero ",
+                " (leave out ω = 0, the free motion nothing pulls back)",
+            )
+        } else {
+            ("", "")
         };
         let with = conditions(freq);
         let w = frequency_symbol(&self.sys);
-        if super::velocity_terms::gyroscopic_at(self.problem, freq)? {
+        if velocity_terms::gyroscopic_at(self.problem, freq)? {
             // M q'' + K q = 0 and det(K − ω² M) would drop the Coriolis terms: ask for ω only.
             self.adopt(
                 freq,
                 "frequencies",
                 format!(
-                    "Give the angular frequencies {w} of the small oscillations{with}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
+                    "Give the {nonzero}angular frequencies {w} of the small oscillations{with}{omitted}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
                 ),
             );
             return Ok(());
         }
         self.linearized(freq)?;
         let squared = problem.parts.iter().find(|p| {
-            p.kind == PartKind::Frequencies && p.squared && p.at == freq.at && plain_frequencies(p)
+            p.kind == PartKind::Frequencies
+                && p.squared
+                && p.at == freq.at
+                && ladder_frequencies(p)
+                && p.omit_zero_modes == freq.omit_zero_modes
         });
         let mut part = match squared {
             Some(s) => s.clone(),
@@ -303,13 +332,15 @@ impl Builder<'_> {
             &part,
             "characteristic",
             format!(
-                "Solve the characteristic equation det(K − {w}² M) = 0{with}: give its roots {w}²."
+                "Solve the characteristic equation det(K − {w}² M) = 0{with}: give its {nonzero}roots {w}²{omitted}."
             ),
         );
         self.adopt(
             freq,
             "frequencies",
-            format!("Give the angular frequencies {w} of the small oscillations{with}."),
+            format!(
+                "Give the {nonzero}angular frequencies {w} of the small oscillations{with}{omitted}."
+            ),
         );
         Ok(())
     }
@@ -521,11 +552,7 @@ mod tests {
     fn m_and_k_give_the_problems_frequencies() {
         for p in &crate::bank::embedded::bank().problems {
             let steps = ladder(p).unwrap();
-            let Some(freq) = p
-                .parts
-                .iter()
-                .find(|x| x.kind == PartKind::Frequencies && plain_frequencies(x))
-            else {
+            let Some(freq) = frequencies_part(p) else {
                 continue;
             };
             let mut sys = p.system.clone();
@@ -536,13 +563,16 @@ mod tests {
             // problem lists (0 is a frequency) and so the characteristic step asks for.
             // A root that vanishes only after simplification is written as the 0 it is.
             let w2: Vec<Id> = roots(&mut sys, &m, &k);
+            // A part that omits the zero modes (the free cart) leaves the root 0 out.
             let text: Vec<String> = w2
                 .iter()
-                .map(|&w| {
-                    if vanishes(&sys, w) {
-                        "0".into()
+                .filter_map(|&w| {
+                    if !vanishes(&sys, w) {
+                        Some(sys.pool.plain(w))
+                    } else if freq.omit_zero_modes {
+                        None
                     } else {
-                        sys.pool.plain(w)
+                        Some("0".into())
                     }
                 })
                 .collect();

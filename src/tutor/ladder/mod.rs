@@ -1,6 +1,6 @@
 //! The derivation ladder: the guided Euler–Lagrange derivation of a problem, generated from its
 //! system by the mechanics engine (never written in the problem file). Each rung is a [`Step`]
-//! whose [`Part`] carries the engine's result as its reference answer, so the ordinary checker
+//! whose [`Part`](crate::problem::Part) carries the engine's result as its reference answer, so the ordinary checker
 //! judges a step with all its diagnoses.
 //!
 //! Order: for a system built from bodies, each body's position and speed squared, then T, V
@@ -35,7 +35,6 @@ pub mod build;
 pub mod checker;
 mod reasons;
 pub mod step;
-mod velocity_terms;
 
 pub use build::ladder;
 pub use checker::{StepChecker, check_step};

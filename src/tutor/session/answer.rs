@@ -93,6 +93,11 @@ impl Session {
             )));
         };
         let part = &problem.parts[index];
+        // A part that accepts numbers is judged with the numbers practised, if any.
+        let problem = match &o.pinned {
+            Some(pinned) if part.numbers => pinned,
+            _ => problem,
+        };
         let prepared = o
             .prepared
             .entry(index)
@@ -223,6 +228,16 @@ fn worked_derivation(problem: &Problem, part: &Part) -> Vec<WorkedStep> {
             }
         })
         .collect()
+}
+
+/// The hint a tutor gives first on `part` (what `:hint` says to a student who has asked for
+/// none): the problem file's first hint, else the first one derived from the physics; `None`
+/// when the part has none. The grader's feedback quotes it under a wrong answer.
+pub fn first_hint(problem: &Problem, part: &Part) -> Option<String> {
+    match part.hints.first() {
+        Some(h) => Some(terminal_math(h)),
+        None => physics_hints(problem, part).into_iter().next(),
+    }
 }
 
 /// How many hints [`physics_hints`] gives for `part`, without deriving anything.

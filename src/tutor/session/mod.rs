@@ -7,6 +7,7 @@
 //! open problem's other parts (from the progress) are passed to the follow-through check, so
 //! a wrong EOM that follows from their own wrong L is diagnosed `follows-from-earlier`. The
 //! verdicts on those earlier answers given in this session are kept and not checked again.
+//! A part that accepts numbers is judged with the numbers practised (`:variant`).
 //!
 //! `:tutor` walks the open problem's derivation ladder (one [`StepChecker`] per open problem,
 //! kept across `:back`/`:tutor`): answers go to the current step, a correct one (or `:show`)
@@ -20,6 +21,7 @@
 
 mod analysis;
 mod answer;
+pub use answer::first_hint;
 mod guide;
 mod replies;
 mod simulate;
@@ -53,6 +55,9 @@ struct Open {
     /// Per part index, the student's latest checked answer there and its verdict (before
     /// follow-through), so follow-through does not check an earlier answer again.
     judged: FxHashMap<usize, (String, Verdict)>,
+    /// The problem with the practised numbers (`:variant`), which judges the parts that
+    /// accept numbers.
+    pinned: Option<Box<Problem>>,
 }
 
 /// The guided derivation of the open problem: its ladder, one [`StepChecker`] and where the
@@ -149,6 +154,7 @@ impl Session {
             Command::Derive(l) => vec![analyse_typed(&l, false)],
             Command::Modes(l) => vec![analyse_typed(&l, true)],
             Command::Simulate(args) => vec![self.simulate(&args)],
+            Command::Variant => self.variant(),
         }
     }
 
@@ -275,13 +281,19 @@ impl Session {
         let current = self
             .first_unsolved(problem, 0)
             .or((!problem.parts.is_empty()).then_some(0));
-        let sheet = problem_sheet(problem, false);
+        let seed = (self.progress.problems.get(&problem.id)).and_then(|p| p.variant_seed);
+        let variant = seed.and_then(|s| crate::problem::variant::pick(problem, s, ""));
+        let sheet = match &variant {
+            Some(v) => crate::report::sheets::variant_sheet(problem, false, v),
+            None => problem_sheet(problem, false),
+        };
         self.open = Some(Open {
             problem: index,
             current,
             prepared: FxHashMap::default(),
             tutor: None,
             judged: FxHashMap::default(),
+            pinned: variant.map(|v| Box::new(problem.pinned(&v))),
         });
         let mut out = vec![Response::Statement(StatementReply {
             sheet,
@@ -289,6 +301,29 @@ impl Session {
         })];
         out.extend(self.prompt());
         out
+    }
+
+    /// `:variant`: fresh numbers for the open problem — the next seed of a SplitMix64 sequence
+    /// from the last one (from the FNV-1a hash of the problem id the first time), kept in the
+    /// progress — and its statement with them.
+    fn variant(&mut self) -> Vec<Response> {
+        let Some(problem) = self.problem() else {
+            return vec![no_problem()];
+        };
+        if problem.variants.is_empty() {
+            return vec![Response::error(
+                "no-variants",
+                "this problem's numbers do not vary: it is the same for everyone",
+                None,
+            )];
+        }
+        let id = problem.id.clone();
+        let record = self.progress.problems.entry(id.clone()).or_default();
+        let mut state = record
+            .variant_seed
+            .unwrap_or_else(|| crate::problem::variant::fnv1a64(id.as_bytes()));
+        record.variant_seed = Some(crate::problem::variant::splitmix64(&mut state));
+        self.open(&id)
     }
 
     /// The first unsolved part at or after `from`, wrapping round.

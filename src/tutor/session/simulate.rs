@@ -104,8 +104,8 @@ fn options(args: &str, defaults: &SimulationDefaults) -> Result<SimulationOption
             .unwrap_or(value)
             .trim();
         match flag {
-            "init" => init = Some(numbers("--init", value)?),
-            "params" => params = numbers("--params", value)?,
+            "init" => init = Some(numbers("--init", value).map_err(|e| e.to_string())?),
+            "params" => params = numbers("--params", value).map_err(|e| e.to_string())?,
             "t-end" => {
                 t_end = value
                     .parse::<f64>()

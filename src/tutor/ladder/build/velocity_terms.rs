@@ -4,10 +4,10 @@
 
 use rustc_hash::FxHashMap;
 
-use super::build::{point_of, second};
-use super::step::LadderError;
+use super::statics::{point_of, second};
 use crate::expr::{Id, Sym};
 use crate::problem::{Part, Problem};
+use crate::tutor::ladder::step::LadderError;
 
 /// Whether G = ∂²L/∂q'∂q − (∂²L/∂q'∂q)ᵀ is nonzero at rest at the point of `freq`.
 pub(super) fn gyroscopic_at(problem: &Problem, freq: &Part) -> Result<bool, LadderError> {

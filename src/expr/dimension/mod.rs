@@ -73,7 +73,7 @@ impl Dimension {
     /// Reads `"M L^2 T^-2"`, `"L T^-2"`, `"Q"` (charge), `"1"`, `""`, `"rad"` or `"angle"`
     /// (dimensionless). Also accepts `*` between factors, `/` before a factor, and Unicode
     /// superscripts.
-    pub fn parse(src: &str) -> Result<Dimension, String> {
+    pub fn parse(src: &str) -> Result<Dimension, DimensionSyntax> {
         let text: String = src
             .chars()
             .map(|c| match c {
@@ -103,7 +103,7 @@ impl Dimension {
                 continue;
             }
             let mut chars = rest.chars();
-            let base = chars.next().ok_or("empty dimension")?;
+            let base = chars.next().ok_or(DimensionSyntax::Empty)?;
             rest = chars.as_str();
             let mut exp = Rational32::from(1);
             let tail = rest.trim_start_matches('^');
@@ -130,10 +130,15 @@ impl Dimension {
             }
             if digits_end > 0 {
                 let e = &tail[..digits_end];
-                exp = parse_ratio(e).ok_or_else(|| format!("bad exponent `{e}` in `{src}`"))?;
+                exp = parse_ratio(e).ok_or_else(|| DimensionSyntax::BadExponent {
+                    exponent: e.to_string(),
+                    input: src.to_string(),
+                })?;
                 rest = &tail[digits_end..];
             } else if has_caret {
-                return Err(format!("missing exponent after `^` in `{src}`"));
+                return Err(DimensionSyntax::MissingExponent {
+                    input: src.to_string(),
+                });
             }
             let unit = match base {
                 'M' => Dimension::new(1, 0, 0),
@@ -141,9 +146,10 @@ impl Dimension {
                 'T' => Dimension::new(0, 0, 1),
                 'Q' => Dimension::charge(),
                 other => {
-                    return Err(format!(
-                        "unknown dimension `{other}` in `{src}`: use M, L, T and Q (charge), e.g. \"L T^-2\""
-                    ));
+                    return Err(DimensionSyntax::UnknownBase {
+                        base: other,
+                        input: src.to_string(),
+                    });
                 }
             };
             d = d * unit.pow(exp * Rational32::from(sign));
@@ -261,6 +267,12 @@ impl Dimensions {
         self
     }
 
+    /// Whether no symbol has a dimension (a problem pinned to a student's numbers, which
+    /// carry no units).
+    pub fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+
     /// Whether `name` varies (a coordinate, or `t`).
     fn varies(&self, name: &str) -> bool {
         name == super::pool::TIME || self.varying.contains(name)
@@ -274,6 +286,37 @@ impl Dimensions {
             None => None,
         }
     }
+}
+
+/// Why a written dimension (`"M L^2 T^-2"`) cannot be read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DimensionSyntax {
+    /// Nothing where a base dimension was expected.
+    #[error("empty dimension")]
+    Empty,
+    /// An exponent that is not an integer or a ratio of integers.
+    #[error("bad exponent `{exponent}` in `{input}`")]
+    BadExponent {
+        /// The exponent as written.
+        exponent: String,
+        /// The whole dimension as written.
+        input: String,
+    },
+    /// `^` with no exponent after it.
+    #[error("missing exponent after `^` in `{input}`")]
+    MissingExponent {
+        /// The whole dimension as written.
+        input: String,
+    },
+    /// A base other than M, L, T and Q.
+    #[error("unknown dimension `{base}` in `{input}`: use M, L, T and Q (charge), e.g. \"L T^-2\"")]
+    UnknownBase {
+        /// The base as written.
+        base: char,
+        /// The whole dimension as written.
+        input: String,
+    },
 }
 
 /// A dimension error, naming the offending parts (printed in Unicode).
@@ -312,177 +355,7 @@ fn list(terms: &[(String, Dimension)]) -> String {
         .join(", ")
 }
 
-impl Pool {
-    /// The dimension of `e`; `Ok(None)` when some symbol's dimension is unknown.
-    pub fn dimension(&self, e: Id, dims: &Dimensions) -> Result<Option<Dimension>, DimError> {
-        let mut memo = FxHashMap::default();
-        self.dim_of(e, dims, &mut memo)
-    }
-
-    /// Checks that `lhs = rhs` is dimensionally consistent.
-    pub fn check_equation_dimension(
-        &self,
-        lhs: Id,
-        rhs: Id,
-        dims: &Dimensions,
-    ) -> Result<Option<Dimension>, DimError> {
-        let a = self.dimension(lhs, dims)?;
-        let b = self.dimension(rhs, dims)?;
-        match (a, b) {
-            (Some(x), Some(y)) if x != y && !self.is_zero(lhs) && !self.is_zero(rhs) => {
-                Err(DimError::UnlikeSides {
-                    lhs: self.unicode(lhs),
-                    lhs_dim: x,
-                    rhs: self.unicode(rhs),
-                    rhs_dim: y,
-                })
-            }
-            // `… = 0`: zero takes any dimension, so the other side decides.
-            _ if self.is_zero(rhs) => Ok(a),
-            _ if self.is_zero(lhs) => Ok(b),
-            _ => Ok(a.and(b)),
-        }
-    }
-
-    fn dim_of(
-        &self,
-        e: Id,
-        dims: &Dimensions,
-        memo: &mut Memo,
-    ) -> Result<Option<Dimension>, DimError> {
-        if let Some(d) = memo.get(&e) {
-            return Ok(*d);
-        }
-        let d = match self.node(e) {
-            Node::Num(_) | Node::Pi => Some(Dimension::NONE),
-            Node::Var(s, o) => dims
-                .get(self.name(*s))
-                .map(|d| d / Dimension::new(0, 0, i32::from(*o))),
-            Node::Mul(ch) => {
-                let mut acc = Some(Dimension::NONE);
-                for &c in ch.iter() {
-                    let dc = self.dim_of(c, dims, memo)?;
-                    acc = acc.zip(dc).map(|(a, b)| a * b);
-                }
-                acc
-            }
-            Node::Add(ch) => self.dim_of_sum(ch, dims, memo)?,
-            Node::Pow(b, x) => self.dim_of_power(*b, *x, dims, memo)?,
-            Node::Func(f, a) => self.dim_of_func(*f, *a, dims, memo)?,
-        };
-        memo.insert(e, d);
-        Ok(d)
-    }
-
-    /// Every term of a sum must have one dimension; the error lists one term per dimension,
-    /// in display order.
-    fn dim_of_sum(
-        &self,
-        ch: &[Id],
-        dims: &Dimensions,
-        memo: &mut Memo,
-    ) -> Result<Option<Dimension>, DimError> {
-        let mut seen: Vec<(String, Dimension)> = Vec::new();
-        let mut unknown = false;
-        let mut terms = ch.to_vec();
-        self.display_sort_terms(&mut terms);
-        for &c in &terms {
-            match self.dim_of(c, dims, memo)? {
-                Some(d) => {
-                    if !seen.iter().any(|(_, x)| *x == d) {
-                        seen.push((self.unicode(c), d));
-                    }
-                }
-                None => unknown = true,
-            }
-        }
-        if seen.len() > 1 {
-            return Err(DimError::UnlikeTerms { terms: seen });
-        }
-        Ok(if unknown {
-            None
-        } else {
-            seen.first().map(|x| x.1)
-        })
-    }
-
-    /// `b ^ x`: x dimensionless, and a number unless b is dimensionless.
-    fn dim_of_power(
-        &self,
-        b: Id,
-        x: Id,
-        dims: &Dimensions,
-        memo: &mut Memo,
-    ) -> Result<Option<Dimension>, DimError> {
-        let db = self.dim_of(b, dims, memo)?;
-        let dx = self.dim_of(x, dims, memo)?;
-        if let Some(dx) = dx
-            && !dx.is_none()
-        {
-            return Err(DimError::DimensionfulExponent {
-                exponent: self.unicode(x),
-                dim: dx,
-            });
-        }
-        Ok(match (db, self.as_num(x)) {
-            (Some(d), _) if d.is_none() => Some(d),
-            (Some(d), Some(v)) => {
-                let r = v
-                    .numer()
-                    .to_i32()
-                    .zip(v.denom().to_i32())
-                    .map(|(n, k)| Rational32::new(n, k));
-                r.map(|r| d.pow(r))
-            }
-            // `r^n` with n a constant: the dimension is L^n, which no fixed exponent states
-            // and no check can refute: undecided.
-            (Some(_), None)
-                if self
-                    .variables(x)
-                    .iter()
-                    .all(|&(s, o)| o == 0 && !dims.varies(self.name(s))) =>
-            {
-                None
-            }
-            (Some(d), None) => {
-                return Err(DimError::SymbolicExponent {
-                    base: self.unicode(b),
-                    dim: d,
-                    exponent: self.unicode(x),
-                });
-            }
-            (None, _) => None,
-        })
-    }
-
-    /// `f(a)`: a dimensionless argument for every function but `abs`.
-    fn dim_of_func(
-        &self,
-        f: Func,
-        a: Id,
-        dims: &Dimensions,
-        memo: &mut Memo,
-    ) -> Result<Option<Dimension>, DimError> {
-        let da = self.dim_of(a, dims, memo)?;
-        if !f.needs_dimensionless() {
-            debug_assert_eq!(f, Func::Abs);
-            return Ok(da);
-        }
-        if let Some(d) = da
-            && !d.is_none()
-        {
-            return Err(DimError::DimensionfulArgument {
-                func: f.name(),
-                arg: self.unicode(a),
-                dim: d,
-            });
-        }
-        Ok(Some(Dimension::NONE))
-    }
-}
-
-/// Dimensions already found, by node.
-type Memo = FxHashMap<Id, Option<Dimension>>;
+mod infer;
 
 #[cfg(test)]
 mod tests {
@@ -507,8 +380,18 @@ mod tests {
         for (src, want) in cases {
             assert_eq!(Dimension::parse(src), Ok(want), "{src}");
         }
-        assert!(Dimension::parse("K").is_err());
-        assert!(Dimension::parse("L^").is_err());
+        assert!(matches!(
+            Dimension::parse("K"),
+            Err(DimensionSyntax::UnknownBase { base: 'K', .. })
+        ));
+        assert!(matches!(
+            Dimension::parse("L^"),
+            Err(DimensionSyntax::MissingExponent { .. })
+        ));
+        assert_eq!(
+            Dimension::parse("L^").map_err(|e| e.to_string()),
+            Err("missing exponent after `^` in `L^`".to_string())
+        );
         assert_eq!(
             Dimension::parse("L^1/2").map(|d| d.l),
             Ok(Rational32::new(1, 2))

@@ -8,10 +8,10 @@ use lagrange::expr::Id;
 use lagrange::mechanics::bodies::{Anchor, Body, Potential};
 use lagrange::mechanics::{MechError, RigidSpec, System};
 
-use super::system_args::CliError;
+use super::CliError;
 
 /// Splits at top-level occurrences of `sep` (not inside parentheses or brackets), trimmed.
-pub(super) fn split_top(text: &str, sep: char) -> Vec<&str> {
+pub(crate) fn split_top(text: &str, sep: char) -> Vec<&str> {
     let mut parts = Vec::new();
     let (mut depth, mut start) = (0i32, 0);
     for (i, c) in text.char_indices() {
@@ -39,7 +39,7 @@ fn fields<'a>(
     for item in split_top(text, ';').into_iter().filter(|s| !s.is_empty()) {
         let Some((k, v)) = item.split_once('=') else {
             return Err(CliError::Usage(format!(
-                "{flag}: `{item}` is not key=value (keys: {})",
+                "{flag}: `{item}` is not key=value (keys: {}; fields are separated by `;`)",
                 known.join(", ")
             )));
         };
@@ -103,7 +103,9 @@ impl BodyFlags<'_> {
             let f = fields("--point", p, &["mass", "position"])?;
             let get = |k: &str| f.iter().find(|(o, _)| *o == k).map(|(_, v)| *v);
             let (Some(m), Some(at)) = (get("mass"), get("position")) else {
-                return Err(CliError::usage("--point needs mass=… and position=…"));
+                return Err(CliError::usage(
+                    "--point needs mass=… and position=…, separated by `;`, as in --point \"mass=m; position=l*sin(theta), -l*cos(theta)\"",
+                ));
             };
             let mass = one(&mut base, m, "--point mass")?;
             let position = list(&mut base, at, "--point position")?;

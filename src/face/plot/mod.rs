@@ -137,7 +137,7 @@ pub fn check_picture_path(
         ));
     }
     // A link, a folder or a socket at the name is refused before any work is done.
-    crate::outfile::check(path, true).map_err(|e| format!("{flag}: {e}"))
+    crate::face::outfile::check(path, true).map_err(|e| format!("{flag}: {e}"))
 }
 
 /// A curve cut where its x turns back, each piece drawn left to right: plotters' bitmap

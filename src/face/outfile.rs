@@ -211,11 +211,16 @@ fn remove_stale(dir: &Path, names: &[&str]) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
+    let names: std::collections::HashSet<&str> = names.iter().copied().collect();
     for entry in entries.flatten() {
         let file = entry.file_name();
         let Some(file) = file.to_str() else { continue };
-        let ours =
-            file.ends_with(TMP_SUFFIX) && names.iter().any(|n| file.starts_with(&format!(".{n}.")));
+        // `.NAME.XXXXXX.lagrange-tmp`: NAME looked up, not compared with every name (the
+        // feedback folder has two names per student).
+        let ours = (file.strip_suffix(TMP_SUFFIX))
+            .and_then(|f| f.strip_prefix('.'))
+            .and_then(|f| f.rsplit_once('.'))
+            .is_some_and(|(name, _)| names.contains(name));
         // A regular file only: a link or anything else with that name is left alone.
         if ours && entry.file_type().is_ok_and(|t| t.is_file()) {
             let _ = std::fs::remove_file(entry.path());

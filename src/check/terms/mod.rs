@@ -10,19 +10,50 @@
 use super::compare::{close, values};
 use super::diagnose::{MAX_SEARCH_TERMS, has_decimal, nice_fraction};
 use super::prepare::Prepared;
+use super::quote;
 use super::tolerance;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::{Id, Node, Style, Sym};
+
+mod factor;
+use factor::{content, cross_velocities, state_vars, wrong_factor};
 
 /// Most terms on either side for the all-pairs scaling search of an equation.
 const MAX_SCALED_TERMS: usize = 16;
 
 /// Terms of a sum with their sign in it: `shown` is the term as written on its side, `signed`
-/// its contribution (the negative of `shown` for a term on the right of `=`).
+/// its contribution (the negative of `shown` for a term on the right of `=`). `named` is how
+/// a message names each term as the student's: their own text where they typed the term
+/// ([`quote`](super::quote)), the side it is on when both sides have terms, and for a piece of
+/// a term that expanding split, the term it is a part of.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Terms {
     shown: Vec<Id>,
     signed: Vec<Id>,
+    named: Vec<Named>,
+}
+
+/// How a message names one of the student's terms.
+#[derive(Clone, Debug, Default)]
+struct Named {
+    /// The term as the student typed it, or printed where they did not type it as one.
+    text: String,
+    /// `on the left` or `on the right` of `=`, when both sides have terms.
+    side: Option<&'static str>,
+    /// The student's term this is a part of, when expanding split one.
+    within: Option<String>,
+}
+
+impl Named {
+    /// The phrase naming the term in a message: "your term −(m₂ − m₁) g", "your term
+    /// (m₂ − m₁) g on the right", "the part −½·m₂·ẋ² of your term ½ (m₁ − m₂) ẋ²".
+    fn phrase(&self) -> String {
+        let side = self.side.map(|s| format!(" {s}")).unwrap_or_default();
+        match &self.within {
+            None => format!("your term {}{side}", self.text),
+            Some(whole) => format!("the part {} of your term {whole}{side}", self.text),
+        }
+    }
 }
 
 /// The top-level terms of `e` (a sum's terms, or `e` itself; none for 0).
@@ -38,34 +69,69 @@ fn top_terms(p: &Prepared, e: Id) -> Vec<Id> {
 
 impl Terms {
     /// The terms of an expression, as written.
-    pub(super) fn of_expression(p: &Prepared, e: Id) -> Terms {
+    pub(super) fn of_expression(p: &mut Prepared, e: Id) -> Terms {
+        quote::ensure(p);
         let t = top_terms(p, e);
+        let named = t
+            .iter()
+            .map(|&x| Named {
+                text: quote::shown(p, x),
+                ..Named::default()
+            })
+            .collect();
         Terms {
             shown: t.clone(),
             signed: t,
+            named,
         }
     }
 
     /// The terms of an equation `lhs = rhs`, each shown on its own side.
     pub(super) fn of_equation(p: &mut Prepared, lhs: Id, rhs: Id) -> Terms {
         let mut out = Terms::of_expression(p, lhs);
-        for t in top_terms(p, rhs) {
+        let right = top_terms(p, rhs);
+        // "On the left" only helps where there is a right to tell it from.
+        if !out.shown.is_empty() && !right.is_empty() {
+            for n in &mut out.named {
+                n.side = Some("on the left");
+            }
+        }
+        let side = (!out.shown.is_empty()).then_some("on the right");
+        for t in right {
             out.shown.push(t);
             let n = p.system.pool.neg(t);
             out.signed.push(n);
+            out.named.push(Named {
+                text: quote::shown(p, t),
+                side,
+                within: None,
+            });
         }
         out
     }
 
-    /// Each term expanded into its own terms (`(m₁ + m₂)·g` gives two), keeping its side.
+    /// Each term expanded into its own terms (`(m₁ + m₂)·g` gives two), keeping its side; a
+    /// term that splits names its parts as parts of it.
     fn expanded(&self, p: &mut Prepared) -> Terms {
         let mut out = Terms::default();
-        for (&s, &g) in self.shown.iter().zip(&self.signed) {
+        for ((&s, &g), named) in self.shown.iter().zip(&self.signed).zip(&self.named) {
             let flip = s != g;
             let x = p.system.pool.expand(s);
-            for t in top_terms(p, x) {
+            let parts = top_terms(p, x);
+            let split = parts.len() > 1;
+            for t in parts {
                 out.shown.push(t);
                 out.signed.push(if flip { p.system.pool.neg(t) } else { t });
+                out.named.push(if split {
+                    Named {
+                        text: quote::shown(p, t),
+                        side: named.side,
+                        within: Some(named.within.clone().unwrap_or_else(|| named.text.clone())),
+                    }
+                } else {
+                    // The same term, rewritten: still the one the student wrote.
+                    named.clone()
+                });
             }
         }
         out
@@ -74,6 +140,11 @@ impl Terms {
     /// Number of terms.
     pub(super) fn len(&self) -> usize {
         self.shown.len()
+    }
+
+    /// How a message names term `i`.
+    fn phrase(&self, i: usize) -> String {
+        self.named.get(i).map_or_else(String::new, Named::phrase)
     }
 }
 
@@ -307,7 +378,6 @@ fn describe(
     how: Scaling,
     which: &str,
 ) -> Option<(Diagnosis, bool)> {
-    let pool = &p.system.pool;
     let found = match d {
         Difference::Missing(j) => {
             let what = content(p, reference.signed[j]);
@@ -347,8 +417,8 @@ fn describe(
         Difference::Extra(i) => Diagnosis::new(
             Code::ExtraTerm,
             format!(
-                "{which} has a term too many: your term {} should not be there",
-                pool.unicode(student.shown[i])
+                "{which} has a term too many: {} should not be there",
+                student.phrase(i)
             ),
         ),
         Difference::Pair(i, j, ratio) => {
@@ -373,8 +443,7 @@ fn pair(
     ratio: &[f64],
     (how, place): (Scaling, &str),
 ) -> Option<(Diagnosis, bool)> {
-    let pool = &p.system.pool;
-    let yours = pool.unicode(student.shown[i]);
+    let yours = student.phrase(i);
     // 0/0 (both terms vanish at a point) says nothing about the ratio; x/0 is infinite and
     // never constant.
     let known: Vec<f64> = ratio.iter().copied().filter(|r| !r.is_nan()).collect();
@@ -390,7 +459,7 @@ fn pair(
             return Some((
                 Diagnosis::new(
                     Code::SignError,
-                    format!("sign error{place}: your term {yours} should have the opposite sign"),
+                    format!("sign error{place}: {yours} should have the opposite sign"),
                 ),
                 true,
             ));
@@ -400,7 +469,7 @@ fn pair(
                 Diagnosis::new(
                     Code::RoundedConstant,
                     format!(
-                        "the coefficient of your term {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
+                        "the coefficient of {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
                         (f - 1.0).abs() * 100.0
                     ),
                 ),
@@ -418,180 +487,11 @@ fn pair(
         return Some((
             Diagnosis::new(
                 Code::ConstantFactor,
-                format!("your term {yours}{place} is off by a constant factor: {text}"),
+                format!("{yours}{place} is off by a constant factor: {text}"),
             ),
             true,
         ));
     }
     let yours = format!("{yours}{place}");
     wrong_factor(p, student.signed[i], reference.signed[j], &yours, how)
-}
-
-/// The state variables (coordinates at any order, and time) a term depends on.
-fn state_vars(p: &Prepared, e: Id) -> Vec<(Sym, u8)> {
-    let time = p.system.pool.time();
-    let coords = p.system.coordinate_syms();
-    let mut v: Vec<(Sym, u8)> = p
-        .system
-        .pool
-        .variables(e)
-        .into_iter()
-        .filter(|(s, _)| *s == time || coords.contains(s))
-        .collect();
-    v.sort();
-    v.dedup();
-    v
-}
-
-/// The non-numeric factors of a term.
-fn factors(p: &Prepared, e: Id) -> Vec<Id> {
-    match p.system.pool.node(e) {
-        Node::Mul(f) => f
-            .iter()
-            .copied()
-            .filter(|&x| !matches!(p.system.pool.node(x), Node::Num(_)))
-            .collect(),
-        Node::Num(_) => Vec::new(),
-        _ => vec![e],
-    }
-}
-
-/// Whether `e` depends on the state (a coordinate at any order, or time).
-fn is_state(p: &Prepared, e: Id) -> bool {
-    !state_vars(p, e).is_empty()
-}
-
-/// A wrong factor inside one term: said only when the student's term has every state variable
-/// of the reference's (sin ↔ cos, l ↔ l², θ₁ + θ₂ for θ₁ − θ₂, a missing sin α, an extra
-/// cos θ), so that it is one term with a wrong part, not a different term altogether (θ̇² for
-/// sin θ, or ½mṙ² for ½m(ṙ² + ω²r²), where a whole term is missing). Under a common scaling (equations) the
-/// parameters of a term are compared only through the numbers, so only its state factors are
-/// named (and functions of them, like sin α). The flag says whether one factor was named.
-fn wrong_factor(
-    p: &Prepared,
-    s: Id,
-    r: Id,
-    yours: &str,
-    how: Scaling,
-) -> Option<(Diagnosis, bool)> {
-    let (vs, vr) = (state_vars(p, s), state_vars(p, r));
-    let within = |a: &[(Sym, u8)], b: &[(Sym, u8)]| a.iter().all(|x| b.contains(x));
-    if vs.is_empty() != vr.is_empty() || !within(&vr, &vs) {
-        return None;
-    }
-    let keep = |x: &Id| {
-        how == Scaling::None || is_state(p, *x) || matches!(p.system.pool.node(*x), Node::Func(..))
-    };
-    let fs: Vec<Id> = factors(p, s).into_iter().filter(keep).collect();
-    let fr: Vec<Id> = factors(p, r).into_iter().filter(keep).collect();
-    let wrong: Vec<Id> = fs.iter().copied().filter(|x| !fr.contains(x)).collect();
-    let lacking: Vec<Id> = fr.iter().copied().filter(|x| !fs.contains(x)).collect();
-    let pool = &p.system.pool;
-    // (1 − cos θ) where (cos θ − 1) belongs: the factor is right but for its sign.
-    if let ([w], [l]) = (wrong.as_slice(), lacking.as_slice())
-        && negatives(p, *w, *l)
-    {
-        return Some((
-            Diagnosis::new(
-                Code::SignError,
-                format!("sign error: your term {yours} should have the opposite sign"),
-            ),
-            true,
-        ));
-    }
-    let (message, named) = match (wrong.as_slice(), lacking.as_slice()) {
-        ([w], _) => {
-            // A power of a function (1/sin α, cos²θ) is judged by the function inside.
-            let base = match pool.node(*w) {
-                Node::Pow(b, _) => *b,
-                _ => *w,
-            };
-            let why = if matches!(
-                pool.node(base),
-                Node::Func(crate::expr::Func::Sin | crate::expr::Func::Cos, _)
-            ) {
-                "check sin against cos, and the angle inside"
-            } else if matches!(pool.node(base), Node::Func(..)) {
-                "check the function and what is inside it"
-            } else if is_state(p, *w) {
-                "check its power and what is inside"
-            } else {
-                "check which masses and lengths this term involves, and their powers"
-            };
-            (
-                format!(
-                    "in your term {yours}, the factor {} is wrong: {why}",
-                    pool.unicode(*w)
-                ),
-                true,
-            )
-        }
-        ([], [l]) => {
-            let vars: Vec<String> = pool
-                .variables(*l)
-                .into_iter()
-                .map(|(s, o)| pool.var_name(s, o, Style::Unicode))
-                .collect();
-            (
-                format!(
-                    "your term {yours} lacks a factor (one in {})",
-                    vars.join(", ")
-                ),
-                true,
-            )
-        }
-        ([], []) if how == Scaling::Common => (
-            format!(
-                "your term {yours} has a wrong factor among its parameters, compared with your other terms"
-            ),
-            true,
-        ),
-        _ => (format!("your term {yours} has a wrong factor"), false),
-    };
-    Some((Diagnosis::new(Code::WrongFactor, message), named))
-}
-
-/// Whether `a` is −`b` at every sample point where both are defined (and at one at least).
-fn negatives(p: &Prepared, a: Id, b: Id) -> bool {
-    let Ok(vals) = super::compare::values(&p.system, &[a, b], &p.points) else {
-        return false;
-    };
-    let defined: Vec<&Vec<f64>> = vals.iter().flatten().collect();
-    !defined.is_empty()
-        && defined
-            .iter()
-            .all(|v| super::compare::close(v[0], -v[1], 0.0, p.tolerance) && v[0] != 0.0)
-}
-
-/// What a reference term contains, without its coefficient: the product of its factors that
-/// depend on the state, e.g. `θ̇₂²·sin(θ₁ − θ₂)`. `None` for a term without any.
-/// Whether `r` is a product of two different velocities (θ̇₁·θ̇₂·cos(θ₁ − θ₂)): the cross term
-/// of a kinetic energy.
-fn cross_velocities(p: &Prepared, r: Id) -> bool {
-    let coords = p.system.coordinate_syms();
-    let velocities = p
-        .system
-        .pool
-        .variables(r)
-        .iter()
-        .filter(|(s, o)| *o == 1 && coords.contains(s))
-        .count();
-    velocities >= 2
-}
-
-fn content(p: &Prepared, r: Id) -> Option<String> {
-    let time = p.system.pool.time();
-    let coords = p.system.coordinate_syms();
-    let state: Vec<String> = factors(p, r)
-        .into_iter()
-        .filter(|&f| {
-            p.system
-                .pool
-                .variables(f)
-                .iter()
-                .any(|(s, _)| *s == time || coords.contains(s))
-        })
-        .map(|f| p.system.pool.unicode(f))
-        .collect();
-    (!state.is_empty()).then(|| state.join("·"))
 }

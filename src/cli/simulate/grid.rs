@@ -10,12 +10,12 @@ use std::ops::ControlFlow;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::bar::Bar;
+use crate::face::bar::Bar;
 use lagrange::progress::Progress;
 use rayon::prelude::*;
 
-use super::simulate::{SimulateArgs, write_atomic};
-use super::system_args::{CliError, report};
+use super::super::system_args::{CliError, report};
+use super::{SimulateArgs, write_atomic};
 use lagrange::mechanics::System;
 use lagrange::report::SimulationOptions;
 use lagrange::report::flip_map::{FlipMap, FlipMapOptions, parse_grid};
@@ -96,10 +96,7 @@ fn check_flags(args: &SimulateArgs) -> Result<(), CliError> {
             ));
         }
     }
-    if let Some(m) = args
-        .method
-        .filter(|m| *m != super::simulate::MethodArg::Rk4)
-    {
+    if let Some(m) = args.method.filter(|m| *m != super::MethodArg::Rk4) {
         return usage(format!(
             "--grid integrates every cell with rk4 at --dt; --method {m:?} is not available there"
         )
@@ -158,10 +155,10 @@ fn write_files(
             } else {
                 units.velocities.get(i - n)
             };
-            let name = crate::plot::unicode(&axes[k].0.name);
-            crate::plot::axis(&name, unit.cloned().flatten().as_deref())
+            let name = crate::face::plot::unicode(&axes[k].0.name);
+            crate::face::plot::axis(&name, unit.cloned().flatten().as_deref())
         };
-        let map = crate::plot::FlipMap {
+        let map = crate::face::plot::FlipMap {
             x: (label(0), axes[0].1),
             y: axes.get(1).map(|a| (label(1), a.1)),
             cells: &run.outcomes,
@@ -169,7 +166,7 @@ fn write_files(
             dt: map.settings().dt,
             time_unit: units.time.clone(),
         };
-        crate::plot::flip_map(&map, path)
+        crate::face::plot::flip_map(&map, path)
             .map_err(|e| format!("--plot {}: cannot draw: {e}", path.display()))?;
     }
     Ok(())

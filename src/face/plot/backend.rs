@@ -28,7 +28,7 @@ pub(super) fn is_png(path: &Path) -> bool {
 }
 
 /// Draws `picture` into `path`: PNG when the name ends in `.png`, SVG otherwise. The picture
-/// is drawn in memory and written whole through [`crate::outfile::write_named`] (a temporary
+/// is drawn in memory and written whole through [`crate::face::outfile::write_named`] (a temporary
 /// file renamed over the name), so a full disk or a killed run never leaves half a picture.
 pub(super) fn write(path: &Path, picture: &impl Picture) -> Result<(), String> {
     let size = picture.size();
@@ -55,9 +55,9 @@ pub(super) fn rgb_buffer(size: (u32, u32)) -> Vec<u8> {
     vec![255; size.0 as usize * size.1 as usize * 3]
 }
 
-/// Writes a drawn picture's bytes to `path` (see [`crate::outfile::write_named`]).
+/// Writes a drawn picture's bytes to `path` (see [`crate::face::outfile::write_named`]).
 pub(super) fn save(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    crate::outfile::write_named(path, bytes)
+    crate::face::outfile::write_named(path, bytes)
 }
 
 /// Encodes an RGB buffer as PNG and writes it to `path`.
