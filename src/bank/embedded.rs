@@ -69,6 +69,10 @@ pub const FILES: &[(&str, &str)] = &[
         "rotating-trap-fast.toml",
         include_str!("../../problems/rotating-trap-fast.toml"),
     ),
+    (
+        "pendulum-numbers.toml",
+        include_str!("../../problems/pendulum-numbers.toml"),
+    ),
 ];
 
 /// Loads one embedded problem by id: files are named after their id, so only that file is

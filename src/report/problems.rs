@@ -114,6 +114,10 @@ pub struct ProblemSheet {
     /// The student's numbers, each `m = 1.5 kg`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub numbers: Vec<String>,
+    /// The course seed the student's numbers come from (`--seed`; absent for 0, the default),
+    /// which the sheet's `lagrange check` line repeats.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 /// A part of a problem sheet.
@@ -218,6 +222,7 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
         varies: p.variants.iter().map(|v| v.name.clone()).collect(),
         student: None,
         numbers: Vec::new(),
+        seed: None,
     }
 }
 
@@ -265,8 +270,10 @@ impl ProblemSheet {
                 writeln!(o, "   {} {shown}", paint.dim("answer:"))?;
             }
         }
+        // The student's numbers depend on the seed too: a check without it judges others.
+        let seed = self.seed.map_or(String::new(), |s| format!(" --seed {s}"));
         let student = self.student.as_deref().map_or(String::new(), |k| {
-            format!(" --student {}", shell_word(&visible(k)))
+            format!(" --student {}{seed}", shell_word(&visible(k)))
         });
         writeln!(
             o,

@@ -32,6 +32,7 @@ pub fn student_sheet(p: &Problem, answers: bool, key: &str, seed: u64) -> Proble
         None => problem_sheet(p, answers),
     };
     sheet.student = Some(key.trim().to_string());
+    sheet.seed = (seed != 0).then_some(seed);
     sheet
 }
 
