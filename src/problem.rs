@@ -165,6 +165,21 @@ pub struct Part {
     /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
     /// the stated equilibria are the ones).
     pub assumptions: Vec<Assumption>,
+    /// A linearized part: the point to expand about, one value per named coordinate (the
+    /// others about 0); the answer is the second-order Taylor polynomial in q − q₀ and q̇.
+    pub about: Option<Vec<(String, String)>>,
+    /// For frequencies: the zero modes (free motions) are not listed.
+    pub omit_zero_modes: bool,
+    /// For frequencies: the answers are growth rates λ (q ~ e^{λt}), not frequencies.
+    pub growth: bool,
+    /// A numeric part (`values` give every parameter a number): the dimension of the answer,
+    /// whose units are read in square brackets (`4.43 [rad/s]`) and converted to SI.
+    pub units: Option<Dimension>,
+    /// The parameters' values as the file gives them (`l = 50 [cm]`), for display.
+    pub values: Vec<(String, String)>,
+    /// A numeric part's reference answers as the file writes them, with their units
+    /// (`answers` holds them in SI).
+    pub answers_with_units: Vec<String>,
     /// Line of the part in its file.
     pub line: usize,
     /// The answer may be written with the student's numbers (`1.5*9.81*1.2`) as well as in
@@ -191,6 +206,9 @@ impl Part {
     /// The reference answer's items as a student writes them: an equilibrium with the
     /// stability the part requires (`r = 0 (unstable)`).
     pub fn reference_items(&self) -> Vec<String> {
+        if !self.answers_with_units.is_empty() {
+            return self.answers_with_units.clone();
+        }
         if self.require_stability {
             return self
                 .answers

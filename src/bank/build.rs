@@ -91,7 +91,8 @@ pub fn build(file: &str, text: &str, pf: ProblemFile) -> Result<Problem, Finding
     b.definitions(&pf, &mut system, &dims)?;
     // After `forces`, which set Qᵢ: a point force adds F·∂r/∂qᵢ to them.
     reader.point_forces(&pf, &mut system)?;
-    let parts = b.parts(&pf, &mut system)?;
+    let mut parts = b.parts(&pf, &mut system)?;
+    super::build_numeric::numeric(&b, &pf, &mut parts, &system, &dims)?;
     Ok(Problem {
         // First: it reads `pf` and `system`, which the fields below move.
         simulation: b.simulation(&pf, &system)?,

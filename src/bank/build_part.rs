@@ -138,6 +138,7 @@ pub(super) fn build_part(
             ));
         }
     }
+    let extra = super::build_linearized::options(sp, kind, quantity, sys)?;
     Ok(Part {
         id: sp.id.clone(),
         kind,
@@ -162,6 +163,13 @@ pub(super) fn build_part(
         require_stability: sp.require_stability,
         // Read by the builder, which holds the system mutably.
         assumptions: Vec::new(),
+        about: extra.about,
+        omit_zero_modes: extra.omit_zero_modes,
+        growth: extra.growth,
+        // Set by `build_numeric`, which knows the parameters' dimensions.
+        units: None,
+        values: Vec::new(),
+        answers_with_units: Vec::new(),
         line,
         numbers: sp.numbers,
     })

@@ -42,6 +42,10 @@ pub const FILES: &[(&str, &str)] = &[
         include_str!("../../problems/cart-pendulum.toml"),
     ),
     (
+        "cart-pendulum-small.toml",
+        include_str!("../../problems/cart-pendulum-small.toml"),
+    ),
+    (
         "central-force.toml",
         include_str!("../../problems/central-force.toml"),
     ),
@@ -64,6 +68,10 @@ pub const FILES: &[(&str, &str)] = &[
     (
         "rotating-trap-fast.toml",
         include_str!("../../problems/rotating-trap-fast.toml"),
+    ),
+    (
+        "pendulum-numbers.toml",
+        include_str!("../../problems/pendulum-numbers.toml"),
     ),
 ];
 

@@ -117,6 +117,13 @@ finding_codes! {
     BadRequireStability => "bad-require-stability",
     /// A part gives no answer.
     NoAnswer => "no-answer",
+    /// `about` on a part with nothing to expand, or naming what is not a coordinate.
+    BadAbout => "bad-about",
+    /// `omit_zero_modes` or `growth` on a part that is not `frequencies`, or both together.
+    BadFrequencyOption => "bad-frequency-option",
+    /// A numeric part's `values` (or its answers' units) that cannot be used: no tolerance, a
+    /// parameter without a number, a unit of the wrong dimension.
+    BadValues => "bad-values",
     // Verifying the answers.
     /// The part's values cannot be sampled in the parameter ranges (undefined everywhere…).
     Sampling => "sampling",

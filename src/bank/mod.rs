@@ -9,6 +9,8 @@
 pub(crate) mod build;
 mod build_definitions;
 mod build_domain;
+mod build_linearized;
+mod build_numeric;
 mod build_part;
 mod build_reader;
 mod build_rigid;

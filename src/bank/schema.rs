@@ -344,6 +344,19 @@ pub struct PartSpec {
     /// For equilibria: each point's stability must be stated.
     #[serde(default)]
     pub require_stability: bool,
+    /// The point a linearized part expands about (`about = { theta = 0 }`): the answer is the
+    /// quantity's Taylor polynomial of second order there (equations: linear).
+    pub about: Option<BTreeMap<String, BoundSpec>>,
+    /// For frequencies: the zero modes (free motions) are left out of the list.
+    #[serde(default)]
+    pub omit_zero_modes: bool,
+    /// For frequencies: the answers are the growth rates λ (q ~ e^{λt}) of the unstable modes.
+    #[serde(default)]
+    pub growth: bool,
+    /// A numeric part: a number (with a unit in brackets, `"50 [cm]"`) for every parameter;
+    /// answers are then numbers, with units in brackets.
+    #[serde(default)]
+    pub values: BTreeMap<String, BoundSpec>,
     /// The answer may use the student's numbers instead of the varied parameters' symbols.
     #[serde(default)]
     pub numbers: bool,

@@ -104,7 +104,9 @@ fn show_truth(p: &mut Prepared, t: &Truth) -> String {
 
 pub(super) fn verify_expression(problem: &Problem, part: &Part, p: &mut Prepared) -> Check {
     let answer = read_one(p, &part.answers[0])?;
-    check_dimension(problem, p, answer, expected_dimension(problem, part))?;
+    if part.units.is_none() {
+        check_dimension(problem, p, answer, expected_dimension(problem, part))?;
+    }
     let Some(t) = truth(part, p)? else {
         return Ok(());
     };

@@ -26,7 +26,9 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
     } else {
         Dimension::new(0, 0, -1)
     };
-    for &s in &stated {
+    // A numeric part's numbers are dimensionless; their units were checked when the file was
+    // read.
+    for &s in stated.iter().filter(|_| part.units.is_none()) {
         check_dimension(problem, p, s, Some(per_time))?;
     }
     let at = equilibrium_of(p, part)?;
@@ -52,11 +54,7 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
             .system
             .modes_at(&p.derivation, &params, q0)
             .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?;
-        let mut want: Vec<f64> = if part.squared {
-            modes.frequencies.iter().map(|w| w * w).collect()
-        } else {
-            modes.frequencies.clone()
-        };
+        let mut want = wanted(part, &modes);
         let mut got: Vec<f64> = v[..stated.len()].to_vec();
         want.sort_by(f64::total_cmp);
         got.sort_by(f64::total_cmp);
@@ -71,8 +69,13 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
             return Err(Failed::new(
                 FindingCode::WrongFrequency,
                 format!(
-                    "for {pstr} the stated frequencies are {got:.6?}, the eigen-solver gives {want:.6?}{}",
-                    why_differ(&modes, &got)
+                    "for {pstr} the stated {} are {got:.6?}, the eigen-solver gives {want:.6?}{}",
+                    if part.growth {
+                        "growth rates"
+                    } else {
+                        "frequencies"
+                    },
+                    why_differ(part, &modes, &got)
                 ),
             ));
         }
@@ -80,13 +83,51 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
     Ok(())
 }
 
+/// What the part lists from the engine's modes: the frequencies (without the zero modes
+/// where the part omits them) or the growth rates, or their squares.
+fn wanted(part: &Part, modes: &Modes) -> Vec<f64> {
+    let base: Vec<f64> = if part.growth {
+        modes.growth_rates.clone()
+    } else if part.omit_zero_modes {
+        modes
+            .frequencies
+            .iter()
+            .copied()
+            .filter(|w| *w != 0.0)
+            .collect()
+    } else {
+        modes.frequencies.clone()
+    };
+    if part.squared {
+        base.iter().map(|w| w * w).collect()
+    } else {
+        base
+    }
+}
+
 /// What the engine's list holds beside the undamped frequencies, when the stated list may
 /// have left it out: ω = 0 for free motions, damped or growing modes.
-fn why_differ(modes: &Modes, got: &[f64]) -> String {
+fn why_differ(part: &Part, modes: &Modes, got: &[f64]) -> String {
     let zeros = modes.frequencies.iter().filter(|w| **w == 0.0).count();
     let stated_zeros = got.iter().filter(|w| **w == 0.0).count();
     let mut notes = Vec::new();
-    if zeros != stated_zeros {
+    if part.growth {
+        if modes.growth_rates.is_empty() {
+            notes.push(
+                "nothing grows there: the equilibrium is not unstable, so it has no growth rates"
+                    .to_string(),
+            );
+        }
+        if stated_zeros > 0 {
+            notes.push("a free motion (ω = 0) is not a growth rate".to_string());
+        }
+    } else if part.omit_zero_modes {
+        if stated_zeros > 0 {
+            notes.push(
+                "the part omits the zero modes (`omit_zero_modes`): do not list 0".to_string(),
+            );
+        }
+    } else if zeros != stated_zeros {
         notes.push(format!(
             "the system has {zeros} free motion(s) (ω = 0): list 0 once for each"
         ));
@@ -94,7 +135,7 @@ fn why_differ(modes: &Modes, got: &[f64]) -> String {
     if !modes.damped.is_empty() || !modes.decay_rates.is_empty() {
         notes.push("damped modes are not undamped frequencies".to_string());
     }
-    if !modes.growth_rates.is_empty() {
+    if !modes.growth_rates.is_empty() && !part.growth {
         notes.push(format!(
             "{} mode(s) grow instead of oscillating",
             modes.growth_rates.len()

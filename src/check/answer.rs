@@ -46,7 +46,10 @@ impl<'a> Checker<'a> {
     /// one of them and reuse the verdict. `None` when the input cannot be read.
     pub fn canonical(&mut self, part_id: &str, input: &str) -> Result<Option<String>, CheckError> {
         let (part, p) = self.prepared(part_id)?;
-        Ok(super::fingerprint::canonical(part, p, input))
+        let Some(input) = in_si(part, input) else {
+            return Ok(None);
+        };
+        Ok(super::fingerprint::canonical(part, p, &input))
     }
 
     /// A fingerprint of `input` for part `part_id`: equal for answers equal at the sample
@@ -59,7 +62,10 @@ impl<'a> Checker<'a> {
         input: &str,
     ) -> Result<Option<String>, CheckError> {
         let (part, p) = self.prepared(part_id)?;
-        Ok(super::fingerprint::fingerprint(part, p, input))
+        let Some(input) = in_si(part, input) else {
+            return Ok(None);
+        };
+        Ok(super::fingerprint::fingerprint(part, p, &input))
     }
 
     /// The part `part_id` and its preparation (made on first use).
@@ -79,6 +85,16 @@ impl<'a> Checker<'a> {
     }
 }
 
+/// The input as the checker reads it: a numeric part's units converted to SI (`5 [cm]` and
+/// `5 cm` must not share a key: in the second, `cm` would be symbols). `None` where the
+/// units cannot be read.
+fn in_si(part: &Part, input: &str) -> Option<String> {
+    match part.units {
+        Some(want) => super::units::convert(input, want).ok().map(|c| c.text),
+        None => Some(input.to_string()),
+    }
+}
+
 /// Checks one answer (preparing the part afresh; use [`Checker`] for many answers).
 pub fn check(problem: &Problem, part: &Part, input: &str) -> Result<Verdict, CheckError> {
     let mut p = prepare(problem, part)?;
@@ -92,6 +108,16 @@ pub(crate) fn check_prepared(
     p: &mut Prepared,
     input: &str,
 ) -> Verdict {
+    // A numeric part reads units in brackets (`4.43 [rad/s]`), converted to SI first.
+    let converted = match part.units {
+        Some(want) => match super::units::convert(input, want) {
+            Ok(c) => Some(c),
+            Err(e) => return super::units::unit_verdict(problem, part, input, &e),
+        },
+        None => None,
+    };
+    let typed = input;
+    let input = converted.as_ref().map_or(input, |c| c.text.as_str());
     // `T = …` for a part asking for T: the value after the name is the answer.
     let label = named::label(part, p, input);
     let input = label.as_ref().map_or(input, |l| &input[l.offset..]);
@@ -112,6 +138,10 @@ pub(crate) fn check_prepared(
     };
     if let Some(l) = &label {
         named::finish(p, part, l, &mut v);
+    }
+    super::linearize::diagnose(part, p, input, &mut v);
+    if let Some(c) = &converted {
+        super::units::finish(part, typed, c, &mut v);
     }
     never_correct_with_unlike_dimensions(&mut v);
     drop_superseded(&mut v);

@@ -288,6 +288,8 @@ pub(super) fn classify_unmatched(
     }
     // An item of the wrong dimension says so.
     let want = match part.kind {
+        // A numeric part's units were checked before its numbers were read.
+        _ if part.units.is_some() => None,
         // A number carries no unit: an item judged with the student's numbers (the problem
         // pinned to them, without dimensions) has no dimension.
         _ if part.numbers && problem.dims.is_empty() => None,

@@ -247,9 +247,19 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
             i + 1,
             show_item(part, p, &coords, &items[i], Style::Unicode)
         );
+        // A zero mode given where the part omits them; a frequency given for a growth rate.
+        if let Some(d) = super::modes_lists::zero_item(part, &lists, i, &label)
+            .or_else(|| super::modes_lists::oscillating_item(part, p, &lists, i, &label))
+        {
+            v.diagnoses.push(d);
+            continue;
+        }
         let item = (i, items[i][0], label);
         let finding = classify_unmatched(problem, part, p, &lists, item, &mut free);
         v.diagnoses.push(finding.details());
+    }
+    if let Some(d) = super::modes_lists::missing_zero_modes(part, &lists, &mut free) {
+        v.diagnoses.push(d);
     }
     if !free.is_empty() {
         let missing = ItemFinding::Missing {
@@ -295,6 +305,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         v.diagnoses.clear();
     }
     super::misconception::list(problem, part, p, &items, &mut v);
+    super::modes_lists::growth_wording(part, &mut v);
     show_any(part, input, &mut v);
     v
 }

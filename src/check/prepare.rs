@@ -36,6 +36,8 @@ pub struct Prepared {
     pub condition: std::cell::OnceCell<Option<Id>>,
     /// The reference answer's items, read once (one id per item; several per equilibrium).
     pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
+    /// For a linearized part (`about`): where `system` was expanded.
+    pub expansion: Option<super::taylor::Expansion>,
     /// The answer being checked, for quoting the student's own terms in diagnoses.
     pub quotes: Quotes,
 }
@@ -46,6 +48,11 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
     let map = system
         .substitute_parameters(&part.substitute)
         .map_err(|error| CheckError::Substitution { error })?;
+    // A linearized part is checked against the expanded system.
+    let expansion = match &part.about {
+        Some(about) => Some(super::taylor::linearize(&mut system, about)?),
+        None => None,
+    };
     // The problem's assumptions and the part's own.
     let assumptions: Vec<Assumption> = problem
         .assumptions
@@ -100,6 +107,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         accelerations: std::cell::OnceCell::new(),
         condition: std::cell::OnceCell::new(),
         reference: std::cell::OnceCell::new(),
+        expansion,
         quotes: Quotes::default(),
     })
 }

@@ -89,6 +89,11 @@ pub enum Code {
     SmallAngle,
     /// Linearised about another point than the one asked for.
     ExpansionPoint,
+    /// Right, but not expanded where a linearized part asks for the Taylor polynomial (the
+    /// full V, sin θ kept in a linearized equation).
+    NotExpanded,
+    /// Expanded to another order than asked (the second-order term dropped, or θ⁴ kept).
+    ExpansionOrder,
     /// Two symbols exchanged.
     SwappedSymbols,
     /// A sign flipped, in one term or overall.
@@ -139,7 +144,7 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 45] = [
+    pub const ALL: [Code; 47] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
@@ -163,6 +168,8 @@ impl Code {
         Code::VanishingFactor,
         Code::SmallAngle,
         Code::ExpansionPoint,
+        Code::NotExpanded,
+        Code::ExpansionOrder,
         Code::SwappedSymbols,
         Code::SignError,
         Code::ConstantFactor,
@@ -213,6 +220,8 @@ impl Code {
             Code::VanishingFactor => "vanishing-factor",
             Code::SmallAngle => "small-angle",
             Code::ExpansionPoint => "expansion-point",
+            Code::NotExpanded => "not-expanded",
+            Code::ExpansionOrder => "expansion-order",
             Code::SwappedSymbols => "swapped-symbols",
             Code::SignError => "sign-error",
             Code::ConstantFactor => "constant-factor",
@@ -327,7 +336,7 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (docs/checking.md, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 45] = [
+        const DOCUMENTED: [&str; 47] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
@@ -351,6 +360,8 @@ mod tests {
             "vanishing-factor",
             "small-angle",
             "expansion-point",
+            "not-expanded",
+            "expansion-order",
             "swapped-symbols",
             "sign-error",
             "constant-factor",

@@ -49,10 +49,15 @@ impl Store {
             let warning = format!("error: {e}; progress will not be saved this session");
             return (store, Progress::new(), Some(warning));
         }
-        let (progress, warning) = match read(&path) {
+        let (mut progress, warning) = match read(&path) {
             Ok(p) => (p, None),
             Err(why) => (Progress::new(), Some(move_aside(&path, &why))),
         };
+        // A file without a learner seed gets one now; it is written with the first change
+        // (in the base too, so that drawing it alone does not count as a change to save).
+        if progress.learner_seed.is_none() {
+            progress.learner_seed = Some(draw_seed());
+        }
         store.base = progress.clone();
         (store, progress, warning)
     }
@@ -78,6 +83,21 @@ impl Store {
         self.base = progress.clone();
         Ok(())
     }
+}
+
+/// A learner seed: unpredictable, different for two learners (and for two REPLs started at
+/// once). `RandomState` keys its hasher from the operating system's randomness; the time and
+/// the process id are mixed in as well.
+fn draw_seed() -> u64 {
+    use std::hash::{BuildHasher, Hasher};
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos())
+        .unwrap_or(0);
+    h.write_u128(now);
+    h.write_u32(std::process::id());
+    h.finish()
 }
 
 /// The progress in `path` (absent: a fresh one), or why it cannot be read.
@@ -117,6 +137,24 @@ fn move_aside(path: &Path, why: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_learner_seed_is_drawn_once_and_kept_with_the_progress() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (mut a, mut pa, _) = Store::open(dir.path());
+        let seed = pa.learner_seed.expect("drawn at open");
+        // Drawing it is not a change: nothing is written until the learner does something.
+        a.save(&pa).expect("nothing to save");
+        assert!(!dir.path().join(NAME).exists());
+        // Two learners (two fresh files) draw different seeds.
+        let other = tempfile::tempdir().expect("temp dir");
+        let (_, po, _) = Store::open(other.path());
+        assert_ne!(po.learner_seed, Some(seed));
+        pa.record_attempt("simple-pendulum", "kinetic", "x", true);
+        a.save(&pa).expect("a saves");
+        let (_, again, _) = Store::open(dir.path());
+        assert_eq!(again.learner_seed, Some(seed), "kept in the file");
+    }
 
     #[test]
     fn two_sessions_saving_in_turn_both_keep_their_progress() {
@@ -182,6 +220,7 @@ mod tests {
         let (_, p, warning) = Store::open(dir);
         assert!(warning.is_some_and(|w| w.contains("corrupt-1")));
         assert!(dir.join("progress.json.corrupt-1").exists());
-        assert_eq!(p.to_json(), Progress::new().to_json());
+        // Started afresh: no record, only the learner seed drawn for the new file.
+        assert!(p.problems.is_empty() && p.learner_seed.is_some());
     }
 }

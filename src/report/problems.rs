@@ -111,12 +111,13 @@ pub struct ProblemSheet {
     /// The student this sheet is for (`--student`), with their numbers.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub student: Option<String>,
-    /// The course seed that picked the student's numbers (only when the problem varies), so
-    /// the sheet can say how to check an answer against them.
-    pub seed: Option<u64>,
     /// The student's numbers, each `m = 1.5 kg`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub numbers: Vec<String>,
+    /// The course seed the student's numbers come from (`--seed`; only when the problem's
+    /// numbers vary), which the sheet's `lagrange check` line repeats.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 /// A part of a problem sheet.
@@ -135,6 +136,15 @@ pub struct SheetPart {
     /// The answer may use the student's numbers.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub numbers: bool,
+}
+
+/// A part's prompt followed by how its answer is written, where that is not plain (a numeric
+/// part's units, a growth-rates part's λ): every sheet shows the same words.
+pub(crate) fn with_answer_form(part: &crate::problem::Part, prompt: String) -> String {
+    match crate::check::units::answer_form(part) {
+        Some(form) => format!("{prompt} ({form})"),
+        None => prompt,
+    }
 }
 
 /// The sheet of `p`; with `answers`, the reference answers too.
@@ -201,15 +211,18 @@ pub fn problem_sheet(p: &Problem, answers: bool) -> ProblemSheet {
                 id: part.id.clone(),
                 kind: part.kind.name().to_string(),
                 points: part.points,
-                prompt: terminal_math(&fill(&part.prompt, &p.variants, None)),
+                prompt: with_answer_form(
+                    part,
+                    terminal_math(&fill(&part.prompt, &p.variants, None)),
+                ),
                 answers: answers.then(|| part.reference_items()),
                 numbers: part.numbers,
             })
             .collect(),
         varies: p.variants.iter().map(|v| v.name.clone()).collect(),
         student: None,
-        seed: None,
         numbers: Vec::new(),
+        seed: None,
     }
 }
 
@@ -257,6 +270,7 @@ impl ProblemSheet {
                 writeln!(o, "   {} {shown}", paint.dim("answer:"))?;
             }
         }
+        // The student's numbers depend on the seed too: a check without it judges others.
         let student = self.student.as_deref().map_or(String::new(), |k| {
             format!(" --student {}", shell_word(&visible(k)))
         });

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use super::problems::{ProblemSheet, problem_sheet, shell_word, terminal_math};
+use super::problems::{ProblemSheet, problem_sheet, shell_word, terminal_math, with_answer_form};
 use super::text;
 use crate::expr::error::visible;
 use crate::problem::Problem;
@@ -42,7 +42,10 @@ pub fn variant_sheet(p: &Problem, answers: bool, variant: &Variant) -> ProblemSh
     let mut sheet = problem_sheet(p, answers);
     sheet.statement = terminal_math(&fill(p.statement.trim(), &p.variants, Some(variant)));
     for (s, part) in sheet.parts.iter_mut().zip(&p.parts) {
-        s.prompt = terminal_math(&fill(&part.prompt, &p.variants, Some(variant)));
+        s.prompt = with_answer_form(
+            part,
+            terminal_math(&fill(&part.prompt, &p.variants, Some(variant))),
+        );
     }
     sheet.numbers = numbers_of(p, variant);
     sheet
@@ -65,7 +68,8 @@ pub fn markdown(problems: &[&Problem], key: &str, seed: u64) -> String {
                 writeln!(o, "**Your numbers:** {}.\n", numbers_of(p, v).join(", "))?;
             }
             for (i, part) in p.parts.iter().enumerate() {
-                let prompt = fill(&part.prompt, &p.variants, variant.as_ref());
+                let prompt =
+                    with_answer_form(part, fill(&part.prompt, &p.variants, variant.as_ref()));
                 let how = if part.numbers && variant.is_some() {
                     " (in symbols, or with your numbers)"
                 } else {
@@ -122,7 +126,8 @@ pub fn latex(problems: &[&Problem], key: &str, seed: u64) -> String {
             }
             writeln!(o, "\\begin{{enumerate}}")?;
             for part in &p.parts {
-                let prompt = fill(&part.prompt, &p.variants, variant.as_ref());
+                let prompt =
+                    with_answer_form(part, fill(&part.prompt, &p.variants, variant.as_ref()));
                 let how = if part.numbers && variant.is_some() {
                     " (in symbols, or with your numbers)"
                 } else {

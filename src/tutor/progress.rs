@@ -72,6 +72,12 @@ pub struct ProblemProgress {
 pub struct Progress {
     /// The format version ([`PROGRESS_VERSION`]).
     pub version: u32,
+    /// A number drawn once for this learner's progress file (by the face that keeps it) and
+    /// kept in it: where `:variant` starts each problem's sequence of numbers, so that two
+    /// learners practise different numbers and one learner the same ones, given the file.
+    /// Absent (older files, a progress never saved): the sequence starts from the problem id.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub learner_seed: Option<u64>,
     /// The problems touched, by id.
     #[serde(default)]
     pub problems: BTreeMap<String, ProblemProgress>,
@@ -81,6 +87,7 @@ impl Default for Progress {
     fn default() -> Self {
         Progress {
             version: PROGRESS_VERSION,
+            learner_seed: None,
             problems: BTreeMap::new(),
         }
     }
@@ -174,9 +181,13 @@ impl Progress {
     /// Two sessions' records as one: `disk` (what another session saved since) plus what
     /// `mine` added to `base` (the record `mine` started from). Attempts and hints add up,
     /// solved and revealed stay true once true, and the new answers follow the ones on disk
-    /// (the latest [`KEPT_ANSWERS`] kept).
+    /// (the latest [`KEPT_ANSWERS`] kept). The learner seed is drawn once per file: the one on
+    /// disk stays, and `mine`'s is kept only where the file has none yet.
     pub fn merged(disk: &Progress, base: &Progress, mine: &Progress) -> Progress {
         let mut out = disk.clone();
+        if out.learner_seed.is_none() {
+            out.learner_seed = mine.learner_seed;
+        }
         for (problem, pp) in &mine.problems {
             // The numbers practised last in this session win (a `:variant` here).
             let before = base.problems.get(problem).and_then(|b| b.variant_seed);
@@ -272,5 +283,26 @@ mod tests {
         );
         // A session that did nothing leaves the disk's record as it is.
         assert_eq!(Progress::merged(&disk, &base, &base), disk);
+    }
+
+    #[test]
+    fn the_learner_seed_is_drawn_once_per_file() {
+        let base = Progress::new();
+        let mut mine = base.clone();
+        mine.learner_seed = Some(7);
+        // A file without a seed takes the session's.
+        assert_eq!(Progress::merged(&base, &base, &mine).learner_seed, Some(7));
+        // A file that has one keeps it: another session saved first.
+        let mut disk = base.clone();
+        disk.learner_seed = Some(3);
+        assert_eq!(Progress::merged(&disk, &base, &mine).learner_seed, Some(3));
+        // It is kept in the JSON, and an older file without it reads as none.
+        let json = mine.to_json();
+        assert!(json.contains("\"learner_seed\": 7"), "{json}");
+        assert_eq!(Progress::from_json(&json), Ok(mine));
+        assert_eq!(
+            Progress::from_json("{\"version\": 1, \"problems\": {}}").map(|p| p.learner_seed),
+            Ok(None)
+        );
     }
 }

@@ -51,7 +51,13 @@ fn expected_ids(p: &Problem, bodies: usize, energies: bool) -> Vec<String> {
     if has(PartKind::Equilibria) {
         out.push("equilibria".into());
     }
-    if has(PartKind::Frequencies) {
+    // The linearized equations and det(K − ω² M) lead to frequencies in symbols (all of them,
+    // or the nonzero ones), not to growth rates or numbers with units.
+    let modes = p
+        .parts
+        .iter()
+        .any(|x| x.kind == PartKind::Frequencies && !x.growth && x.units.is_none());
+    if modes {
         out.extend(["linearized", "characteristic", "frequencies"].map(String::from));
     }
     out
@@ -270,4 +276,37 @@ fn a_step_checker_prepares_once_and_judges_alike() {
             assert_ne!(v.status, Status::Correct, "{} {}: t", p.id, s.id);
         }
     }
+}
+
+/// Regression: a problem whose only symbolic frequencies part omits the zero modes (the free
+/// cart) lost its linearized, characteristic and frequencies steps; they ask for the nonzero
+/// roots, ω² = (M + m) g / (M l), and name a listed 0 as the free motion's.
+#[test]
+fn a_problem_omitting_zero_modes_still_ends_on_its_frequencies() {
+    let p = problem("cart-pendulum-small");
+    let steps = ladder(&p).unwrap();
+    let step = |id: &str| steps.iter().find(|s| s.id == id).unwrap();
+    for id in ["linearized", "characteristic", "frequencies"] {
+        assert!(steps.iter().any(|s| s.id == id), "{id}");
+    }
+    assert!(step("frequencies").prompt.contains("nonzero"));
+    let ok = |id: &str, input: &str| {
+        let v = check_step(&p, step(id), input).unwrap();
+        assert_eq!(
+            v.status,
+            Status::Correct,
+            "{id} `{input}`: {:?}",
+            v.diagnoses
+        );
+    };
+    ok("characteristic", "(M+m)*g/(M*l)");
+    ok("frequencies", "sqrt((M+m)*g/(M*l))");
+    let codes = wrong(&p, &steps, "frequencies", "0, sqrt((M+m)*g/(M*l))");
+    assert!(codes.contains(&Code::ExtraItem), "{codes:?}");
+    let v = check_step(&p, step("frequencies"), "0, sqrt((M+m)*g/(M*l))").unwrap();
+    assert!(
+        v.diagnoses.iter().any(|d| d.message.contains("zero mode")),
+        "{:?}",
+        v.diagnoses
+    );
 }

@@ -40,11 +40,18 @@ fn equations(p: &Problem) -> Option<(Vec<String>, Vec<String>)> {
     Some((rows, diag))
 }
 
-/// The id of the problem's `equations` part, if it has one.
+/// The id of the problem's `equations` part asking for the full equations, if it has one: not
+/// a linearized part (`about`, whose answer is the equations expanded to first order) nor a
+/// numeric one (`values`), which these laws do not describe.
 fn equations_part(p: &Problem) -> Option<&str> {
     p.parts
         .iter()
-        .find(|part| part.kind == PartKind::Equations && part.substitute.is_empty())
+        .find(|part| {
+            part.kind == PartKind::Equations
+                && part.substitute.is_empty()
+                && part.about.is_none()
+                && part.units.is_none()
+        })
         .map(|part| part.id.as_str())
 }
 

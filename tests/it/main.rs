@@ -27,6 +27,7 @@ mod helpers;
 mod higher_order_lagrangian;
 mod hostile;
 mod input_bounds;
+mod instructor_parts;
 mod integrators;
 mod labels_stability;
 mod ladder;

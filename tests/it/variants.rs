@@ -12,12 +12,13 @@ use lagrange::problem::variant::pick;
 
 use crate::helpers::{lagrange, scratch};
 
-/// The example problem with variants: m ∈ {0.5, 1.5, 2, 2.5, 3} kg, l on the grid 0.45 …
-/// 1.65 m by 0.3, g = 9.81 m/s².
+/// The variants example as first written (a fixture: the tests edit its text by line; the
+/// bank's `pendulum-numbers` is its rewording): m ∈ {0.5, 1.5, 2, 2.5, 3} kg, l on the grid
+/// 0.45 … 1.65 m by 0.3, g = 9.81 m/s².
 fn example_text() -> String {
     std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("examples/variants/pendulum-numbers.toml"),
+            .join("tests/variants/pendulum-numbers.toml"),
     )
     .expect("the example problem")
 }
@@ -398,4 +399,94 @@ fn the_repl_practises_fresh_numbers_and_keeps_their_seed() {
         matches!(&r[0], Response::Error(e) if e.code == "no-variants"),
         "{r:?}"
     );
+}
+
+/// The first three `:variant` numbers of `pendulum-numbers` for a progress with `learner`.
+fn practised(learner: Option<u64>) -> Vec<String> {
+    use lagrange::tutor::{Progress, Response, Session};
+    let mut progress = Progress::new();
+    progress.learner_seed = learner;
+    let mut s = Session::new(lagrange::embedded::bank(), progress);
+    s.handle(":open pendulum-numbers");
+    (0..3)
+        .map(|_| match s.handle(":variant").first() {
+            Some(Response::Statement(st)) => st.sheet.numbers.join(", "),
+            other => panic!("a statement: {other:?}"),
+        })
+        .collect()
+}
+
+/// Regression: `:variant` gave every learner the same sequence of numbers (it started from the
+/// problem id alone). It now starts from the learner seed kept in the progress file: the same
+/// file gives the same numbers, and the sequence goes on after a reload.
+#[test]
+fn each_learner_practises_their_own_numbers() {
+    use lagrange::tutor::{Progress, Session};
+    let ada = practised(Some(0x5eed_0001));
+    assert_eq!(ada, practised(Some(0x5eed_0001)), "deterministic");
+    assert_ne!(ada, practised(Some(0x5eed_0002)), "another learner");
+    assert_ne!(ada, practised(None));
+    // The seed and the sequence's state are saved; a reloaded progress continues it.
+    let mut progress = Progress::new();
+    progress.learner_seed = Some(0x5eed_0001);
+    let mut s = Session::new(lagrange::embedded::bank(), progress);
+    s.handle(":open pendulum-numbers");
+    s.handle(":variant");
+    s.handle(":variant");
+    let saved = Progress::from_json(&s.progress().to_json()).expect("reads back");
+    assert_eq!(saved.learner_seed, Some(0x5eed_0001));
+    let mut again = Session::new(lagrange::embedded::bank(), saved);
+    again.handle(":open pendulum-numbers");
+    let third = match again.handle(":variant").first() {
+        Some(lagrange::tutor::Response::Statement(st)) => st.sheet.numbers.join(", "),
+        other => panic!("a statement: {other:?}"),
+    };
+    assert_eq!(third, ada[2]);
+}
+
+/// The bank's problem with variants works from a fresh clone, with no files: a student's sheet
+/// with their numbers, and their answer checked with them.
+#[test]
+fn the_bank_problem_gives_a_students_sheet_and_checks_with_their_numbers() {
+    let (code, out, err) = lagrange(&[
+        "problems",
+        "show",
+        "pendulum-numbers",
+        "--student",
+        "ben@uni.example",
+        "--seed",
+        "2026",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("numbers:     g = 9.81 m/s², l = 0.45 m, m = 0.5 kg"),
+        "{out}"
+    );
+    assert!(out.contains("A bob of mass 0.5 kg"), "{out}");
+    // Regression: the sheet's check line left out the seed, so following it judged the
+    // answer with another student's numbers.
+    assert!(
+        out.contains("--student ben@uni.example --seed 2026`"),
+        "{out}"
+    );
+    // ω = √(g/l) = √(9.81/0.45) ≈ 4.669 rad/s for this student; √(9.81/1.65) is another's.
+    let check = |answer: &str| {
+        lagrange(&[
+            "check",
+            "pendulum-numbers",
+            "frequencies",
+            answer,
+            "--student",
+            "ben@uni.example",
+            "--seed",
+            "2026",
+        ])
+    };
+    let (_, out, _) = check("sqrt(9.81/0.45)");
+    assert!(
+        out.contains("correct") && !out.contains("incorrect"),
+        "{out}"
+    );
+    let (_, out, _) = check("sqrt(9.81/1.65)");
+    assert!(out.contains("incorrect"), "{out}");
 }

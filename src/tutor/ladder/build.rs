@@ -40,6 +40,31 @@ pub fn ladder(problem: &Problem) -> Result<Vec<Step>, LadderError> {
     Ok(b.steps)
 }
 
+/// A frequencies part whose list is every root of det(K − ω² M) = 0 in symbols (not only
+/// the nonzero ones, not growth rates, not numbers with units), which the characteristic
+/// and frequencies steps can adopt.
+fn plain_frequencies(p: &Part) -> bool {
+    !p.omit_zero_modes && !p.growth && p.units.is_none()
+}
+
+/// A frequencies part the ladder can end on: every root in symbols, or (where the problem asks
+/// only for those, as for a free cart) the nonzero roots; not growth rates nor numbers with
+/// units, which the linearized equations and det(K − ω² M) do not lead to.
+fn ladder_frequencies(p: &Part) -> bool {
+    !p.growth && p.units.is_none()
+}
+
+/// The problem's frequencies part the ladder ends on: a plain one, else one that omits the
+/// zero modes (so that a problem asking only for the nonzero frequencies still gets the
+/// linearized, characteristic and frequencies steps).
+fn frequencies_part(problem: &Problem) -> Option<&Part> {
+    let unsquared = |p: &&Part| p.kind == PartKind::Frequencies && !p.squared;
+    let parts = || problem.parts.iter().filter(unsquared);
+    parts()
+        .find(|p| plain_frequencies(p))
+        .or_else(|| parts().find(|p| ladder_frequencies(p)))
+}
+
 /// Builds the steps in order.
 struct Builder<'a> {
     problem: &'a Problem,
@@ -75,6 +100,12 @@ impl Builder<'_> {
             same_motion: false,
             require_stability: false,
             assumptions: Vec::new(),
+            about: None,
+            omit_zero_modes: false,
+            growth: false,
+            units: None,
+            values: Vec::new(),
+            answers_with_units: Vec::new(),
             line: self.problem.lagrangian_line,
             numbers: false,
         };
@@ -254,12 +285,17 @@ impl Builder<'_> {
             eq.require_stability = false;
             self.adopt(&eq, "equilibria", prompt);
         }
-        let Some(freq) = problem
-            .parts
-            .iter()
-            .find(|p| p.kind == PartKind::Frequencies && !p.squared)
-        else {
+        let Some(freq) = frequencies_part(problem) else {
             return Ok(());
+        };
+        // Where the problem omits the zero modes, so do its last two steps.
+        let (nonzero, omitted) = if freq.omit_zero_modes {
+            (
+                "nonzero ",
+                " (leave out ω = 0, the free motion nothing pulls back)",
+            )
+        } else {
+            ("", "")
         };
         let with = conditions(freq);
         let w = frequency_symbol(&self.sys);
@@ -269,16 +305,19 @@ impl Builder<'_> {
                 freq,
                 "frequencies",
                 format!(
-                    "Give the angular frequencies {w} of the small oscillations{with}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
+                    "Give the {nonzero}angular frequencies {w} of the small oscillations{with}{omitted}; the terms linear in the velocities stay in the linearized equations (M q'' + G q' + K q = 0)."
                 ),
             );
             return Ok(());
         }
         self.linearized(freq)?;
-        let squared = problem
-            .parts
-            .iter()
-            .find(|p| p.kind == PartKind::Frequencies && p.squared && p.at == freq.at);
+        let squared = problem.parts.iter().find(|p| {
+            p.kind == PartKind::Frequencies
+                && p.squared
+                && p.at == freq.at
+                && ladder_frequencies(p)
+                && p.omit_zero_modes == freq.omit_zero_modes
+        });
         let mut part = match squared {
             Some(s) => s.clone(),
             None => {
@@ -293,13 +332,15 @@ impl Builder<'_> {
             &part,
             "characteristic",
             format!(
-                "Solve the characteristic equation det(K − {w}² M) = 0{with}: give its roots {w}²."
+                "Solve the characteristic equation det(K − {w}² M) = 0{with}: give its {nonzero}roots {w}²{omitted}."
             ),
         );
         self.adopt(
             freq,
             "frequencies",
-            format!("Give the angular frequencies {w} of the small oscillations{with}."),
+            format!(
+                "Give the {nonzero}angular frequencies {w} of the small oscillations{with}{omitted}."
+            ),
         );
         Ok(())
     }
@@ -511,7 +552,7 @@ mod tests {
     fn m_and_k_give_the_problems_frequencies() {
         for p in &crate::bank::embedded::bank().problems {
             let steps = ladder(p).unwrap();
-            let Some(freq) = p.parts.iter().find(|x| x.kind == PartKind::Frequencies) else {
+            let Some(freq) = frequencies_part(p) else {
                 continue;
             };
             let mut sys = p.system.clone();
@@ -522,13 +563,16 @@ mod tests {
             // problem lists (0 is a frequency) and so the characteristic step asks for.
             // A root that vanishes only after simplification is written as the 0 it is.
             let w2: Vec<Id> = roots(&mut sys, &m, &k);
+            // A part that omits the zero modes (the free cart) leaves the root 0 out.
             let text: Vec<String> = w2
                 .iter()
-                .map(|&w| {
-                    if vanishes(&sys, w) {
-                        "0".into()
+                .filter_map(|&w| {
+                    if !vanishes(&sys, w) {
+                        Some(sys.pool.plain(w))
+                    } else if freq.omit_zero_modes {
+                        None
                     } else {
-                        sys.pool.plain(w)
+                        Some("0".into())
                     }
                 })
                 .collect();

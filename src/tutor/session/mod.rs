@@ -304,8 +304,10 @@ impl Session {
     }
 
     /// `:variant`: fresh numbers for the open problem — the next seed of a SplitMix64 sequence
-    /// from the last one (from the FNV-1a hash of the problem id the first time), kept in the
-    /// progress — and its statement with them.
+    /// from the last one, kept in the progress — and its statement with them. The first time,
+    /// the sequence starts from the learner's seed (drawn once per progress file) mixed with
+    /// the FNV-1a hash of the problem id, so learners practise different numbers; without a
+    /// learner seed, from the hash alone.
     fn variant(&mut self) -> Vec<Response> {
         let Some(problem) = self.problem() else {
             return vec![no_problem()];
@@ -318,10 +320,11 @@ impl Session {
             )];
         }
         let id = problem.id.clone();
+        let learner = self.progress.learner_seed;
         let record = self.progress.problems.entry(id.clone()).or_default();
         let mut state = record
             .variant_seed
-            .unwrap_or_else(|| crate::problem::variant::fnv1a64(id.as_bytes()));
+            .unwrap_or_else(|| first_variant_state(learner, &id));
         record.variant_seed = Some(crate::problem::variant::splitmix64(&mut state));
         self.open(&id)
     }
@@ -343,7 +346,10 @@ impl Session {
             part: part.id.clone(),
             number,
             part_kind: part.kind.name().to_string(),
-            prompt: terminal_math(&part.prompt),
+            prompt: match crate::check::units::answer_form(part) {
+                Some(form) => format!("{} ({form})", terminal_math(&part.prompt)),
+                None => terminal_math(&part.prompt),
+            },
             solved: self.progress.is_solved(&problem.id, &part.id),
         }))
     }
@@ -466,6 +472,20 @@ impl Session {
             parts: problems.iter().map(|p| p.parts).sum(),
             problems,
         })
+    }
+}
+
+/// Where a problem's `:variant` sequence starts: the learner's seed mixed with the problem id's
+/// FNV-1a hash through one SplitMix64 step (so that nearby learner seeds start far apart), or
+/// the hash alone for a progress without a learner seed.
+fn first_variant_state(learner: Option<u64>, id: &str) -> u64 {
+    let hash = crate::problem::variant::fnv1a64(id.as_bytes());
+    match learner {
+        Some(seed) => {
+            let mut state = seed ^ hash;
+            crate::problem::variant::splitmix64(&mut state)
+        }
+        None => hash,
     }
 }
 
