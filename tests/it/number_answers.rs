@@ -181,28 +181,34 @@ fn another_students_numbers_are_a_wrong_value_not_a_constant_factor() {
 
 #[test]
 fn a_near_miss_with_numbers_says_how_far_and_the_tolerance() {
-    // ben's V = −2.207475 cos θ; three significant figures, −2.21 cos θ, are 0.114% off:
-    // beyond 1e-3, within 5e-3 (the rule for 3 s.f.).
+    // cleo (l = 1.35 m): ω = √(9.81/1.35) = 2.695676…; to three significant figures 2.70,
+    // 0.160% off: beyond 1e-3, within 5e-3 (the rule for 3 s.f.).
+    let omega = "answer = [\"sqrt(g/l)\"]";
+    let with = |tol: &str| example(Some((omega, &format!("{omega}\ntolerance = {tol}"))));
+    let cleo = student(&with("1e-3"), "cleo@uni.example");
+    let v = judge(&cleo, "frequencies", "2.70");
+    assert_eq!(codes(&v), vec![Code::RoundedConstant], "{v:?}");
+    let m = &v.diagnoses[0].message;
+    assert!(m.contains("off by 0.160%"), "{m}");
+    assert!(m.contains("tolerance of 1e-3 (0.1%)"), "{m}");
+    assert!(!m.contains("exact constants"), "{m}");
+    let cleo = student(&with("5e-3"), "cleo@uni.example");
+    assert_eq!(judge(&cleo, "frequencies", "2.70").status, Status::Correct);
+    // 2.72 is 0.9% off: beyond 5e-3.
+    assert_eq!(
+        judge(&cleo, "frequencies", "2.72").status,
+        Status::Incorrect
+    );
+    // An expression: ben's V = −2.207475 cos θ, written −2.23 cos θ (1.01% off).
     let potential = "answer = \"-m*g*l*cos(theta)\"\nnumbers = true";
     let tight = example(Some((potential, &format!("{potential}\ntolerance = 1e-3"))));
     let ben = student(&tight, "ben@uni.example");
-    let v = judge(&ben, "potential", "-2.21*cos(theta)");
+    let v = judge(&ben, "potential", "-2.23*cos(theta)");
     assert_eq!(codes(&v), vec![Code::RoundedConstant], "{v:?}");
     let m = &v.diagnoses[0].message;
-    assert!(m.contains("0.114%"), "{m}");
+    assert!(m.contains("off by 1.01%"), "{m}");
     assert!(m.contains("tolerance of 1e-3"), "{m}");
     assert!(!m.contains("exact constants"), "{m}");
-    let three = example(Some((potential, &format!("{potential}\ntolerance = 5e-3"))));
-    let ben = student(&three, "ben@uni.example");
-    assert_eq!(
-        judge(&ben, "potential", "-2.21*cos(theta)").status,
-        Status::Correct
-    );
-    // 1% off is beyond 5e-3.
-    assert_eq!(
-        judge(&ben, "potential", "-2.23*cos(theta)").status,
-        Status::Incorrect
-    );
     // In symbols a decimal for an exact constant is still told to be written exactly.
     let s = judge(
         &builtin("simple-pendulum"),
