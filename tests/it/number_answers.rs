@@ -139,7 +139,7 @@ fn a_coordinate_with_one_term_of_the_wrong_sign_names_that_term() {
 fn another_students_numbers_are_a_wrong_value_not_a_constant_factor() {
     let p = example(None);
     let ada = student(&p, "ada@uni.example");
-    // V = −m g l cos θ = −24.27975 cos θ for ada; ben's is −2.207475 cos θ.
+    // V = −m g l cos θ = −24.27975 cos θ for ada; another student's numbers, −2.207475 cos θ.
     assert_eq!(
         judge(&ada, "potential", "-24.27975*cos(theta)").status,
         Status::Correct
@@ -199,16 +199,24 @@ fn a_near_miss_with_numbers_says_how_far_and_the_tolerance() {
         judge(&cleo, "frequencies", "2.72").status,
         Status::Incorrect
     );
-    // An expression: ben's V = −2.207475 cos θ, written −2.23 cos θ (1.01% off).
+    // An expression: ben's V = −m g l cos θ = −2.20725 cos θ, written −2.21 cos θ (0.124%
+    // off, beyond a tolerance of 1e-4); −2.23 cos θ, 1.03% off, is past the near-miss
+    // window: a wrong value, with how far off, and no factor.
     let potential = "answer = \"-m*g*l*cos(theta)\"\nnumbers = true";
-    let tight = example(Some((potential, &format!("{potential}\ntolerance = 1e-3"))));
+    let tight = example(Some((potential, &format!("{potential}\ntolerance = 1e-4"))));
     let ben = student(&tight, "ben@uni.example");
-    let v = judge(&ben, "potential", "-2.23*cos(theta)");
+    let v = judge(&ben, "potential", "-2.21*cos(theta)");
     assert_eq!(codes(&v), vec![Code::RoundedConstant], "{v:?}");
     let m = &v.diagnoses[0].message;
-    assert!(m.contains("off by 1.01%"), "{m}");
-    assert!(m.contains("tolerance of 1e-3"), "{m}");
+    assert!(m.contains("off by 0.124%"), "{m}");
+    assert!(m.contains("tolerance of 1e-4"), "{m}");
     assert!(!m.contains("exact constants"), "{m}");
+    let far = judge(&ben, "potential", "-2.23*cos(theta)");
+    assert_eq!(codes(&far), vec![Code::NotEqual], "{far:?}");
+    assert!(
+        far.diagnoses[0].message.contains("1.03% too large"),
+        "{far:?}"
+    );
     // In symbols a decimal for an exact constant is still told to be written exactly.
     let s = judge(
         &builtin("simple-pendulum"),
