@@ -39,9 +39,7 @@ pub(super) fn sign_error(
     let names = |c: usize| shown.get(c).cloned().unwrap_or_else(|| "q".to_string());
     for (k, &j) in free.iter().enumerate() {
         let kinds = coordinates(part, p, &lists.student[i], &lists.reference[j], ids.len());
-        if kinds.iter().all(|&c| c != Coordinate::Other)
-            && kinds.iter().any(|&c| c == Coordinate::Negated)
-        {
+        if kinds.iter().all(|&c| c != Coordinate::Other) && kinds.contains(&Coordinate::Negated) {
             quote::ensure(p);
             let which: Vec<String> = (0..kinds.len())
                 .filter(|&c| kinds[c] == Coordinate::Negated)
