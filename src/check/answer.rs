@@ -7,7 +7,7 @@ use rustc_hash::FxHashMap;
 
 use super::common::{invalid_reading, point_text, undefined_everywhere, verdict};
 use super::compare::{Relation, fmt_value, relate, values};
-use super::diagnose::{nice_fraction, rounded};
+use super::diagnose::{bare_numbers_for, how_far_off, nice_fraction, rounded};
 use super::error::CheckError;
 use super::expression_diagnosis::diagnose_expression;
 use super::lagrangian::{self, Motion};
@@ -144,6 +144,7 @@ pub(crate) fn check_prepared(
         super::units::finish(part, typed, c, &mut v);
     }
     never_correct_with_unlike_dimensions(&mut v);
+    numbers_for_symbols(part, p, input, &mut v);
     drop_superseded(&mut v);
     fold_definitions(p, input, &mut v);
     v.sort();
@@ -187,6 +188,64 @@ fn fold_definitions(p: &Prepared, input: &str, v: &mut Verdict) {
             d.message = d.message.replace(&unicode, &greek);
         }
     }
+}
+
+/// A part judged in symbols (it does not accept numbers) answered with numbers in place of
+/// every parameter (`0.5*r'' + 60*(r - 0.8) = 0`): what that answer "gets wrong" — unlike
+/// dimensions, a factor among the parameters — is no diagnosis. It is not an answer of the
+/// kind asked for (`Invalid`, as a wrong kind is): the student is told to write the symbols.
+/// Only an answer with a decimal and no parameter or defined name, to a part whose reference
+/// names a parameter.
+fn numbers_for_symbols(part: &Part, p: &Prepared, input: &str, v: &mut Verdict) {
+    use crate::expr::lexer::{Tok, lex};
+    if part.numbers || v.status != Status::Incorrect {
+        return;
+    }
+    let symbols: Vec<&str> = (p.system.parameters.iter().map(|q| q.name.as_str()))
+        .chain(p.system.definitions.iter().map(|(n, _)| n.as_str()))
+        .collect();
+    // (names a symbol, has a decimal) of a text; `None` when it does not lex.
+    let scan = |text: &str| -> Option<(bool, bool)> {
+        let text = text.replace(['±', '∓'], " ");
+        let toks = lex(&text).ok()?;
+        let mut named = false;
+        let mut decimal = false;
+        for t in toks {
+            match t.tok {
+                Tok::Name { text, .. } => {
+                    named |= symbols.contains(&crate::expr::names::normalize(&text).as_str())
+                }
+                // A decimal as typed (`0.5`, `9.81`, `1e-3`), not an integer or `1/2`.
+                Tok::Num(_) => {
+                    decimal |= text
+                        .get(t.span.clone())
+                        .is_some_and(|n| n.contains(['.', 'e', 'E']))
+                }
+                _ => {}
+            }
+        }
+        Some((named, decimal))
+    };
+    let reference_named = part
+        .answers
+        .iter()
+        .any(|a| scan(a).is_some_and(|(named, _)| named));
+    if !reference_named || scan(input) != Some((false, true)) {
+        return;
+    }
+    let mut names: Vec<String> = (p.system.parameters.iter())
+        .map(|q| crate::expr::names::unicode_name(&q.name))
+        .collect();
+    names.sort();
+    v.status = Status::Invalid;
+    v.score = 0.0;
+    v.diagnoses = vec![Diagnosis::new(
+        Code::NumbersForSymbols,
+        format!(
+            "this part asks for an expression in the problem's symbols ({}), not numbers: write each parameter by its name",
+            names.join(", ")
+        ),
+    )];
 }
 
 /// Diagnoses a more principled one makes redundant or misleading: `h-vs-e` says all that
@@ -237,6 +296,9 @@ enum Judgement {
     Negated,
     /// `f` times the reference.
     Factor(f64),
+    /// Bare numbers `f` times a reference with parameters: a wrong value, not a factor (any
+    /// two numbers have a ratio).
+    WrongValue(f64),
     /// Undefined at sample `point`, where the reference is defined.
     Undefined { point: usize },
     /// Nothing that simple: search for the mistake.
@@ -278,6 +340,10 @@ impl Judgement {
                         fmt_value(f)
                     ),
                 },
+            ),
+            Judgement::WrongValue(f) => Diagnosis::new(
+                Code::NotEqual,
+                format!("your value is wrong: it is {}", how_far_off(f)),
             ),
             Judgement::Undefined { point } => Diagnosis::new(
                 Code::Undefined,
@@ -369,10 +435,12 @@ fn judge(part: &Part, p: &mut Prepared, s: Id, reference: Id, rel: &Relation) ->
         Relation::Factor(f) if (f - 1.0).abs() < tolerance::ROUNDED => {
             match rounded(p, s, reference) {
                 Some(d) => Judgement::Rounded(d),
+                None if bare_numbers_for(p, s, reference) => Judgement::WrongValue(f),
                 None => Judgement::Factor(f),
             }
         }
         Relation::Factor(f) if (f + 1.0).abs() < tolerance::NUMBER => Judgement::Negated,
+        Relation::Factor(f) if bare_numbers_for(p, s, reference) => Judgement::WrongValue(f),
         Relation::Factor(f) => Judgement::Factor(f),
         Relation::Undefined { point } => Judgement::Undefined { point },
         Relation::UpToConstant(_) | Relation::Different { .. } => {
@@ -435,7 +503,10 @@ fn check_expression(problem: &Problem, part: &Part, p: &mut Prepared, r: Reading
             return v;
         }
     };
-    let judgement = judge(part, p, s, reference, &rel);
+    let judgement = match judge(part, p, s, reference, &rel) {
+        Judgement::Factor(f) if bare_numbers_for(p, s, reference) => Judgement::WrongValue(f),
+        j => j,
+    };
     let unlike = v.diagnoses.iter().any(|d| d.code == Code::Dimension);
     match judgement {
         // Numbers that agree do not make an answer with unlike terms right: the dimension

@@ -98,7 +98,12 @@ pub fn factor_in_term(
     factor_at: &mut dyn FnMut(&mut Prepared, Id) -> Option<f64>,
     holds: &mut dyn FnMut(&mut Prepared, Id) -> bool,
 ) -> Option<Diagnosis> {
+    // A term of bare numbers has a ratio to any value: no factor is read off it.
+    let parameters = !p.system.parameter_syms().is_empty();
     for t in terms_forces_first(p, e) {
+        if parameters && names_no_parameter(p, t) {
+            continue;
+        }
         let Some(c) = factor_at(p, t) else { continue };
         let Some(nice) = nice_fraction(c) else {
             continue;
@@ -206,6 +211,16 @@ pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
     if e.is_nan() || e > tolerance::ROUNDED {
         return None;
     }
+    if student_numbers(p) {
+        return Some(Diagnosis::new(
+            Code::RoundedConstant,
+            near_miss(
+                "your value",
+                relative_gap(p, a, b).unwrap_or(e),
+                p.tolerance,
+            ),
+        ));
+    }
     let digits = (1..=8).rev().find(|&k| e <= 10f64.powi(-k)).unwrap_or(1);
     Some(Diagnosis::new(
         Code::RoundedConstant,
@@ -213,4 +228,103 @@ pub fn rounded(p: &Prepared, a: Id, b: Id) -> Option<Diagnosis> {
             "your answer agrees only to about {digits} significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"
         ),
     ))
+}
+
+/// Whether `e` names none of the problem's parameters: only numbers, coordinates, velocities,
+/// time (`−8.829·cos θ`, `2.335`).
+pub fn names_no_parameter(p: &Prepared, e: Id) -> bool {
+    let params = p.system.parameter_syms();
+    !p.system
+        .pool
+        .variables(e)
+        .iter()
+        .any(|(s, _)| params.contains(s))
+}
+
+/// Whether the ratio of `s` to the reference `r` says nothing about a factor: `s` is bare
+/// numbers (no parameter) where `r` has parameters. Any two numbers have a constant ratio —
+/// another student's numbers are "12/5 times" this one's — so a factor read off it is no
+/// diagnosis (and must earn no factor credit); a symbolic answer's factor (√(g/l) for
+/// √(3g/2l), a missing ½ in m g l) still is one.
+pub fn bare_numbers_for(p: &Prepared, s: Id, r: Id) -> bool {
+    names_no_parameter(p, s) && !names_no_parameter(p, r)
+}
+
+/// Whether the parameters are pinned to a student's numbers (a part that accepts numbers,
+/// judged for one student): a decimal is then the expected way to answer, and a near miss is
+/// a matter of significant figures, not of an exact constant written as a decimal.
+pub fn student_numbers(p: &Prepared) -> bool {
+    p.system.parameters.iter().any(|q| q.range.0 == q.range.1)
+}
+
+/// A wrong value said by how far off it is, `f` being the student's value over the right one:
+/// "about 73% too small", "about 140% too large", "of the wrong sign".
+pub fn how_far_off(f: f64) -> String {
+    if !f.is_finite() {
+        return "far off".into();
+    }
+    if f < 0.0 {
+        return format!(
+            "of the wrong sign and {} times the right size",
+            super::compare::fmt_value(-f)
+        );
+    }
+    let pct = (f - 1.0).abs() * 100.0;
+    let shown = if pct >= 10.0 {
+        format!("{pct:.0}")
+    } else {
+        format!("{pct:.2}")
+    };
+    let way = if f > 1.0 { "large" } else { "small" };
+    format!("about {shown}% too {way}")
+}
+
+/// The sentence for a near miss on a part judged with a student's numbers: off by `gap`
+/// (relative), more than the part's `tolerance`.
+pub fn near_miss(what: &str, gap: f64, tolerance: f64) -> String {
+    format!(
+        "{what} is off by {} (relative), more than this part's tolerance of {}: give more significant figures",
+        percent(gap),
+        tolerance_text(tolerance)
+    )
+}
+
+/// A relative amount as a percentage to three significant digits: `0.104%`, `12.3%`.
+pub fn percent(x: f64) -> String {
+    let pct = x * 100.0;
+    if !pct.is_finite() || pct <= 0.0 {
+        return format!("{pct}%");
+    }
+    let decimals = (2 - pct.log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{pct:.decimals$}%")
+}
+
+/// A part's tolerance as the problem file writes it, with its percentage where that reads
+/// (`1e-3 (0.1%)`; `1e-9` alone).
+pub fn tolerance_text(tolerance: f64) -> String {
+    if tolerance >= 1e-6 {
+        format!(
+            "{tolerance:e} ({}%)",
+            super::compare::fmt_value(tolerance * 100.0)
+        )
+    } else {
+        format!("{tolerance:e}")
+    }
+}
+
+/// The largest relative difference of `a` from `b` (the reference) over the sample points
+/// where both are defined: |a − b| / max(|a|, |b|).
+pub fn relative_gap(p: &Prepared, a: Id, b: Id) -> Option<f64> {
+    let vals = super::compare::values(&p.system, &[a, b], &p.points).ok()?;
+    let mut worst: Option<f64> = None;
+    for v in vals.iter().flatten() {
+        let (x, y) = (v[0], v[1]);
+        let scale = x.abs().max(y.abs());
+        if !x.is_finite() || !y.is_finite() || scale <= tolerance::TINY {
+            continue;
+        }
+        let e = (x - y).abs() / scale;
+        worst = Some(worst.map_or(e, |w: f64| w.max(e)));
+    }
+    worst
 }

@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
 use super::compare::values;
-use super::diagnose::{has_decimal, swapped};
+use super::diagnose::{has_decimal, percent, student_numbers, swapped, tolerance_text};
 use super::limits;
 use super::prepare::Prepared;
 use super::residual::{holds, miss};
@@ -151,10 +151,26 @@ pub(super) fn diagnose_equation(
     }
     let truth = truth.to_vec();
     if has_decimal(p, r) && miss(p, r, &pts, &truth, tolerance::ROUNDED).is_none() {
-        v.diagnoses.push(Diagnosis::new(
-            Code::RoundedConstant,
-            format!("{which} holds only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"),
-        ));
+        let message = if student_numbers(p) {
+            // With the student's numbers a decimal is the answer: the digits are too few. How
+            // few: the least of 10⁻⁸ … 10⁻² to which the equation holds.
+            let within = (2..=8)
+                .rev()
+                .map(|k| 10f64.powi(-k))
+                .find(|&tol| miss(p, r, &pts, &truth, tol).is_none())
+                .unwrap_or(tolerance::ROUNDED);
+            format!(
+                "{which} holds only to within {} (relative), not to this part's tolerance of {}: give more significant figures",
+                percent(within),
+                tolerance_text(p.tolerance)
+            )
+        } else {
+            format!(
+                "{which} holds only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3 instead of decimals"
+            )
+        };
+        v.diagnoses
+            .push(Diagnosis::new(Code::RoundedConstant, message));
         return;
     }
     let refs = reference_equations(part, p);

@@ -5,7 +5,7 @@
 use std::f64::consts::TAU;
 
 use super::compare::{close, values};
-use super::diagnose::{has_decimal, nice_fraction};
+use super::diagnose::{bare_numbers_for, has_decimal, near_miss, nice_fraction, student_numbers};
 use super::prepare::Prepared;
 use super::prepare::same_coordinate_within;
 use super::terms::{Scaling, Terms, one_term};
@@ -13,6 +13,8 @@ use super::tolerance;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::{Dimension, Id};
 use crate::problem::{Part, PartKind, Problem};
+
+mod point_sign;
 
 /// Whether two items agree at every point where the reference one is defined (to `tol`;
 /// equilibrium angles modulo 2π).
@@ -51,8 +53,12 @@ pub(super) enum ItemFinding {
     Squared { label: String, squared: bool },
     /// ω for ω² (`squared`), or √ω for ω.
     Root { label: String, squared: bool },
-    /// Agreement to a few digits only.
-    Rounded { label: String },
+    /// Agreement to a few digits only; with the student's numbers, how far off (relative) and
+    /// the part's tolerance.
+    Rounded {
+        label: String,
+        off: Option<(f64, f64)>,
+    },
     /// f = ω/2π for ω.
     Ordinary { label: String },
     /// A period 2π/ω for ω.
@@ -101,7 +107,11 @@ impl ItemFinding {
                     format!("{label} is √ω: square it")
                 },
             ),
-            ItemFinding::Rounded { label } => Diagnosis::new(
+            ItemFinding::Rounded {
+                label,
+                off: Some((gap, tolerance)),
+            } => Diagnosis::new(Code::RoundedConstant, near_miss(&label, gap, tolerance)),
+            ItemFinding::Rounded { label, off: None } => Diagnosis::new(
                 Code::RoundedConstant,
                 format!(
                     "{label} agrees only to a few significant digits: write exact constants such as sqrt(2), pi or 1/3"
@@ -167,6 +177,8 @@ pub(super) struct Lists<'v> {
     pub(super) reference: &'v [Vec<Option<Vec<f64>>>],
     /// The reference items themselves (for the term-level search inside an item).
     pub(super) reference_ids: &'v [Vec<Id>],
+    /// The student's items themselves (one id per coordinate of an equilibrium).
+    pub(super) student_ids: &'v [Vec<Id>],
 }
 
 /// For a frequency that matches nothing: ω² for ω, ω for ω², rounded constants (only for an
@@ -207,7 +219,8 @@ fn frequency_slip(
         .iter()
         .position(|&j| decimal && same_item(part, p, s, &rv[j], tolerance::ROUNDED))
     {
-        (k, ItemFinding::Rounded { label })
+        let off = near_miss_of(part, p, s, &rv[free[k]]);
+        (k, ItemFinding::Rounded { label, off })
     } else if let Some(k) = (!squared)
         .then(|| free.iter().position(|&j| mapped(s, &rv[j], &|w| w / TAU)))
         .flatten()
@@ -271,14 +284,23 @@ pub(super) fn classify_unmatched(
                 tolerance::ROUNDED,
             )
     }) {
+        let off = near_miss_of(part, p, &lists.student[i], &lists.reference[free[k]]);
         free.remove(k);
-        return ItemFinding::Rounded { label };
+        return ItemFinding::Rounded { label, off };
     }
     // The same as an item already matched: not wrong, only listed twice.
     if listed_twice(part, p, &lists.student[i], lists.reference, free) {
         let periodic =
             part.kind == PartKind::Equilibria && p.system.coordinates.iter().any(|c| c.periodic);
         return ItemFinding::Twice { label, periodic };
+    }
+    // A point with a coordinate of the wrong sign (x = −m g sin α/k), or a sign slip in one
+    // term of a coordinate (r = l₀ − m g/k), as a frequency's sign is told.
+    if part.kind == PartKind::Equilibria
+        && let Some((k, d)) = point_sign::sign_error(part, p, lists, i, free, &label)
+    {
+        free.remove(k);
+        return ItemFinding::Inside(d);
     }
     if part.kind == PartKind::Frequencies
         && let Some((k, d)) = inside_item(p, (first, part.squared), lists, free, &label)
@@ -405,6 +427,10 @@ fn is_root(p: &Prepared, e: Id) -> bool {
 
 /// An item that is a simple constant times the reference item, or the root of one (√2).
 fn factor_of_item(p: &Prepared, item: Id, r: Id, label: &str) -> Option<Diagnosis> {
+    // Bare numbers have a ratio to any value: 2.335 is no "√(2/3) times" the right one.
+    if bare_numbers_for(p, item, r) {
+        return None;
+    }
     let vals = values(&p.system, &[item, r], &p.points).ok()?;
     let ratios: Vec<f64> = vals
         .into_iter()
@@ -438,4 +464,29 @@ pub(super) fn what_of(part: &Part) -> &'static str {
         PartKind::Frequencies => "frequency",
         _ => "item",
     }
+}
+
+/// How far off (relative, the worst coordinate at the worst point) an item is from the
+/// reference item it nearly matches, with the part's tolerance: said only where the part is
+/// judged with the student's numbers (a decimal is then the answer, not the mistake).
+fn near_miss_of(
+    part: &Part,
+    p: &Prepared,
+    s: &[Option<Vec<f64>>],
+    r: &[Option<Vec<f64>>],
+) -> Option<(f64, f64)> {
+    if !part.numbers || !student_numbers(p) {
+        return None;
+    }
+    let mut worst: f64 = 0.0;
+    for (x, y) in s.iter().zip(r) {
+        let (Some(x), Some(y)) = (x, y) else { continue };
+        for (u, w) in x.iter().zip(y) {
+            let scale = u.abs().max(w.abs());
+            if scale > tolerance::TINY {
+                worst = worst.max((u - w).abs() / scale);
+            }
+        }
+    }
+    Some((worst, part.tolerance))
 }

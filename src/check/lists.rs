@@ -211,6 +211,7 @@ pub fn check_list(problem: &Problem, part: &Part, p: &mut Prepared, input: &str)
         student: &sv,
         reference: &rv,
         reference_ids: &refs,
+        student_ids: &items,
     };
     let (matched_ref, mut matched_stu) = match_items(part, p, &lists, &blocked);
     // An angle the part's range leaves out is the right position written outside the range

@@ -80,6 +80,11 @@ fn add_piece(p: &mut Prepared, piece: &str, table: &mut FxHashMap<Id, String>) {
     let parsed = match parse(piece, &p.context) {
         Ok(parsed) => parsed,
         Err(_) => {
+            // An equilibrium with its stability (`x = −a (stable)`): the point without it.
+            if let Some(point) = without_stability(piece) {
+                add_piece(p, point, table);
+                return;
+            }
             if let Some(k) = piece.rfind('=')
                 && k + 1 < piece.len()
             {
@@ -94,6 +99,22 @@ fn add_piece(p: &mut Prepared, piece: &str, table: &mut FxHashMap<Id, String>) {
         table,
     };
     walk.statement(&parsed.statement);
+}
+
+/// `piece` without a stability stated after it (`(stable)`, `unstable`), if it has one.
+fn without_stability(piece: &str) -> Option<&str> {
+    let t = piece.trim_end();
+    let word = |w: &str| !w.is_empty() && w.chars().all(|c| c.is_alphabetic() || c == ' ');
+    if let Some(inner) = t.strip_suffix(')')
+        && let Some(open) = inner.rfind('(')
+        && word(&inner[open + 1..])
+    {
+        return Some(&t[..open]);
+    }
+    let (head, last) = t.rsplit_once(char::is_whitespace)?;
+    ["stable", "unstable", "marginal", "neutral"]
+        .contains(&last.to_lowercase().as_str())
+        .then_some(head)
 }
 
 /// One walk over a parsed piece.

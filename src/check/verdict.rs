@@ -46,6 +46,9 @@ pub enum Code {
     Syntax,
     /// The answer is not of the part's kind (an equation for an expression, a list…).
     WrongKind,
+    /// Numbers where the part asks for an expression in the problem's symbols (the part does
+    /// not accept numbers): not judged as a value.
+    NumbersForSymbols,
     /// A named answer (`T = …`) names another quantity than the part asks for.
     WrongName,
     /// The answer (or an item) has the wrong dimension or adds unlike terms.
@@ -144,11 +147,12 @@ pub enum Code {
 
 impl Code {
     /// Every code, most specific first.
-    pub const ALL: [Code; 47] = [
+    pub const ALL: [Code; 48] = [
         Code::UnknownSymbol,
         Code::SubstitutedSymbol,
         Code::Syntax,
         Code::WrongKind,
+        Code::NumbersForSymbols,
         Code::WrongName,
         Code::Dimension,
         Code::Undefined,
@@ -201,6 +205,7 @@ impl Code {
             Code::SubstitutedSymbol => "substituted-symbol",
             Code::Syntax => "syntax",
             Code::WrongKind => "wrong-kind",
+            Code::NumbersForSymbols => "numbers-for-symbols",
             Code::WrongName => "wrong-name",
             Code::Dimension => "dimension",
             Code::Undefined => "undefined",
@@ -336,11 +341,12 @@ mod tests {
     #[test]
     fn codes_serialise_as_their_names_in_report_order() {
         // The codes as documented (docs/checking.md, JSON consumers), most specific first.
-        const DOCUMENTED: [&str; 47] = [
+        const DOCUMENTED: [&str; 48] = [
             "unknown-symbol",
             "substituted-symbol",
             "syntax",
             "wrong-kind",
+            "numbers-for-symbols",
             "wrong-name",
             "dimension",
             "undefined",

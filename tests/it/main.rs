@@ -39,6 +39,7 @@ mod natural_answers;
 mod normal_modes;
 mod notation;
 mod notation_lists;
+mod number_answers;
 mod own_terms;
 mod phase_portrait;
 mod plot;

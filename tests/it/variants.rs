@@ -105,10 +105,11 @@ fn a_student_answers_with_symbols_or_their_own_numbers() {
         Status::Correct
     );
     assert_eq!(verdict(&ben, "frequencies", "9.81/0.45"), Status::Incorrect);
-    // A part without `numbers` is judged in symbols, against the problem itself.
+    // A part without `numbers` is judged in symbols, against the problem itself: numbers
+    // there are not an answer of the kind asked for (`numbers-for-symbols`).
     assert_eq!(
         verdict(&p, "kinetic", "1/2*0.5*0.45^2*theta'^2"),
-        Status::Incorrect
+        Status::Invalid
     );
     // Without the student's numbers, a number is no answer.
     assert_eq!(

@@ -8,7 +8,10 @@
 //! and matchings never builds or evaluates an expression, so it stays cheap.
 
 use super::compare::{close, values};
-use super::diagnose::{MAX_SEARCH_TERMS, has_decimal, nice_fraction};
+use super::diagnose::{
+    MAX_SEARCH_TERMS, bare_numbers_for, has_decimal, how_far_off, near_miss, nice_fraction,
+    student_numbers,
+};
 use super::prepare::Prepared;
 use super::quote;
 use super::tolerance;
@@ -466,6 +469,19 @@ fn pair(
                 true,
             ));
         }
+        if (f - 1.0).abs() < tolerance::ROUNDED
+            && has_decimal(p, student.signed[i])
+            && student_numbers(p)
+        {
+            let what = format!("the coefficient of {yours}{place}");
+            return Some((
+                Diagnosis::new(
+                    Code::RoundedConstant,
+                    near_miss(&what, (f - 1.0).abs(), p.tolerance),
+                ),
+                true,
+            ));
+        }
         if (f - 1.0).abs() < tolerance::ROUNDED && has_decimal(p, student.signed[i]) {
             return Some((
                 Diagnosis::new(
@@ -473,6 +489,19 @@ fn pair(
                     format!(
                         "the coefficient of {yours}{place} is off by {:.2}%: a decimal where an exact constant (sqrt(2), pi, 1/3) belongs",
                         (f - 1.0).abs() * 100.0
+                    ),
+                ),
+                true,
+            ));
+        }
+        // Bare numbers where the reference term has parameters: the ratio is no factor.
+        if bare_numbers_for(p, student.signed[i], reference.signed[j]) {
+            return Some((
+                Diagnosis::new(
+                    Code::NotEqual,
+                    format!(
+                        "the value of {yours}{place} is wrong: it is {}",
+                        how_far_off(f)
                     ),
                 ),
                 true,

@@ -18,6 +18,7 @@
 
 mod atoms;
 mod calls;
+mod lines;
 mod operators;
 
 use std::collections::BTreeSet;
@@ -51,6 +52,9 @@ pub fn parse(src: &str, ctx: &Context) -> Result<Parsed, ParseError> {
             cut..src.len(),
         ));
     }
+    // Equations one a line are separated as by `;` (same length: spans are unchanged).
+    let lined = lines::separate_lines(src);
+    let src = lined.as_ref();
     let tokens = lex(src)?;
     if tokens.is_empty() {
         return Err(ParseError::new(ParseErrorKind::Empty, 0..src.len()));
