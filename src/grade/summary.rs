@@ -101,11 +101,22 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     // keys are found by sorting them (24 bytes each, not a map's 32 and its spare room: a
     // class of all-different answers has a key per answer), each numbered by the first
     // representative that has it.
+    // A problem pinned to a student's numbers comes after the bank problem of its id. There
+    // one reading means different things for different students (the same number is right
+    // for one, off by some factor for another), so what the student is told is part of it.
+    let mut ids = rustc_hash::FxHashSet::default();
+    let pinned: Vec<bool> = (bank.problems.iter())
+        .map(|p| !ids.insert(p.id.as_str()))
+        .collect();
+    drop(ids);
     let mut keyed: Vec<(u64, u64, u32)> = (judged.reps.par_iter().enumerate())
         .map(|(i, r)| {
-            let m = r.fingerprint.unwrap_or_else(|| {
+            let mut m = r.fingerprint.unwrap_or_else(|| {
                 super::judge::meaning(&format!("text:{}", table.answers.get(r.answer).trim()))
             });
+            if let (true, Ok(v)) = (pinned[r.problem], &r.verdict) {
+                m ^= super::judge::meaning(&format!("told:{}", v.message));
+            }
             ((m >> 64) as u64, m as u64, i as u32)
         })
         .collect();

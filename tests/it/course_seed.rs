@@ -39,6 +39,13 @@ prompt = "The angular frequency of small oscillations about θ = 0, in rad/s."
 answer = ["sqrt(g/l)"]
 at = { theta = "0" }
 numbers = true
+
+[[parts]]
+id = "potential"
+kind = "expression"
+prompt = "The potential energy V, zero at the pivot, with your numbers."
+answer = "-m*g*l*cos(theta)"
+numbers = true
 "#;
 
 fn bank(label: &str) -> (crate::helpers::Scratch, String) {
@@ -332,4 +339,48 @@ fn an_override_on_one_students_numbers_leaves_another_variants_rows_alone() {
         feedback.contains(&format!("Your numbers: {ada_numbers}")),
         "{feedback}"
     );
+}
+
+#[test]
+fn the_summary_never_groups_one_number_told_differently_to_different_students() {
+    let (dir, bank) = bank("seed-summary");
+    let (_, ada_l) = sheet_numbers(&bank, "ada@uni.example", "7");
+    let ben = [
+        "ben@uni.example",
+        "cleo@uni.example",
+        "dan@uni.example",
+        "eve@uni.example",
+    ]
+    .into_iter()
+    .find(|k| sheet_numbers(&bank, k, "7").1 != ada_l)
+    .expect("two lengths among four students");
+    // m g l = 9.81 J is nobody's (m l is never 1 here): wrong for both, by different factors.
+    let wrong = "-1*9.81*1*cos(theta)";
+    let class = dir.join("class.csv");
+    std::fs::write(
+        &class,
+        format!("student,problem,part,answer\nada@uni.example,varied-pendulum,potential,{wrong}\n{ben},varied-pendulum,potential,{wrong}\n"),
+    )
+    .expect("class");
+    let out = dir.join("out");
+    let (code, _, err) = lagrange(&[
+        "--add-problems",
+        &bank,
+        "grade",
+        &class.to_string_lossy(),
+        "--out",
+        &out.to_string_lossy(),
+        "--seed",
+        "7",
+    ]);
+    assert!(code == 0 || code == 1, "{err}");
+    let mut results = csv::Reader::from_path(out.join("results.csv")).expect("results");
+    let messages: Vec<String> = (results.records())
+        .map(|r| r.expect("a record")[8].to_string())
+        .collect();
+    assert_eq!(messages.len(), 2);
+    assert_ne!(messages[0], messages[1]);
+    let summary = std::fs::read_to_string(out.join("summary.md")).expect("summary");
+    let groups = summary.lines().filter(|l| l.contains(wrong)).count();
+    assert_eq!(groups, 2, "one group per thing told: {summary}");
 }

@@ -215,9 +215,44 @@ fn pictures_ending_in_png_are_png_files_of_the_asked_size() {
         e.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(png_size(&q), (800, 720));
-    assert_eq!(png_size(&p), (800, 720));
-    assert_eq!(png_size(&e), (800, 360));
+    // Each PNG is the chart the SVG of the same run draws, at the SVG's size.
+    let svgs = [d.join("q.svg"), d.join("p.svg"), d.join("e.svg")];
+    let (code, _, err) = lagrange(&[
+        "simulate",
+        "double-pendulum",
+        "--params",
+        DP_PARAMS,
+        "--init",
+        "theta1=1",
+        "--t-end",
+        "1",
+        "--samples",
+        "50",
+        "--plot",
+        svgs[0].to_str().unwrap(),
+        "--phase",
+        svgs[1].to_str().unwrap(),
+        "--energy",
+        svgs[2].to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg_size = |path: &std::path::Path| {
+        let text = std::fs::read_to_string(path).expect("svg");
+        let attr = |name: &str| -> u32 {
+            let at = text.find(&format!(" {name}=\"")).expect("size attribute") + name.len() + 3;
+            text[at..]
+                .split('"')
+                .next()
+                .and_then(|v| v.parse().ok())
+                .expect("a number")
+        };
+        (attr("width"), attr("height"))
+    };
+    for (png, svg) in [&q, &p, &e].into_iter().zip(&svgs) {
+        let (w, h) = svg_size(svg);
+        assert!(w >= 320 && h >= 200, "{svg:?} is {w}×{h}");
+        assert_eq!(png_size(png), (w, h), "{png:?}");
+    }
 }
 
 #[test]

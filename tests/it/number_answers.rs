@@ -14,7 +14,7 @@ use lagrange::problem::variant::pick;
 fn example(edit: Option<(&str, &str)>) -> Problem {
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("examples/variants/pendulum-numbers.toml"),
+            .join("tests/variants/pendulum-numbers.toml"),
     )
     .expect("the example problem");
     let text = match edit {

@@ -363,7 +363,7 @@ test('progress exports and imports as the REPL\'s progress.json', async () => {
 
 test('a problem with variants: fresh numbers, judged with them, the seed kept with the progress', async () => {
   // The documented example of per-student variants (m, l and g vary; `potential` takes numbers).
-  const example = join(here, '..', '..', 'examples', 'variants', 'pendulum-numbers.toml');
+  const example = join(here, '..', '..', 'tests', 'variants', 'pendulum-numbers.toml');
   await page.setInputFiles('#file-input', [{ name: 'pendulum-numbers.toml', mimeType: 'text/plain', buffer: await readFile(example) }]);
   await page.waitForFunction(() => /added as pendulum-numbers/.test(document.querySelector('#findings').innerText));
   await openProblem('pendulum-numbers');
