@@ -89,7 +89,7 @@ fn seen<'a, 'i>(v: &'a Spanned<DeValue<'i>>) -> Result<Seen<'a, 'i>, ReadError> 
             }
         }
         DeValue::Float(f) => match f.as_str().parse::<f64>() {
-            Ok(x) if !(x.is_infinite() && !f.as_str().contains("inf")) => Seen::Float(x),
+            Ok(x) if !x.is_infinite() || f.as_str().contains("inf") => Seen::Float(x),
             _ => {
                 let message = "floating-point number overflowed".into();
                 return Err(ReadError::new(message, v.span()));
@@ -155,12 +155,15 @@ pub(crate) fn wrong_type(v: &Spanned<DeValue<'_>>, expected: &str) -> ReadError 
     }
 }
 
+/// A table's entries: each key with its span, and its value.
+pub(crate) type Entries<'i> = Vec<(Spanned<String>, Spanned<DeValue<'i>>)>;
+
 /// The entries of `v` as a table (a date-time is the one-entry map serde sees), or serde's
 /// error for a value of another type.
-pub(crate) fn entries<'a, 'i>(
-    v: &'a Spanned<DeValue<'i>>,
+pub(crate) fn entries<'i>(
+    v: &Spanned<DeValue<'i>>,
     expected: &str,
-) -> Result<Vec<(Spanned<String>, Spanned<DeValue<'i>>)>, ReadError> {
+) -> Result<Entries<'i>, ReadError> {
     match seen(v)? {
         Seen::Map(t) => Ok(t
             .iter()
