@@ -23,15 +23,15 @@ const SHOWN_FROM: usize = 100;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
     /// A stable code, e.g. `unknown-symbol`.
-    pub code: String,
+    pub(crate) code: String,
     /// What is wrong.
-    pub message: String,
+    pub(crate) message: String,
     /// Where, in bytes, when the message is about a piece of text.
-    pub span: Option<Range<usize>>,
+    pub(crate) span: Option<Range<usize>>,
     /// A short label under the span (empty: none).
-    pub label: String,
+    pub(crate) label: String,
     /// How to fix it, in one line (empty: none).
-    pub help: String,
+    pub(crate) help: String,
 }
 
 impl Diagnostic {

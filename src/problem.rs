@@ -10,11 +10,11 @@ pub mod variant;
 /// An inequality between two expressions of the parameters.
 #[derive(Clone, Debug)]
 pub struct Assumption {
-    pub text: String,
-    pub lhs: Id,
-    pub rhs: Id,
+    pub(crate) text: String,
+    pub(crate) lhs: Id,
+    pub(crate) rhs: Id,
     /// `>` (or `>=`) when true; `<` (or `<=`) when false.
-    pub greater: bool,
+    pub(crate) greater: bool,
 }
 
 impl Assumption {
@@ -153,35 +153,35 @@ pub struct Part {
     pub tolerance: f64,
     pub stability: Vec<String>,
     pub quantity: Quantity,
-    pub dimension: Option<Dimension>,
+    pub(crate) dimension: Option<Dimension>,
     /// For frequencies: the answers are ω² rather than ω.
     pub squared: bool,
     /// For a Lagrangian: any L with the right motion is accepted (a constant factor, V − T,
     /// a total time derivative), not only T − V up to a constant and a total derivative.
-    pub same_motion: bool,
+    pub(crate) same_motion: bool,
     /// For equilibria: each point's stability must be stated; an answer without it gets
     /// partial credit.
     pub require_stability: bool,
     /// Assumptions of this part only, in addition to the problem's (e.g. the regime in which
     /// the stated equilibria are the ones).
-    pub assumptions: Vec<Assumption>,
+    pub(crate) assumptions: Vec<Assumption>,
     /// A linearized part: the point to expand about, one value per named coordinate (the
     /// others about 0); the answer is the second-order Taylor polynomial in q − q₀ and q̇.
     pub about: Option<Vec<(String, String)>>,
     /// For frequencies: the zero modes (free motions) are not listed.
-    pub omit_zero_modes: bool,
+    pub(crate) omit_zero_modes: bool,
     /// For frequencies: the answers are growth rates λ (q ~ e^{λt}), not frequencies.
     pub growth: bool,
     /// A numeric part (`values` give every parameter a number): the dimension of the answer,
     /// whose units are read in square brackets (`4.43 [rad/s]`) and converted to SI.
     pub units: Option<Dimension>,
     /// The parameters' values as the file gives them (`l = 50 [cm]`), for display.
-    pub values: Vec<(String, String)>,
+    pub(crate) values: Vec<(String, String)>,
     /// A numeric part's reference answers as the file writes them, with their units
     /// (`answers` holds them in SI).
-    pub answers_with_units: Vec<String>,
+    pub(crate) answers_with_units: Vec<String>,
     /// Line of the part in its file.
-    pub line: usize,
+    pub(crate) line: usize,
     /// The answer may be written with the student's numbers (`1.5*9.81*1.2`) as well as in
     /// symbols: it is judged against the problem pinned to the student's variant.
     pub numbers: bool,
@@ -233,19 +233,19 @@ pub struct Problem {
     pub file: String,
     pub id: String,
     pub title: String,
-    pub source: String,
+    pub(crate) source: String,
     pub statement: String,
     /// The Cartesian axes, origin, sense of rotation and phase of the bodies' positions, in
     /// words (empty when the file does not say).
     pub axes: String,
     pub system: System,
     pub dims: Dimensions,
-    pub assumptions: Vec<Assumption>,
+    pub(crate) assumptions: Vec<Assumption>,
     pub parts: Vec<Part>,
     /// L as written in the file, when it gives one.
-    pub stated_lagrangian: Option<Id>,
+    pub(crate) stated_lagrangian: Option<Id>,
     /// Line of the `lagrangian` key (or of the first body).
-    pub lagrangian_line: usize,
+    pub(crate) lagrangian_line: usize,
     /// What `simulate` starts from when the user gives nothing else.
     pub simulation: SimulationDefaults,
     /// How parameters vary from student to student (`[variants]`; empty: one set of symbols

@@ -11,9 +11,9 @@ use super::schema::{BoundSpec, PartSpec};
 
 /// A part's linearization point and frequency options, checked.
 pub(super) struct Options {
-    pub about: Option<Vec<(String, String)>>,
-    pub omit_zero_modes: bool,
-    pub growth: bool,
+    pub(crate) about: Option<Vec<(String, String)>>,
+    pub(crate) omit_zero_modes: bool,
+    pub(crate) growth: bool,
 }
 
 /// Reads and checks `about`, `omit_zero_modes` and `growth`.

@@ -9,7 +9,7 @@ use crate::expr::error::{visible, visible_lines};
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Finding {
-    pub file: String,
+    pub(crate) file: String,
     /// The problem id, when the file got far enough to have one.
     pub problem: Option<String>,
     /// The part id, when the finding is about a part.

@@ -43,10 +43,10 @@ pub enum Value {
 /// A parameter of the drafted file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Param {
-    pub name: String,
-    pub dimension: String,
-    pub range: (f64, f64),
-    pub value: f64,
+    pub(crate) name: String,
+    pub(crate) dimension: String,
+    pub(crate) range: (f64, f64),
+    pub(crate) value: f64,
 }
 
 /// A drafted problem file.
@@ -70,15 +70,15 @@ pub struct LeftOut {
 /// A part as drafted: what `new_toml` writes.
 #[derive(Debug, Clone)]
 pub(super) struct Candidate {
-    pub id: String,
-    pub kind: &'static str,
+    pub(crate) id: String,
+    pub(crate) kind: &'static str,
     /// Extra fields (`quantity`, `coordinate`, `up_to`, `at`, `stability`, …), in order.
-    pub fields: Vec<(&'static str, Field)>,
-    pub prompt: String,
+    pub(crate) fields: Vec<(&'static str, Field)>,
+    pub(crate) prompt: String,
     /// The reference answer: one string, or (with `many`) a list.
-    pub answer: Vec<String>,
-    pub many: bool,
-    pub hints: Vec<String>,
+    pub(crate) answer: Vec<String>,
+    pub(crate) many: bool,
+    pub(crate) hints: Vec<String>,
 }
 
 /// A part field's value.

@@ -20,9 +20,9 @@ use toml::de::{DeTable, DeValue};
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReadError {
     /// The message, as serde and toml word it.
-    pub message: String,
+    pub(crate) message: String,
     /// Where in the file, when known.
-    pub span: Option<Range<usize>>,
+    pub(crate) span: Option<Range<usize>>,
 }
 
 impl ReadError {

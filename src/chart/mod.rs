@@ -39,7 +39,7 @@ use crate::report::SimulationReport;
 #[non_exhaustive]
 pub struct Chart {
     /// What the panel shows, in words (for a screen reader).
-    pub title: String,
+    pub(crate) title: String,
     /// The horizontal axis' label (`t / s`).
     pub x_label: String,
     /// The vertical axis' label (`θ / rad`).
@@ -49,7 +49,7 @@ pub struct Chart {
     /// The vertical axis' range and ticks.
     pub y: Ticks,
     /// The curves, each one polyline (broken where a point is not finite).
-    pub series: Vec<Series>,
+    pub(crate) series: Vec<Series>,
 }
 
 /// One named curve.
@@ -57,9 +57,9 @@ pub struct Chart {
 #[non_exhaustive]
 pub struct Series {
     /// Its name in the legend (`θ₁`).
-    pub name: String,
+    pub(crate) name: String,
     /// Its points (x, y) in order.
-    pub points: Vec<(f64, f64)>,
+    pub(crate) points: Vec<(f64, f64)>,
 }
 
 /// Charts one under another, drawn as one picture.
@@ -67,7 +67,7 @@ pub struct Series {
 #[non_exhaustive]
 pub struct Figure {
     /// The picture's title (the SVG's `<title>`).
-    pub title: String,
+    pub(crate) title: String,
     /// The panels, top first.
     pub charts: Vec<Chart>,
 }

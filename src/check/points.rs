@@ -10,7 +10,7 @@ use crate::problem::Assumption;
 /// Points in a system's standard layout, every one satisfying the assumptions.
 #[derive(Clone, Debug)]
 pub struct PointSet {
-    pub points: Vec<Vec<f64>>,
+    pub(crate) points: Vec<Vec<f64>>,
 }
 
 /// How many draws may be rejected before the assumptions are declared unsatisfiable.

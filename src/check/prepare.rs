@@ -19,27 +19,27 @@ pub const POINTS: usize = 24;
 
 /// A part's system (with its substitutions), its derivation and sample points.
 pub struct Prepared {
-    pub system: System,
-    pub derivation: Derivation,
-    pub assumptions: Vec<Assumption>,
-    pub points: PointSet,
-    pub context: Context,
+    pub(crate) system: System,
+    pub(crate) derivation: Derivation,
+    pub(crate) assumptions: Vec<Assumption>,
+    pub(crate) points: PointSet,
+    pub(crate) context: Context,
     /// The part's relative tolerance (the documented one unless the part sets its own).
-    pub tolerance: f64,
+    pub(crate) tolerance: f64,
     /// Whether a product of two velocities in the answer comes from squaring a sum of
     /// velocities (T, L, h, a speed²), so that a missing one is the cross term of that square;
     /// not in a generalized force or a d/dt(∂L/∂q̇), where such products come otherwise.
-    pub squares_velocities: bool,
+    pub(crate) squares_velocities: bool,
     /// The true accelerations at each point, computed once (None where undefined).
-    pub accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
+    pub(crate) accelerations: std::cell::OnceCell<Vec<Option<Vec<f64>>>>,
     /// For an `equation` part whose reference has no accelerations: its residual (decided once).
-    pub condition: std::cell::OnceCell<Option<Id>>,
+    pub(crate) condition: std::cell::OnceCell<Option<Id>>,
     /// The reference answer's items, read once (one id per item; several per equilibrium).
-    pub reference: std::cell::OnceCell<Vec<Vec<Id>>>,
+    pub(crate) reference: std::cell::OnceCell<Vec<Vec<Id>>>,
     /// For a linearized part (`about`): where `system` was expanded.
-    pub expansion: Option<super::taylor::Expansion>,
+    pub(crate) expansion: Option<super::taylor::Expansion>,
     /// The answer being checked, for quoting the student's own terms in diagnoses.
-    pub quotes: Quotes,
+    pub(crate) quotes: Quotes,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.

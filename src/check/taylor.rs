@@ -15,7 +15,7 @@ pub const ORDER: u32 = 2;
 /// Where a linearized part's system was expanded: the point, one value per coordinate.
 #[derive(Clone, Debug)]
 pub struct Expansion {
-    pub point: Vec<Id>,
+    pub(crate) point: Vec<Id>,
 }
 
 /// The expansion point of `about` (coordinates not named expand about 0).

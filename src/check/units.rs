@@ -138,8 +138,8 @@ pub enum UnitError {
 /// converted, for the reading (`50 cm = 0.5 m`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Converted {
-    pub text: String,
-    pub notes: Vec<String>,
+    pub(crate) text: String,
+    pub(crate) notes: Vec<String>,
 }
 
 /// Converts each item of `input` (split at top-level commas) that ends in a bracketed unit

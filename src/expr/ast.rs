@@ -10,8 +10,8 @@ use super::lexer::Span;
 /// One node of the syntax tree.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ast {
-    pub kind: AstKind,
-    pub span: Span,
+    pub(crate) kind: AstKind,
+    pub(crate) span: Span,
 }
 
 /// The node kinds.

@@ -76,8 +76,8 @@ impl Tok {
 /// A token and where it is.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Token {
-    pub tok: Tok,
-    pub span: Span,
+    pub(crate) tok: Tok,
+    pub(crate) span: Span,
 }
 
 /// Splits `src` into tokens.

@@ -108,10 +108,10 @@ impl Clone for Memo {
 /// Per-node memo tables of the rewrite passes.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Caches {
-    pub expand: FxHashMap<Id, Id>,
-    pub trig: FxHashMap<Id, Id>,
-    pub roots: FxHashMap<Id, Id>,
-    pub roots_positive: Vec<Sym>,
+    pub(crate) expand: FxHashMap<Id, Id>,
+    pub(crate) trig: FxHashMap<Id, Id>,
+    pub(crate) roots: FxHashMap<Id, Id>,
+    pub(crate) roots_positive: Vec<Sym>,
 }
 
 impl Default for Pool {

@@ -16,8 +16,8 @@ use crate::expr::{Factored, Id};
 /// The constraint rows: A (m×n) and r (m).
 #[derive(Clone, Debug, Default)]
 pub struct ConstraintRows {
-    pub a: Vec<Vec<Id>>,
-    pub r: Vec<Id>,
+    pub(crate) a: Vec<Vec<Id>>,
+    pub(crate) r: Vec<Id>,
 }
 
 impl System {
@@ -186,9 +186,9 @@ pub enum ConstraintLevel {
 /// A constraint a state violates: its index (from 0), the level, and the residual there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Violation {
-    pub index: usize,
-    pub level: ConstraintLevel,
-    pub residual: f64,
+    pub(crate) index: usize,
+    pub(crate) level: ConstraintLevel,
+    pub(crate) residual: f64,
 }
 
 impl System {

@@ -25,9 +25,9 @@ pub struct Coordinate {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Domain {
     /// The value is greater than this.
-    pub lower: Option<Id>,
+    pub(crate) lower: Option<Id>,
     /// The value is less than this.
-    pub upper: Option<Id>,
+    pub(crate) upper: Option<Id>,
 }
 
 impl Domain {
@@ -44,14 +44,14 @@ pub struct Parameter {
     /// The name as typed (normalized), e.g. `m1`.
     pub name: String,
     /// Its symbol in the system's pool.
-    pub sym: Sym,
+    pub(crate) sym: Sym,
     /// Its physical dimension, when declared (the bank declares them).
     pub dimension: Option<Dimension>,
     /// Sampling range (positive).
     pub range: (f64, f64),
     /// Where the parameter can physically be: positive for a declared physical dimension,
     /// unless the problem says otherwise.
-    pub domain: Domain,
+    pub(crate) domain: Domain,
 }
 
 /// Default sampling range of a non-periodic coordinate.

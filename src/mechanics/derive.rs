@@ -14,11 +14,11 @@ pub struct CoordinateSteps {
     /// pᵢ = ∂L/∂qᵢ'.
     pub momentum: Id,
     /// d/dt pᵢ.
-    pub momentum_dt: Id,
+    pub(crate) momentum_dt: Id,
     /// ∂L/∂qᵢ.
     pub force: Id,
     /// Qᵢ (0 when there is none).
-    pub generalized_force: Id,
+    pub(crate) generalized_force: Id,
     /// Eᵢ, meaning Eᵢ = 0.
     pub equation: Id,
 }

@@ -12,9 +12,9 @@ use crate::expr::Id;
 #[derive(Clone, Copy, Debug)]
 pub struct VelocityParts {
     /// The part quadratic in the velocities.
-    pub l2: Id,
+    pub(crate) l2: Id,
     /// The part linear in the velocities (moving frames, magnetic fields); it drops out of h.
-    pub l1: Id,
+    pub(crate) l1: Id,
     /// The velocity-free part.
     pub l0: Id,
 }

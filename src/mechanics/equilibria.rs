@@ -62,9 +62,9 @@ pub struct Equilibria {
     pub points: Vec<(Vec<f64>, Stability)>,
     /// What each point is beyond a point (aligned with `points`): one of a continuum along
     /// its free directions, or degenerate (not harmonic).
-    pub shapes: Vec<Shape>,
+    pub(crate) shapes: Vec<Shape>,
     /// What the search covered (blocks searched on their own, starts in each).
-    pub coverage: Coverage,
+    pub(crate) coverage: Coverage,
     /// f vanishes on a whole region: equilibria are not isolated (e.g. the bead on the
     /// parabola at ω² = 2ga).
     pub continuum: bool,

@@ -25,18 +25,18 @@ const RESIDUAL_ZERO: f64 = 1e-8;
 #[derive(Clone, Debug)]
 pub(crate) struct Linear {
     /// The mass matrix M(q₀).
-    pub m: DMatrix<f64>,
+    pub(crate) m: DMatrix<f64>,
     /// The stiffness K = −∂f/∂q (with the constraint forces' curvature on a manifold).
-    pub k: DMatrix<f64>,
+    pub(crate) k: DMatrix<f64>,
     /// The velocity matrix C = −∂f/∂q' = G + D (gyroscopic and damping parts).
-    pub c: DMatrix<f64>,
+    pub(crate) c: DMatrix<f64>,
     /// The size of K's terms per unit mass (the ω² scale that rounding is measured against).
-    pub k_size: f64,
+    pub(crate) k_size: f64,
     /// The size of C's terms per unit mass (a rate scale).
-    pub c_size: f64,
+    pub(crate) c_size: f64,
     /// Columns: the coordinates' displacement for each reduced coordinate (identity when
     /// there are no constraints).
-    pub tangent: DMatrix<f64>,
+    pub(crate) tangent: DMatrix<f64>,
 }
 
 impl Linear {

@@ -42,8 +42,8 @@ pub(crate) struct Magnitudes {
 /// A value and its magnitude: `|computed − exact| ≲ ε · magnitude`, and magnitude ≥ |value|.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Sized {
-    pub value: f64,
-    pub magnitude: f64,
+    pub(crate) value: f64,
+    pub(crate) magnitude: f64,
 }
 
 impl Sized {

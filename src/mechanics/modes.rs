@@ -32,7 +32,7 @@ pub struct Mode {
 #[derive(Clone, Debug)]
 pub struct Modes {
     /// The point analysed, one value per coordinate.
-    pub point: Vec<f64>,
+    pub(crate) point: Vec<f64>,
     /// Unstable if anything grows, marginal with a zero mode, otherwise stable.
     pub stability: Stability,
     /// Angular frequencies ω of the undamped modes, ascending, with 0 for each free motion.

@@ -8,8 +8,8 @@ use crate::expr::{Id, Pool, Sym};
 /// A force `vector` applied at the point `at` (both 2 or 3 components, in the same frame).
 #[derive(Clone, Debug)]
 pub struct PointForce {
-    pub at: Vec<Id>,
-    pub vector: Vec<Id>,
+    pub(crate) at: Vec<Id>,
+    pub(crate) vector: Vec<Id>,
 }
 
 impl PointForce {

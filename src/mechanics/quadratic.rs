@@ -35,18 +35,18 @@ pub struct Damped {
 #[derive(Clone, Debug)]
 pub struct Spectrum {
     /// Undamped angular frequencies, ascending, with one 0 for each mode of zero frequency.
-    pub frequencies: Vec<f64>,
+    pub(crate) frequencies: Vec<f64>,
     /// Growth rates Re λ > 0, one per mode, ascending.
-    pub growth_rates: Vec<f64>,
+    pub(crate) growth_rates: Vec<f64>,
     /// Damped oscillations, by ascending frequency.
-    pub damped: Vec<Damped>,
+    pub(crate) damped: Vec<Damped>,
     /// Decay rates of the modes that decay without oscillating (overdamped), ascending.
-    pub decay_rates: Vec<f64>,
+    pub(crate) decay_rates: Vec<f64>,
     /// Directions along which a displacement is not restored (the null space of K), in the
     /// original coordinates, each normalized so its largest component is 1.
-    pub free_directions: Vec<Vec<f64>>,
+    pub(crate) free_directions: Vec<Vec<f64>>,
     /// Unstable if anything grows; marginal if some λ = 0; otherwise stable.
-    pub stability: Stability,
+    pub(crate) stability: Stability,
 }
 
 impl Spectrum {

@@ -34,11 +34,11 @@ pub enum Orientation {
 /// A rigid body: mass, centre-of-mass position, inertia and orientation.
 #[derive(Clone, Debug)]
 pub struct Rigid {
-    pub mass: Id,
+    pub(crate) mass: Id,
     /// The centre of mass (2 or 3 components).
-    pub position: Vec<Id>,
-    pub inertia: Inertia,
-    pub orientation: Orientation,
+    pub(crate) position: Vec<Id>,
+    pub(crate) inertia: Inertia,
+    pub(crate) orientation: Orientation,
 }
 
 /// A rigid body as it is stated, in a problem file's `[[bodies]]` (`kind = "rigid"`) or in the

@@ -93,14 +93,14 @@ impl SteadyError {
 pub struct Reduced {
     /// The Routhian system: the other coordinates, with L = R; the momenta are parameters
     /// named `p_<coordinate>`.
-    pub system: System,
+    pub(crate) system: System,
     /// The cyclic coordinates' names, in the order asked.
-    pub cyclic: Vec<String>,
+    pub(crate) cyclic: Vec<String>,
     /// The momenta's parameter names, `p_<coordinate>`.
     pub momenta: Vec<String>,
     /// Each cyclic velocity in terms of the reduced system (its coordinates, velocities and
     /// parameters, momenta included), in `system`'s pool.
-    pub rates: Vec<Id>,
+    pub(crate) rates: Vec<Id>,
 }
 
 impl System {

@@ -373,14 +373,14 @@ pub struct SymbolicModes {
     pub characteristic: Id,
     /// The characteristic polynomial as shown, common factors pulled out
     /// (print it with [`Pool::display_factored`](crate::expr::Pool::display_factored)).
-    pub characteristic_shown: Factored,
+    pub(crate) characteristic_shown: Factored,
     /// The symbol used for ω.
     pub omega: Sym,
     /// ω² in closed form where every root was found (the polynomial factors into pieces
     /// of degree ≤ 2 in ω²), ascending where comparable; empty otherwise.
     pub omega_squared: Vec<Id>,
     /// Each ω² as shown, common factors pulled out: (2 + √2)·g/l.
-    pub omega_squared_shown: Vec<Factored>,
+    pub(crate) omega_squared_shown: Vec<Factored>,
     /// Gyroscopic (antisymmetric velocity) terms entered the characteristic polynomial.
-    pub gyroscopic: bool,
+    pub(crate) gyroscopic: bool,
 }

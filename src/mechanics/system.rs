@@ -26,7 +26,7 @@ pub enum ConstraintKind {
 /// A constraint `expr = 0`.
 #[derive(Clone, Debug)]
 pub struct Constraint {
-    pub expr: Id,
+    pub(crate) expr: Id,
     pub kind: ConstraintKind,
 }
 
@@ -48,7 +48,7 @@ pub struct System {
     pub bodies: Vec<Body>,
     /// Named quantities of the parameters the problem defines (`theta0`, cos θ₀ = g/(R ω²)):
     /// an answer may use the name, read as its value.
-    pub definitions: Vec<(String, Id)>,
+    pub(crate) definitions: Vec<(String, Id)>,
 }
 
 /// Sampling range of velocities and accelerations.

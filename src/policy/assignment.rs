@@ -44,7 +44,7 @@ pub struct Assignment {
     /// How answers are scored and which attempt counts.
     pub policy: Policy,
     /// The problems set, in file order.
-    pub problems: Vec<ProblemEntry>,
+    pub(crate) problems: Vec<ProblemEntry>,
 }
 
 /// One problem of an assignment.
@@ -55,24 +55,24 @@ pub struct ProblemEntry {
     /// The parts set (`None`: every part of the problem).
     pub parts: Option<Vec<String>>,
     /// Points per part that replace the bank's.
-    pub points: Vec<(String, f64)>,
+    pub(crate) points: Vec<(String, f64)>,
     /// Where the entry is (1-based line and column), for errors found against the bank.
-    pub line: usize,
+    pub(crate) line: usize,
     /// The column of [`ProblemEntry::line`].
-    pub column: usize,
+    pub(crate) column: usize,
 }
 
 /// Why an assignment file is refused: where (1-based line and column), what, and how to fix it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AssignmentError {
     /// 1-based line.
-    pub line: usize,
+    pub(crate) line: usize,
     /// 1-based column (in characters).
-    pub column: usize,
+    pub(crate) column: usize,
     /// A stable code, e.g. `unknown-code`.
-    pub code: &'static str,
+    pub(crate) code: &'static str,
     /// What is wrong.
-    pub message: String,
+    pub(crate) message: String,
     /// How to fix it, in one line.
     pub help: String,
 }

@@ -48,12 +48,12 @@ pub struct Policy {
     /// Which attempt counts.
     pub attempts: Attempts,
     /// The fraction of a part's points lost per attempt after the first (0 ≤ p ≤ 1).
-    pub penalty: f64,
+    pub(crate) penalty: f64,
     /// The credit, as a fraction of the points, of a wrong answer that follows from the
     /// student's own earlier wrong answer; `None`: no follow-through.
     pub follow_through: Option<f64>,
     /// Partial credit per diagnosis code, as a fraction of the points, sorted by code.
-    pub credit: Vec<(Code, f64)>,
+    pub(crate) credit: Vec<(Code, f64)>,
 }
 
 impl Policy {

@@ -19,13 +19,13 @@ pub const MAX_VALUES: usize = 10_000;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Varied {
     /// The parameter's name (normalised, as in the system).
-    pub name: String,
+    pub(crate) name: String,
     /// The values it may take, in increasing order (or as listed).
-    pub values: Vec<f64>,
+    pub(crate) values: Vec<f64>,
     /// The unit shown after the number (`kg`, `m/s^2`); empty for none.
-    pub unit: String,
+    pub(crate) unit: String,
     /// Line of the declaration in its file.
-    pub line: usize,
+    pub(crate) line: usize,
 }
 
 impl Varied {

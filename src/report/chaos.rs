@@ -122,9 +122,9 @@ impl ChaosError {
 /// One orbit of the section: q₂ at its start and its crossings (q₂, q̇₂).
 #[derive(Clone, Debug, Serialize)]
 pub struct SectionOrbitReport {
-    pub q2_start: f64,
+    pub(crate) q2_start: f64,
     pub points: Vec<(f64, f64)>,
-    pub t: f64,
+    pub(crate) t: f64,
 }
 
 /// The Poincaré section q₁ = 0, q̇₁ > 0 at the initial energy.
@@ -136,7 +136,7 @@ pub struct SectionReport {
     pub q2: String,
     pub orbits: Vec<SectionOrbitReport>,
     /// Values of q₂ refused, with why.
-    pub refused: Vec<(f64, String)>,
+    pub(crate) refused: Vec<(f64, String)>,
 }
 
 /// Everything `chaos` shows.
@@ -144,35 +144,35 @@ pub struct SectionReport {
 #[non_exhaustive]
 pub struct ChaosReport {
     /// The estimate at t_end.
-    pub exponent: f64,
-    pub delta: f64,
-    pub tau: f64,
-    pub t_end: f64,
-    pub rtol: f64,
-    pub atol: f64,
+    pub(crate) exponent: f64,
+    pub(crate) delta: f64,
+    pub(crate) tau: f64,
+    pub(crate) t_end: f64,
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
     /// The unit of t when the system declares one (a face sets it): λ is then in its inverse.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time_unit: Option<String>,
     /// The running estimate at a few times (t, λ).
-    pub checkpoints: Vec<(f64, f64)>,
+    pub(crate) checkpoints: Vec<(f64, f64)>,
     /// Smallest and largest running estimate over the last third of the run.
-    pub last_third: (f64, f64),
+    pub(crate) last_third: (f64, f64),
     /// λ(t_end) / λ(t_end / 3): about 1 when the estimate has settled, about 0.4 when it
     /// falls like ln(t)/t.
-    pub ratio_to_a_third: f64,
+    pub(crate) ratio_to_a_third: f64,
     /// The running estimate after every renormalisation (t, λ).
     pub running: Vec<(f64, f64)>,
     /// The separation of the two trajectories never renormalised (t, |Δy|).
     pub separation: Vec<(f64, f64)>,
     /// Accepted steps of the pair (the estimate's segments and the separation's run).
-    pub steps: usize,
+    pub(crate) steps: usize,
     /// Evaluations of the system's F (two per evaluation of the pair).
-    pub rhs_evals: usize,
+    pub(crate) rhs_evals: usize,
     /// The names of y's entries.
-    pub names: Vec<String>,
+    pub(crate) names: Vec<String>,
     pub section: Option<SectionReport>,
     /// What the estimate suggests.
-    pub verdict: Verdict,
+    pub(crate) verdict: Verdict,
 }
 
 /// The checks that need no system.

@@ -11,10 +11,10 @@ use crate::mechanics::MechError;
 
 /// A start off a constraint: its number (from 1), text, level and residual.
 pub(super) struct Off {
-    pub index: usize,
-    pub text: String,
-    pub level: &'static str,
-    pub residual: f64,
+    pub(crate) index: usize,
+    pub(crate) text: String,
+    pub(crate) level: &'static str,
+    pub(crate) residual: f64,
 }
 
 /// The holonomic constraints compiled at fixed parameter values.

@@ -22,116 +22,116 @@ pub struct DerivationReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at: Option<StateSolution>,
     /// The equations with multipliers λ, when there are constraints.
-    pub augmented_equations: Option<Vec<Formula>>,
+    pub(crate) augmented_equations: Option<Vec<Formula>>,
     /// The momentum of each cyclic coordinate.
-    pub conserved_momenta: Vec<ConservedMomentum>,
+    pub(crate) conserved_momenta: Vec<ConservedMomentum>,
     /// The constraints, each `= 0`.
-    pub constraints: Vec<ConstraintLine>,
+    pub(crate) constraints: Vec<ConstraintLine>,
     /// Coordinate names.
-    pub coordinates: Vec<String>,
+    pub(crate) coordinates: Vec<String>,
     /// Names of the cyclic coordinates.
-    pub cyclic: Vec<String>,
+    pub(crate) cyclic: Vec<String>,
     /// Whether h is conserved.
-    pub energy_conserved: bool,
+    pub(crate) energy_conserved: bool,
     /// h = Σ q̇ ∂L/∂q̇ − L.
-    pub energy_function: Formula,
+    pub(crate) energy_function: Formula,
     /// Whether h = T + V; `null` when only L was given (T and V are not known, so it cannot
     /// be told from L alone).
-    pub energy_is_total: Option<bool>,
+    pub(crate) energy_is_total: Option<bool>,
     /// L₂, L₁, L₀: the parts of L of degree 2, 1 and 0 in the velocities (h = L₂ − L₀);
     /// `null` when L is not quadratic in the velocities.
-    pub energy_parts: Option<EnergyParts>,
+    pub(crate) energy_parts: Option<EnergyParts>,
     /// The Euler–Lagrange expressions, each `= 0`.
     pub equations: Vec<Formula>,
     /// f in M q̈ = f.
-    pub forcing: Vec<Formula>,
+    pub(crate) forcing: Vec<Formula>,
     /// ∂L/∂q for each coordinate.
-    pub generalized_forces: Vec<Formula>,
+    pub(crate) generalized_forces: Vec<Formula>,
     /// L.
-    pub lagrangian: Formula,
+    pub(crate) lagrangian: Formula,
     /// M in M q̈ = f.
-    pub mass_matrix: Vec<Vec<Formula>>,
+    pub(crate) mass_matrix: Vec<Vec<Formula>>,
     /// p = ∂L/∂q̇ for each coordinate.
-    pub momenta: Vec<Formula>,
+    pub(crate) momenta: Vec<Formula>,
     /// d/dt p for each coordinate.
-    pub momenta_dt: Vec<Formula>,
+    pub(crate) momenta_dt: Vec<Formula>,
     /// The multipliers in closed form; `None` without constraints or when the system is too
     /// large for a closed form.
     pub multipliers: Option<Vec<Formula>>,
     /// Parameter names.
-    pub parameters: Vec<String>,
+    pub(crate) parameters: Vec<String>,
     /// How the text shows each coordinate: (q, q̇).
     #[serde(skip)]
-    pub coordinate_labels: Vec<(Formula, Formula)>,
+    pub(crate) coordinate_labels: Vec<(Formula, Formula)>,
     /// How the text shows each parameter.
     #[serde(skip)]
-    pub parameter_labels: Vec<Formula>,
+    pub(crate) parameter_labels: Vec<Formula>,
     /// The non-conservative force Q of each coordinate, when it is not zero.
     #[serde(skip)]
-    pub applied_forces: Vec<Option<Formula>>,
+    pub(crate) applied_forces: Vec<Option<Formula>>,
     /// The equations with common factors taken out, as the text shows them.
     #[serde(skip)]
-    pub factored_equations: Vec<Formula>,
+    pub(crate) factored_equations: Vec<Formula>,
     /// T + V when T and V are known, shown when it differs from h.
     #[serde(skip)]
-    pub total_energy: Option<Formula>,
+    pub(crate) total_energy: Option<Formula>,
     /// Why h is or is not conserved.
     #[serde(skip)]
-    pub conservation: Conservation,
+    pub(crate) conservation: Conservation,
     /// T is known and not a quadratic form in the velocities (why h ≠ T + V).
     #[serde(skip)]
-    pub kinetic_not_quadratic: bool,
+    pub(crate) kinetic_not_quadratic: bool,
 }
 
 /// The accelerations and multipliers at a state.
 #[derive(Clone, Debug, Serialize)]
 pub struct StateSolution {
     /// Time at the state.
-    pub t: f64,
+    pub(crate) t: f64,
     /// The coordinates there, in coordinate order.
-    pub positions: Vec<f64>,
+    pub(crate) positions: Vec<f64>,
     /// The velocities there.
-    pub velocities: Vec<f64>,
+    pub(crate) velocities: Vec<f64>,
     /// The accelerations q̈ there.
     pub accelerations: Vec<f64>,
     /// λ₁, λ₂, … there (the constraint forces); empty without constraints.
     pub multipliers: Vec<f64>,
     /// How the text shows each q̈.
     #[serde(skip)]
-    pub acceleration_labels: Vec<Formula>,
+    pub(crate) acceleration_labels: Vec<Formula>,
 }
 
 /// L split by degree in the velocities.
 #[derive(Clone, Debug, Serialize)]
 pub struct EnergyParts {
     /// The velocity-free part L₀.
-    pub l0: Formula,
+    pub(crate) l0: Formula,
     /// The part linear in the velocities L₁ (it does not enter h).
-    pub l1: Formula,
+    pub(crate) l1: Formula,
     /// The quadratic part L₂.
-    pub l2: Formula,
+    pub(crate) l2: Formula,
 }
 
 /// A cyclic coordinate and its conserved momentum.
 #[derive(Clone, Debug, Serialize)]
 pub struct ConservedMomentum {
     /// The coordinate's name.
-    pub coordinate: String,
+    pub(crate) coordinate: String,
     /// Its momentum.
-    pub momentum: Formula,
+    pub(crate) momentum: Formula,
     /// The coordinate's position in the system, for its label.
     #[serde(skip)]
-    pub index: usize,
+    pub(crate) index: usize,
 }
 
 /// A constraint `constraint = 0`.
 #[derive(Clone, Debug, Serialize)]
 pub struct ConstraintLine {
     /// The constraint expression.
-    pub constraint: Formula,
+    pub(crate) constraint: Formula,
     /// Holonomic or nonholonomic (serialized in lower case).
     #[serde(serialize_with = "lowercase_kind")]
-    pub kind: ConstraintKind,
+    pub(crate) kind: ConstraintKind,
 }
 
 fn lowercase_kind<S: Serializer>(k: &ConstraintKind, s: S) -> Result<S::Ok, S::Error> {

@@ -62,9 +62,9 @@ pub enum FlipMapError {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Axis {
     pub name: String,
-    pub start: f64,
-    pub end: f64,
-    pub count: usize,
+    pub(crate) start: f64,
+    pub(crate) end: f64,
+    pub(crate) count: usize,
 }
 
 impl Axis {
@@ -402,19 +402,19 @@ fn limits(opts: &FlipMapOptions, axes: &[Axis]) -> Result<(usize, f64), FlipMapE
 #[derive(Clone, Debug, Serialize)]
 #[non_exhaustive]
 pub struct FlipSummary {
-    pub axes: Vec<Axis>,
+    pub(crate) axes: Vec<Axis>,
     /// The values every cell shares (the coordinates and velocities not on an axis).
-    pub others: Vec<(String, f64)>,
-    pub cells: usize,
-    pub t_end: f64,
-    pub dt: f64,
-    pub watched: Vec<String>,
-    pub flipped: usize,
-    pub starts_over: usize,
-    pub did_not_flip: usize,
-    pub singular: usize,
-    pub diverged: usize,
-    pub flipped_fraction: f64,
+    pub(crate) others: Vec<(String, f64)>,
+    pub(crate) cells: usize,
+    pub(crate) t_end: f64,
+    pub(crate) dt: f64,
+    pub(crate) watched: Vec<String>,
+    pub(crate) flipped: usize,
+    pub(crate) starts_over: usize,
+    pub(crate) did_not_flip: usize,
+    pub(crate) singular: usize,
+    pub(crate) diverged: usize,
+    pub(crate) flipped_fraction: f64,
     pub trajectory_steps: u64,
 }
 

@@ -118,11 +118,11 @@ pub fn assignments(text: &str) -> Result<Vec<(String, String)>, BadAssignment> {
 pub struct ModesReport {
     /// det(K − ω²M), when closed forms were asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub characteristic_polynomial: Option<Formula>,
+    pub(crate) characteristic_polynomial: Option<Formula>,
     /// How many holonomic constraints the modes were linearized on.
-    pub constraints: usize,
+    pub(crate) constraints: usize,
     /// Every point of the search range is an equilibrium.
-    pub continuum: bool,
+    pub(crate) continuum: bool,
     /// The equilibria analysed.
     pub equilibria: Vec<EquilibriumModes>,
     /// What the search covered, when the equilibria were searched for (not given).
@@ -133,13 +133,13 @@ pub struct ModesReport {
     pub omega_squared: Option<Vec<Formula>>,
     /// The Routhian and the cyclic velocities, for steady motions.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub steady: Option<super::steady::SteadyNote>,
+    pub(crate) steady: Option<super::steady::SteadyNote>,
     /// How the text shows each coordinate.
     #[serde(skip)]
-    pub coordinate_labels: Vec<Formula>,
+    pub(crate) coordinate_labels: Vec<Formula>,
     /// Gyroscopic terms entered the characteristic polynomial: det(K − ω²M − iωC).
     #[serde(skip)]
-    pub gyroscopic_closed_form: bool,
+    pub(crate) gyroscopic_closed_form: bool,
 }
 
 /// What the equilibrium search covered: the list is a search's, not a proof.
@@ -148,44 +148,44 @@ pub struct SearchCoverage {
     /// Blocks of coordinates whose equations at rest decouple, each searched on its own.
     pub blocks: Vec<Vec<String>>,
     /// Newton starts in each block.
-    pub starts: Vec<usize>,
+    pub(crate) starts: Vec<usize>,
 }
 
 /// A damped oscillation.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct DampedMode {
     /// The decay rate γ = −Re λ.
-    pub decay_rate: f64,
+    pub(crate) decay_rate: f64,
     /// The damping ratio ζ = γ/|λ|.
-    pub damping_ratio: f64,
+    pub(crate) damping_ratio: f64,
     /// The damped angular frequency ω_d = Im λ.
-    pub frequency: f64,
+    pub(crate) frequency: f64,
 }
 
 /// One equilibrium and its small oscillations.
 #[derive(Clone, Debug, Serialize)]
 pub struct EquilibriumModes {
     /// Damped oscillations (with damping terms).
-    pub damped: Vec<DampedMode>,
+    pub(crate) damped: Vec<DampedMode>,
     /// Symmetric velocity terms (friction, drag) survive.
-    pub damping: bool,
+    pub(crate) damping: bool,
     /// Decay rates of the modes that decay without oscillating.
-    pub decay_rates: Vec<f64>,
+    pub(crate) decay_rates: Vec<f64>,
     /// Directions along which a displacement is not restored (ω = 0), largest component 1.
-    pub free_directions: Vec<Vec<f64>>,
+    pub(crate) free_directions: Vec<Vec<f64>>,
     /// Undamped oscillation frequencies ω, 0 for each free motion.
     pub frequencies: Vec<f64>,
     /// Growth rates of unstable directions.
     pub growth_rates: Vec<f64>,
     /// Gyroscopic (antisymmetric velocity) terms survive: rotating frames, magnetic fields.
-    pub gyroscopic: bool,
+    pub(crate) gyroscopic: bool,
     /// The mode shapes, one per mode.
-    pub modes: Vec<Vec<f64>>,
+    pub(crate) modes: Vec<Vec<f64>>,
     /// ω² of each mode.
     pub omega_squared: Vec<f64>,
     /// The equilibrium, by coordinate name (a coordinate listed in `free` alone is
     /// arbitrary; its value here is the representative one).
-    pub point: BTreeMap<String, f64>,
+    pub(crate) point: BTreeMap<String, f64>,
     /// For a steady motion: the velocity of each cyclic coordinate, `phi'` and its value.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rates: Vec<(String, f64)>,
@@ -199,13 +199,13 @@ pub struct EquilibriumModes {
     #[serde(serialize_with = "stability_name")]
     pub stability: Stability,
     /// Whether it is stable.
-    pub stable: bool,
+    pub(crate) stable: bool,
     /// The equilibrium in coordinate order.
     #[serde(skip)]
     pub coordinates: Vec<f64>,
     /// A description of each mode ("in phase, θ₂/θ₁ = 1.414214"), in Unicode.
     #[serde(skip)]
-    pub descriptions: Vec<String>,
+    pub(crate) descriptions: Vec<String>,
 }
 
 fn stability_name<S: Serializer>(s: &Stability, ser: S) -> Result<S::Ok, S::Error> {

@@ -16,20 +16,20 @@ use crate::problem::variant::fill;
 #[derive(Clone, Debug, Serialize)]
 pub struct ProblemList {
     /// The problems, in bank order.
-    pub problems: Vec<ListedProblem>,
+    pub(crate) problems: Vec<ListedProblem>,
     /// Why each broken file failed to load.
-    pub failures: Vec<String>,
+    pub(crate) failures: Vec<String>,
 }
 
 /// A problem as listed.
 #[derive(Clone, Debug, Serialize)]
 pub struct ListedProblem {
     /// Its id.
-    pub id: String,
+    pub(crate) id: String,
     /// Its title.
-    pub title: String,
+    pub(crate) title: String,
     /// The ids of its parts.
-    pub parts: Vec<String>,
+    pub(crate) parts: Vec<String>,
 }
 
 /// The list of `bank`.
@@ -89,53 +89,53 @@ pub struct ProblemSheet {
     /// Its id.
     pub id: String,
     /// Its title.
-    pub title: String,
+    pub(crate) title: String,
     /// Where it comes from (empty: not given).
-    pub source: String,
+    pub(crate) source: String,
     /// The statement, with inline math made readable on a terminal.
     pub statement: String,
     /// The coordinates, in Unicode.
-    pub coordinates: Vec<String>,
+    pub(crate) coordinates: Vec<String>,
     /// The parameters in Unicode, with their dimensions when known.
-    pub parameters: Vec<String>,
+    pub(crate) parameters: Vec<String>,
     /// The stated assumptions.
-    pub assumptions: Vec<String>,
+    pub(crate) assumptions: Vec<String>,
     /// The named quantities the problem defines, each `θ₀ = acos(g/(R·ω²))` in Unicode.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub definitions: Vec<String>,
+    pub(crate) definitions: Vec<String>,
     /// The parts.
-    pub parts: Vec<SheetPart>,
+    pub(crate) parts: Vec<SheetPart>,
     /// The parameters that vary from student to student (empty: none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub varies: Vec<String>,
+    pub(crate) varies: Vec<String>,
     /// The student this sheet is for (`--student`), with their numbers.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub student: Option<String>,
+    pub(crate) student: Option<String>,
     /// The student's numbers, each `m = 1.5 kg`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub numbers: Vec<String>,
     /// The course seed the student's numbers come from (`--seed`; only when the problem's
     /// numbers vary), which the sheet's `lagrange check` line repeats.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
 }
 
 /// A part of a problem sheet.
 #[derive(Clone, Debug, Serialize)]
 pub struct SheetPart {
     /// Its id.
-    pub id: String,
+    pub(crate) id: String,
     /// What kind of answer it asks for.
-    pub kind: String,
+    pub(crate) kind: String,
     /// Its weight.
-    pub points: f64,
+    pub(crate) points: f64,
     /// The question, with inline math made readable on a terminal.
-    pub prompt: String,
+    pub(crate) prompt: String,
     /// The reference answers, when asked for.
-    pub answers: Option<Vec<String>>,
+    pub(crate) answers: Option<Vec<String>>,
     /// The answer may use the student's numbers.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub numbers: bool,
+    pub(crate) numbers: bool,
 }
 
 /// A part's prompt followed by how its answer is written, where that is not plain (a numeric
@@ -422,23 +422,23 @@ fn braces(text: &str) -> String {
 #[non_exhaustive]
 pub struct Verification {
     /// One entry per loaded problem, in bank order.
-    pub problems: Vec<VerifiedProblem>,
+    pub(crate) problems: Vec<VerifiedProblem>,
     /// Why each broken file failed to load.
-    pub failures: Vec<String>,
+    pub(crate) failures: Vec<String>,
 }
 
 /// One problem's verification.
 #[derive(Clone, Debug, Serialize)]
 pub struct VerifiedProblem {
     /// Its id.
-    pub id: String,
+    pub(crate) id: String,
     /// How many parts it has.
-    pub parts: usize,
+    pub(crate) parts: usize,
     /// What is wrong with it (empty: every part proved).
-    pub findings: Vec<String>,
+    pub(crate) findings: Vec<String>,
     /// What verification could not decide and so did not check (not failures).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub notes: Vec<String>,
+    pub(crate) notes: Vec<String>,
 }
 
 /// Verifies every problem of `bank`.

@@ -35,15 +35,15 @@ pub struct ReadReport {
     /// `expression`, `equation`, `list of n` or `system of n`.
     pub kind: String,
     /// Names read as coordinates, sorted.
-    pub coordinates: Vec<String>,
+    pub(crate) coordinates: Vec<String>,
     /// Names read as parameters, sorted.
-    pub parameters: Vec<String>,
+    pub(crate) parameters: Vec<String>,
     /// The dimension, when dimensions were given.
     pub dimension: Option<DimensionFinding>,
     /// The partial derivatives of each expression, when asked for.
     pub partial: Option<Partial>,
     /// The time derivatives of each expression, when asked for.
-    pub time_derivatives: Option<Vec<Formula>>,
+    pub(crate) time_derivatives: Option<Vec<Formula>>,
 }
 
 /// The dimension of an input.

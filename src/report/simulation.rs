@@ -67,8 +67,8 @@ impl Serialize for State {
 /// The state at one asked time.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TimedState {
-    pub t: f64,
-    pub state: State,
+    pub(crate) t: f64,
+    pub(crate) state: State,
 }
 
 /// Everything `simulate` shows.
@@ -79,25 +79,25 @@ pub struct SimulationReport {
     pub start: State,
     /// The parameter values the motion used (those of its equations, in the system's order).
     pub params: State,
-    pub method: Method,
+    pub(crate) method: Method,
     /// Accepted steps.
-    pub steps: usize,
-    pub rejected: usize,
-    pub rhs_evals: usize,
-    pub h_start: f64,
-    pub h_end: f64,
+    pub(crate) steps: usize,
+    pub(crate) rejected: usize,
+    pub(crate) rhs_evals: usize,
+    pub(crate) h_start: f64,
+    pub(crate) h_end: f64,
     /// max |h(t) − h(0)| / |h(0)| over the even grid (absolute when h(0) = 0).
-    pub max_rel_energy_error: f64,
-    pub reports: Vec<TimedState>,
+    pub(crate) max_rel_energy_error: f64,
+    pub(crate) reports: Vec<TimedState>,
     #[serde(rename = "final")]
-    pub final_state: State,
+    pub(crate) final_state: State,
     /// Whether h is expected to be constant (no explicit t, no forces doing work): a JSON
     /// reader judges `max_rel_energy_error` by it.
     #[serde(rename = "h_expected_constant")]
-    pub h_conserved: bool,
+    pub(crate) h_conserved: bool,
     /// The largest |f(q, t)| of the holonomic constraints over the grid (None without any).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub constraint_drift: Option<f64>,
+    pub(crate) constraint_drift: Option<f64>,
     /// The end time.
     #[serde(skip)]
     pub t_end: f64,

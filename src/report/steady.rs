@@ -15,11 +15,11 @@ use crate::mechanics::steady::SteadyError;
 #[derive(Clone, Debug, Serialize)]
 pub struct SteadyNote {
     /// The fixed momenta, `p_phi = value`, as given.
-    pub momenta: Vec<(String, String)>,
+    pub(crate) momenta: Vec<(String, String)>,
     /// The Routhian R = L − Σ p φ', the Lagrangian of the coordinates that stay put.
-    pub routhian: Formula,
+    pub(crate) routhian: Formula,
     /// Each cyclic velocity at the fixed momenta, `phi'` and its expression.
-    pub rates: Vec<(String, Formula)>,
+    pub(crate) rates: Vec<(String, Formula)>,
     /// The same expressions, in the reduced system's pool.
     #[serde(skip)]
     rate_ids: Vec<Id>,

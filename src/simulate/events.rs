@@ -24,8 +24,8 @@ pub enum Direction {
 /// One located crossing: its time and the state there.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Crossing {
-    pub t: f64,
-    pub y: Vec<f64>,
+    pub(crate) t: f64,
+    pub(crate) y: Vec<f64>,
 }
 
 /// Every crossing of g = 0 in `direction` along `traj`, at most `max` of them, in time order.

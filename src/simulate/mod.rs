@@ -152,13 +152,13 @@ impl<F: FnMut(f64, &[f64], &mut [f64])> Ode for FnOde<F> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerances {
     /// Relative tolerance.
-    pub rtol: f64,
+    pub(crate) rtol: f64,
     /// Absolute tolerance.
-    pub atol: f64,
+    pub(crate) atol: f64,
     /// The largest step (∞ for none).
-    pub max_step: f64,
+    pub(crate) max_step: f64,
     /// The largest number of steps (accepted and rejected).
-    pub max_steps: usize,
+    pub(crate) max_steps: usize,
     /// DOP853's 7th-degree dense output (3 more evaluations per step); without it the
     /// trajectory interpolates each step by a cubic Hermite polynomial (as SciPy without
     /// `dense_output`: 12 evaluations per step).

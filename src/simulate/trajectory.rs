@@ -60,13 +60,13 @@ impl Dense {
 #[derive(Clone, Debug)]
 pub struct Trajectory {
     /// The method used.
-    pub method: Method,
+    pub(crate) method: Method,
     /// Work counts.
     pub stats: Stats,
     /// Start time.
     pub t0: f64,
     /// End time (reached exactly).
-    pub t_end: f64,
+    pub(crate) t_end: f64,
     /// The initial state y(t0).
     pub y0: Vec<f64>,
     /// The final state y(t_end).

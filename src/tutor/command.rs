@@ -65,13 +65,13 @@ pub enum Arg {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CommandInfo {
     /// The name without the colon, e.g. `open`.
-    pub name: &'static str,
+    pub(crate) name: &'static str,
     /// The usage line, e.g. `:open ID`.
     pub usage: &'static str,
     /// What it does.
     pub summary: &'static str,
     /// Its argument.
-    pub arg: Arg,
+    pub(crate) arg: Arg,
 }
 
 const fn info(

@@ -24,9 +24,9 @@ use crate::problem::{Part, PartKind, Problem, Quantity};
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Earlier {
     /// The id of the part the answer was given to.
-    pub part: String,
+    pub(crate) part: String,
     /// The answer as typed.
-    pub answer: String,
+    pub(crate) answer: String,
 }
 
 impl Earlier {

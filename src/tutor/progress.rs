@@ -41,7 +41,7 @@ pub struct PartProgress {
     /// Answered correctly at least once.
     pub solved: bool,
     /// Hints shown.
-    pub hints_used: u32,
+    pub(crate) hints_used: u32,
     /// The reference answer was shown (`:solution`).
     pub revealed: bool,
     /// The latest checked answers as typed, oldest first (at most [`KEPT_ANSWERS`]).
@@ -60,7 +60,7 @@ impl PartProgress {
 #[serde(default)]
 pub struct ProblemProgress {
     /// The parts attempted, hinted or revealed, by id.
-    pub parts: BTreeMap<String, PartProgress>,
+    pub(crate) parts: BTreeMap<String, PartProgress>,
     /// The seed of the numbers being practised (`:variant`), for a problem whose numbers
     /// vary; absent until the student asks for numbers.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -71,7 +71,7 @@ pub struct ProblemProgress {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Progress {
     /// The format version ([`PROGRESS_VERSION`]).
-    pub version: u32,
+    pub(crate) version: u32,
     /// A number drawn once for this learner's progress file (by the face that keeps it) and
     /// kept in it: where `:variant` starts each problem's sequence of numbers, so that two
     /// learners practise different numbers and one learner the same ones, given the file.

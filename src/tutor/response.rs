@@ -117,9 +117,9 @@ pub struct HintReply {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SolutionReply {
     /// The problem id.
-    pub problem: String,
+    pub(crate) problem: String,
     /// The part id.
-    pub part: String,
+    pub(crate) part: String,
     /// The answer as a student would type it.
     pub answer: String,
     /// The answer as read, in Unicode (empty if it cannot be read).
@@ -133,7 +133,7 @@ pub struct SolutionReply {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct WorkedStep {
     /// The step id (as in the tutor).
-    pub step: String,
+    pub(crate) step: String,
     /// The question.
     pub prompt: String,
     /// The result, as a student would type it.
@@ -268,7 +268,7 @@ pub struct ErrorReply {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StepPrompt {
     /// The problem id.
-    pub problem: String,
+    pub(crate) problem: String,
     /// The step id (`kinetic`, `momentum:theta`, `eom:theta`, …; stable).
     pub step: String,
     /// Its 1-based number in the ladder.
@@ -296,7 +296,7 @@ pub struct StepVerdictReply {
     /// Its 1-based number in the ladder.
     pub number: usize,
     /// How many steps the ladder has.
-    pub total: usize,
+    pub(crate) total: usize,
     /// Checked attempts at this step in this session, this one included.
     pub attempts: u32,
     /// On a correct answer, the step now asked (`Some(None)` after the last); `None` otherwise.
@@ -330,7 +330,7 @@ impl Serialize for StepVerdictReply {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StepSolutionReply {
     /// The problem id.
-    pub problem: String,
+    pub(crate) problem: String,
     /// The step revealed.
     pub step: String,
     /// Its 1-based number in the ladder.

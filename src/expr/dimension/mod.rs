@@ -17,10 +17,10 @@ use super::pool::Pool;
 /// Exponents of M, L, T and Q (electric charge).
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, Default, PartialOrd, Ord)]
 pub struct Dimension {
-    pub m: Rational32,
-    pub l: Rational32,
-    pub t: Rational32,
-    pub q: Rational32,
+    pub(crate) m: Rational32,
+    pub(crate) l: Rational32,
+    pub(crate) t: Rational32,
+    pub(crate) q: Rational32,
 }
 
 impl Dimension {

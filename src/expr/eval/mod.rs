@@ -24,14 +24,14 @@ mod lanes;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("undefined at this point")]
 pub struct Undefined {
-    pub node: Id,
+    pub(crate) node: Id,
 }
 
 /// A variable the program was not told about.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("`{name}` has no value")]
 pub struct Unbound {
-    pub name: String,
+    pub(crate) name: String,
 }
 
 #[derive(Clone, Copy, Debug)]

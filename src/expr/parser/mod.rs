@@ -32,7 +32,7 @@ use super::lexer::{Span, Tok, Token, lex};
 /// an open context (`x'` makes `x` a coordinate).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parsed {
-    pub statement: Statement,
+    pub(crate) statement: Statement,
     pub implied_coordinates: BTreeSet<String>,
 }
 

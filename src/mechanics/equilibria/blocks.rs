@@ -21,9 +21,9 @@ pub(super) const MAX_PRODUCT: usize = 4096;
 pub struct Coverage {
     /// The blocks of coordinates (indices) whose equations at rest decouple, each searched
     /// on its own; one block holding every coordinate when nothing decouples.
-    pub blocks: Vec<Vec<usize>>,
+    pub(crate) blocks: Vec<Vec<usize>>,
     /// Newton starts in each block (a grid plus seeded random points over its ranges).
-    pub starts: Vec<usize>,
+    pub(crate) starts: Vec<usize>,
 }
 
 impl System {

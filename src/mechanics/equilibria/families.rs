@@ -24,15 +24,15 @@ pub struct Shape {
     /// Directions along which the equilibrium is one of a continuum (every force stays
     /// zero), each scaled so that its largest entry is 1: (1, 0) for a cyclic x, (1, 1, 1)
     /// for a chain's translation. Empty for an isolated equilibrium.
-    pub free: Vec<Vec<f64>>,
+    pub(crate) free: Vec<Vec<f64>>,
     /// K has a zero eigenvalue along a direction that is not free: the restoring force is
     /// not linear in the displacement (V = x⁴), so the small oscillations there are not
     /// harmonic and linear analysis cannot decide stability.
-    pub degenerate: bool,
+    pub(crate) degenerate: bool,
     /// The coordinates whose velocities lose their inertia here (the mass matrix is
     /// singular: the spherical pendulum's φ at θ = 0, a longitude at a pole). The chart is
     /// singular, not the physics; small oscillations need coordinates regular here.
-    pub singular_chart: Vec<usize>,
+    pub(crate) singular_chart: Vec<usize>,
 }
 
 impl Shape {

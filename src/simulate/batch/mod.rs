@@ -81,7 +81,7 @@ pub struct FlipRun {
     /// One per start, in the order of the starts.
     pub outcomes: Vec<Outcome>,
     /// RK4 steps taken, summed over the trajectories.
-    pub steps: u64,
+    pub(crate) steps: u64,
 }
 
 /// Integrates every start (phase points y = (q, q'), concatenated in `starts`) with RK4 at

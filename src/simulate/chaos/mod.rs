@@ -79,13 +79,13 @@ pub struct Lyapunov {
     /// The estimate at t_end (s⁻¹ when t is in seconds).
     pub exponent: f64,
     /// (t, estimate at t) after every renormalisation.
-    pub running: Vec<(f64, f64)>,
+    pub(crate) running: Vec<(f64, f64)>,
     /// The work of all segments together (of the pair: two evaluations of F per evaluation).
-    pub stats: Stats,
+    pub(crate) stats: Stats,
     /// The reference motion at every renormalisation: (t, |y|, |q'|), so that a reader can
     /// tell a positive exponent of chaos from one of a motion at rest on an unstable
     /// equilibrium or running away.
-    pub reference: Vec<(f64, f64, f64)>,
+    pub(crate) reference: Vec<(f64, f64, f64)>,
 }
 
 /// u = (1, …, 1)/√m: the documented direction of the initial perturbation.

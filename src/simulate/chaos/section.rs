@@ -64,24 +64,24 @@ pub(crate) fn energy_state(
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SectionOptions {
     /// Crossings wanted per orbit.
-    pub crossings: usize,
+    pub(crate) crossings: usize,
     /// The longest time an orbit is followed.
-    pub t_max: f64,
+    pub(crate) t_max: f64,
     /// DOP853's tolerances.
-    pub tol: Tolerances,
+    pub(crate) tol: Tolerances,
 }
 
 /// One orbit's crossings of q₁ = 0 with q̇₁ > 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SectionOrbit {
     /// The starting state (on the section).
-    pub start: Vec<f64>,
+    pub(crate) start: Vec<f64>,
     /// The states at the crossings.
-    pub points: Vec<Vec<f64>>,
+    pub(crate) points: Vec<Vec<f64>>,
     /// The time followed.
-    pub t: f64,
+    pub(crate) t: f64,
     /// The work.
-    pub stats: Stats,
+    pub(crate) stats: Stats,
 }
 
 /// Follows the motion from `y0` in chunks until `opts.crossings` crossings of q₁ = 0 upwards

@@ -117,22 +117,22 @@ pub struct Portrait {
 /// The coordinate's range and whether it is an angle.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coordinate1 {
-    pub name: String,
-    pub range: (f64, f64),
-    pub periodic: bool,
+    pub(crate) name: String,
+    pub(crate) range: (f64, f64),
+    pub(crate) periodic: bool,
 }
 
 /// How to integrate each curve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FamilySpec {
     /// Energies (≤ [`MAX_PORTRAIT`]).
-    pub count: usize,
+    pub(crate) count: usize,
     /// The longest integration of one curve.
-    pub t_end: f64,
-    pub rtol: f64,
-    pub atol: f64,
+    pub(crate) t_end: f64,
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
     /// Points per curve, over its one period (capped at 2000).
-    pub samples: usize,
+    pub(crate) samples: usize,
 }
 
 /// The family of `rhs` (one coordinate) described in the module header.

@@ -21,7 +21,7 @@ pub struct Step {
     pub against: Option<Box<System>>,
     /// Common wrong answers to this step, generated from its physics, each with the reason a
     /// teacher gives for it (checked in order when the answer is wrong).
-    pub pitfalls: Vec<Pitfall>,
+    pub(crate) pitfalls: Vec<Pitfall>,
 }
 
 /// A known wrong answer to a step and its reason: an answer equal to `answers` (an
@@ -30,11 +30,11 @@ pub struct Step {
 #[derive(Clone, Debug)]
 pub struct Pitfall {
     /// The wrong answer, one plain-syntax expression or equation per item.
-    pub answers: Vec<String>,
+    pub(crate) answers: Vec<String>,
     /// The diagnosis code it gets.
-    pub code: Code,
+    pub(crate) code: Code,
     /// The sentence that names the mistake.
-    pub message: String,
+    pub(crate) message: String,
 }
 
 impl Step {
