@@ -269,6 +269,13 @@ pub fn how_far_off(f: f64) -> String {
             super::compare::fmt_value(-f)
         );
     }
+    // Past ten times, a percentage is a long number nobody reads (1e300 → 10²⁹⁹ %).
+    if f >= 10.0 {
+        return format!(
+            "about {} times the right value",
+            super::compare::fmt_value(f)
+        );
+    }
     let pct = (f - 1.0).abs() * 100.0;
     let shown = if pct >= 10.0 {
         format!("{pct:.0}")
@@ -327,4 +334,28 @@ pub fn relative_gap(p: &Prepared, a: Id, b: Id) -> Option<f64> {
         worst = Some(worst.map_or(e, |w: f64| w.max(e)));
     }
     worst
+}
+
+#[cfg(test)]
+mod tests {
+    use super::how_far_off;
+
+    #[test]
+    fn a_wrong_value_is_said_in_a_few_words_however_far_off() {
+        for (f, said) in [
+            (0.27, "about 73% too small"),
+            (2.4, "about 140% too large"),
+            (1.0005, "about 0.05% too large"),
+        ] {
+            assert_eq!(how_far_off(f), said, "{f}");
+        }
+        // A huge ratio (a student's 1e300) is a factor, not a 300-digit percentage.
+        let huge = how_far_off(1e300);
+        assert!(
+            huge.starts_with("about ") && huge.ends_with(" times the right value"),
+            "{huge}"
+        );
+        assert!(huge.len() < 60, "{huge}");
+        assert_eq!(how_far_off(f64::INFINITY), "far off");
+    }
 }
