@@ -245,7 +245,7 @@ pub(crate) fn read_point_any(
 }
 
 /// `src` split at its commas outside brackets.
-fn top_level_items(src: &str) -> Vec<&str> {
+pub(super) fn top_level_items(src: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let (mut depth, mut start) = (0i32, 0);
     for (i, ch) in src.char_indices() {

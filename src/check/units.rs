@@ -7,6 +7,7 @@
 use std::f64::consts::PI;
 
 use super::common::verdict;
+use super::prepare::top_level_items;
 use super::verdict::{Code, Diagnosis, Status, Verdict};
 use crate::expr::Dimension;
 use crate::problem::{Part, Problem};
@@ -147,7 +148,7 @@ pub struct Converted {
 pub fn convert(input: &str, want: Dimension) -> Result<Converted, UnitError> {
     let mut items = Vec::new();
     let mut notes = Vec::new();
-    for item in top_level(input) {
+    for item in top_level_items(input) {
         let trimmed = item.trim_end();
         let Some(body) = trimmed.strip_suffix(']') else {
             if trimmed.contains('[') {
@@ -329,7 +330,7 @@ pub(super) fn finish(part: &Part, input: &str, c: &Converted, v: &mut Verdict) {
 /// The value of each item of a converted answer that is a plain number (a label before `=`
 /// dropped); `None` for an item that is not.
 fn numbers(text: &str) -> Vec<Option<f64>> {
-    top_level(text)
+    top_level_items(text)
         .into_iter()
         .map(|item| {
             let value = item.split_once('=').map_or(item, |(_, v)| v);
@@ -338,25 +339,6 @@ fn numbers(text: &str) -> Vec<Option<f64>> {
             pool.number_value(id)
         })
         .collect()
-}
-
-/// `src` split at its commas outside brackets.
-fn top_level(src: &str) -> Vec<&str> {
-    let mut out = Vec::new();
-    let (mut depth, mut start) = (0i32, 0);
-    for (i, ch) in src.char_indices() {
-        match ch {
-            '(' | '[' | '{' => depth += 1,
-            ')' | ']' | '}' => depth -= 1,
-            ',' if depth == 0 => {
-                out.push(&src[start..i]);
-                start = i + 1;
-            }
-            _ => {}
-        }
-    }
-    out.push(&src[start..]);
-    out
 }
 
 #[cfg(test)]
