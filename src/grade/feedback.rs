@@ -194,8 +194,9 @@ fn shown(
                 None => format!("{}/{}", table.problem(row), table.part(row)),
             };
             let points = target.map_or(0.0, |(p, q)| bank.problems[p].parts[q].points);
-            let read_as = (o.rep.and_then(|r| judged.reps[r].verdict.as_ref().ok()))
-                .map_or(String::new(), |v| v.unicode.to_string());
+            let read_as = o
+                .rep
+                .map_or(String::new(), |r| judged.reading(r).to_string());
             let hint = match (o.status, target) {
                 (Status::Incorrect | Status::Invalid, Some((p, q))) => hints
                     .entry((p, q))
@@ -213,7 +214,7 @@ fn shown(
                 answer: table.answer(row).to_string(),
                 numbers: target.map_or(String::new(), |(p, _)| {
                     variants
-                        .label(judged.judged_with(o).unwrap_or(p))
+                        .label(judged.judged_with(&o).unwrap_or(p))
                         .to_string()
                 }),
                 read_as,
@@ -224,7 +225,7 @@ fn shown(
                 codes: (o.codes.iter().map(|c| c.as_str()))
                     .collect::<Vec<_>>()
                     .join(", "),
-                message: judged.message(o).to_string(),
+                message: judged.message(&o).to_string(),
                 hint,
             });
         }

@@ -11,20 +11,22 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use lagrange::bank::Bank;
-use lagrange::check::{Checker, Code, Status as Checked};
+use lagrange::check::{Checker, Status as Checked};
 use lagrange::expr::error::{MAX_INPUT_BYTES, visible};
 use lagrange::problem::{Part, PartKind, Problem};
 use lagrange::progress::{Interrupted, Progress};
 use lagrange::tutor::command::did_you_mean;
 
-use lagrange::policy::{Decision, Policy};
+use lagrange::policy::Policy;
 
 use super::input::Table;
 
 mod counted;
+mod judged;
 mod slim;
 use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
+pub use judged::{Graded, Judged, Outcome, Rep, Status, no_codes};
 pub use slim::{Messages, Slim, meaning};
 
 /// The instructor's decisions applied to judged rows (`--overrides`, in `overrides.rs`): a
@@ -41,29 +43,6 @@ pub trait Override: Sync + std::fmt::Debug {
     ) -> Vec<usize>;
 }
 
-/// The status column of results.csv.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Status {
-    Correct,
-    Incorrect,
-    /// The answer could not be read (or is too long to read).
-    Invalid,
-    /// The row could not be graded at all (bad line, unknown problem or part, empty answer).
-    Error,
-}
-
-impl Status {
-    /// The name written in results.csv and the summary.
-    pub fn name(self) -> &'static str {
-        match self {
-            Status::Correct => "correct",
-            Status::Incorrect => "incorrect",
-            Status::Invalid => "invalid",
-            Status::Error => "error",
-        }
-    }
-}
-
 /// How to judge: the assignment's policy (credit per code, follow-through, attempts) and the
 /// instructor's decisions on answers the checker could not settle.
 #[derive(Clone, Copy, Debug)]
@@ -74,109 +53,6 @@ pub struct Settings<'s> {
     pub overrides: Option<&'s dyn Override>,
     /// The problems pinned to each student's numbers (`variants.rs`).
     pub variants: &'s super::variants::Variants,
-}
-
-/// One checked representative: the verdict every row of its canonical form shares.
-pub struct Rep {
-    /// The problem's index in the bank.
-    pub problem: usize,
-    /// The part's index in the problem.
-    pub part: usize,
-    /// The answer checked (the first spelling of the form in input order), as its index in
-    /// [`Table::answers`] (the text is not copied: a class of all-different answers has a
-    /// representative per row).
-    pub answer: u32,
-    /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
-    /// checked.
-    pub verdict: Result<Slim, String>,
-    /// Equal for answers equal at the sample points: the summary's grouping key (the
-    /// checker's fingerprint, hashed: see [`meaning`]).
-    pub fingerprint: Option<u128>,
-}
-
-/// What a row is given: shared by every row with the same representative (and the same
-/// follow-through question), or a row's own (an error, an answer too long to read).
-#[derive(Clone, Debug)]
-pub struct Outcome {
-    /// The status column.
-    pub status: Status,
-    /// The verdict's score times the part's points (follow-through credit included).
-    pub score: f64,
-    /// The diagnosis codes, most specific first (`follows-from-earlier` leading); shared with
-    /// the verdict's own (a class of all-different answers has an outcome per row).
-    pub codes: Arc<[Code]>,
-    /// The first diagnosis, or why the row is an error or unread; `None`: the first
-    /// diagnosis of the representative's verdict, or why it could not be checked (not copied:
-    /// a class of all-different answers has as many outcomes as rows). See
-    /// [`Judged::message`].
-    pub message: Option<String>,
-    /// `(problem, part)` indices into the bank, for rows that name a real part.
-    pub target: Option<(usize, usize)>,
-    /// The representative whose verdict this is.
-    pub rep: Option<usize>,
-    /// The instructor's decision that replaced the checker's (`--overrides`), if any.
-    pub decision: Option<Decision>,
-}
-
-/// The outcome of one row of the input.
-#[derive(Clone, Copy, Debug)]
-pub struct Graded {
-    /// Its outcome in [`Judged::outcomes`].
-    pub outcome: u32,
-    /// Whether this row is the student's answer that counts for the part.
-    pub counts: bool,
-}
-
-/// Every row's outcome (same order as the input) and the representatives checked.
-pub struct Judged {
-    /// One entry per input row, in input order.
-    pub rows: Vec<Graded>,
-    /// The outcomes rows point to.
-    pub outcomes: Vec<Outcome>,
-    /// The answers actually checked.
-    pub reps: Vec<Rep>,
-    /// The score a counted row counts for when the attempt penalty lowers it below its
-    /// outcome's (few rows: only later attempts, only with a penalty).
-    pub penalised: FxHashMap<u32, f64>,
-}
-
-impl Judged {
-    /// The bank problem that judged an outcome: for a part that accepts numbers, the one
-    /// pinned to the student's numbers (the outcome's `target` names its bank problem).
-    pub fn judged_with(&self, o: &Outcome) -> Option<usize> {
-        o.rep.map(|r| self.reps[r].problem)
-    }
-
-    /// Row `i`'s outcome.
-    pub fn outcome(&self, i: usize) -> &Outcome {
-        &self.outcomes[self.rows[i].outcome as usize]
-    }
-
-    /// An outcome's message (results.csv's `message`).
-    pub fn message<'s>(&'s self, o: &'s Outcome) -> &'s str {
-        match (&o.message, o.rep) {
-            (Some(m), _) => m,
-            (None, Some(r)) => match &self.reps[r].verdict {
-                Ok(v) => &v.message,
-                Err(e) => e,
-            },
-            (None, None) => "",
-        }
-    }
-
-    /// The score row `i` counts for in the gradebook (after the attempt penalty).
-    pub fn counted_score(&self, i: usize) -> f64 {
-        match self.penalised.get(&(i as u32)) {
-            Some(&s) => s,
-            None => self.outcome(i).score,
-        }
-    }
-
-    /// Adds an outcome; its index.
-    pub(super) fn add(&mut self, o: Outcome) -> u32 {
-        self.outcomes.push(o);
-        self.outcomes.len() as u32 - 1
-    }
 }
 
 /// The most answers one checker reads (see [`par_map`]).
@@ -195,45 +71,65 @@ fn window_size() -> usize {
         .unwrap_or(WINDOW)
 }
 
-/// An answer to check: the problem and part indices in the bank, its text and its index in
-/// [`Table::answers`].
-type Item<'t> = (usize, usize, &'t str, u32);
+/// An answer to check: the problem and part indices in the bank and its index in
+/// [`Table::answers`] (its text is looked up there, not copied).
+type Item = (usize, usize, u32);
 
-/// Checks a window of representatives in parallel, in order.
-fn check_window(bank: &Bank, window: &[Item], bar: &Shared<'_>, messages: &Messages) -> Vec<Rep> {
-    par_map(bank, window, |c, part, (problem, q, text, answer)| {
-        let rep = |verdict, fingerprint| Rep {
-            problem,
-            part: q,
-            answer,
-            verdict,
-            fingerprint,
-        };
-        if !bar.tick() {
-            return rep(Err(Interrupted.to_string()), None);
-        }
-        let verdict = c.check(&part.id, text).map_err(|e| e.to_string());
-        // Only wrong answers are grouped, so a right one needs no fingerprint.
-        let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
-        let fingerprint = wrong
-            .then(|| c.fingerprint(&part.id, text).ok().flatten())
-            .flatten()
-            .map(|f| meaning(&f));
-        rep(verdict.map(|v| Slim::shared(v, messages)), fingerprint)
-    })
+/// What grading needs to check a window of answers.
+struct Window<'a, 'b, 's> {
+    bank: &'b Bank,
+    answers: &'a super::intern::Interner,
+    policy: &'a Policy,
+    bar: &'a Shared<'s>,
+    messages: &'a Messages,
 }
 
-impl Rep {
-    /// The same representative, its text moved into the calling thread's memory.
-    fn rehomed(self) -> Rep {
-        Rep {
-            verdict: match self.verdict {
-                Ok(v) => Ok(v.rehomed()),
-                Err(e) => Err(e.as_str().to_string()),
-            },
-            ..self
-        }
-    }
+/// Checks a window of representatives in parallel, in order: each with its reading.
+fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, String)> {
+    par_map(
+        w.bank,
+        w.answers,
+        window,
+        |c, part, (problem, q, answer), text| {
+            let verdict = if w.bar.tick() {
+                c.check(&part.id, text).map_err(|e| e.to_string())
+            } else {
+                Err(Interrupted.to_string())
+            };
+            // Only wrong answers are grouped, so a right one needs no fingerprint.
+            let wrong = verdict.as_ref().is_ok_and(|v| v.status != Checked::Correct);
+            let fingerprint = wrong
+                .then(|| c.fingerprint(&part.id, text).ok().flatten())
+                .flatten()
+                .map_or(0, |f| meaning(&f));
+            // A problem pinned to a student's numbers counts as its bank problem (the first of
+            // its id).
+            let counted_as = (w.bank.problems[..problem].iter())
+                .position(|x| x.id == w.bank.problems[problem].id)
+                .unwrap_or(problem);
+            let points = w.bank.problems[counted_as].parts[q].points;
+            let (verdict, reading) = match verdict {
+                Ok(v) => {
+                    let (slim, reading) = Slim::shared(v, w.messages);
+                    (Ok(slim), reading)
+                }
+                Err(e) => (Err(Arc::from(e)), String::new()),
+            };
+            let score = (verdict.as_ref()).map_or(0.0, |v| {
+                w.policy.answer_fraction(v.status, v.score, &v.codes) * points
+            });
+            let rep = Rep {
+                problem: problem as u32,
+                part: q as u32,
+                answer,
+                counted_as: counted_as as u32,
+                score,
+                verdict,
+                fingerprint: [(fingerprint >> 64) as u64, fingerprint as u64],
+            };
+            (rep, reading)
+        },
+    )
 }
 
 /// A problem and part id pair as typed: the bank part it names, or why it names none (the
@@ -250,12 +146,9 @@ pub fn judge(
     phases: &mut super::phases::Phases,
 ) -> Result<Judged, Interrupted> {
     let rows = &table.rows;
-    let mut judged = Judged {
-        rows: Vec::with_capacity(rows.len()),
-        outcomes: Vec::new(),
-        reps: Vec::new(),
-        penalised: FxHashMap::default(),
-    };
+    // Rows' own outcomes (errors, answers too long to read), numbered after the
+    // representatives' once those are known.
+    let mut own: Vec<Outcome> = Vec::new();
     let mut resolved: FxHashMap<(u32, u32), Resolved> = FxHashMap::default();
     // Exact text first: a class types the same few strings many times.
     let mut distinct: Vec<Item> = Vec::new();
@@ -263,27 +156,27 @@ pub fn judge(
     // Per row: its own outcome (Err) or its distinct answer (Ok), then its representative.
     let mut row_distinct: Vec<Result<u32, u32>> = Vec::with_capacity(rows.len());
     for row in rows {
-        let own = |o: Outcome, judged: &mut Judged| Err(judged.add(o));
+        let mut own = |o: Outcome| {
+            own.push(o);
+            Err(own.len() as u32 - 1)
+        };
         let target = resolved
             .entry((row.problem, row.part))
             .or_insert_with(|| resolve(table.problem(row), table.part(row), bank));
         let slot = if let Some(e) = table.error(row) {
-            own(unread(Status::Error, e.to_string(), None), &mut judged)
+            own(unread(Status::Error, e.to_string(), None))
         } else {
             match target {
                 Err(rest) => {
                     let message = format!("line {}: {rest}", row.line);
-                    own(unread(Status::Error, message, None), &mut judged)
+                    own(unread(Status::Error, message, None))
                 }
                 Ok((p, q)) if table.answer(row).len() > MAX_INPUT_BYTES => {
                     let (line, n) = (row.line, table.answer(row).len());
                     let message = format!(
                         "line {line}: the answer is {n} bytes, over the checker's limit of {MAX_INPUT_BYTES}; not read"
                     );
-                    own(
-                        unread(Status::Invalid, message, Some((*p, *q))),
-                        &mut judged,
-                    )
+                    own(unread(Status::Invalid, message, Some((*p, *q))))
                 }
                 Ok((p, q)) => {
                     // The student's own numbers judge a part that accepts them.
@@ -291,8 +184,7 @@ pub fn judge(
                     Ok(*by_text
                         .entry((p as u32, *q as u32, row.answer))
                         .or_insert_with(|| {
-                            let text = table.answers.get(row.answer);
-                            distinct.push((p, *q, text, row.answer));
+                            distinct.push((p, *q, row.answer));
                             distinct.len() as u32 - 1
                         }))
                 }
@@ -306,19 +198,23 @@ pub fn judge(
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &distinct, |c, part, (_, _, text, _)| {
+    let canon = par_map(bank, &table.answers, &distinct, |c, part, _, text| {
         if !bar.tick() {
             return None;
         }
         // A list's verdict depends on what its canonical form leaves out (the stated
         // stability of each equilibrium, labels, the items' order that messages name), so
         // lists share a verdict only with the same text.
-        (!is_list(part)).then(|| c.canonical(&part.id, text).ok().flatten())?
+        // Only equality of forms matters: each is kept as its 128-bit hash (a class of
+        // all-different answers would otherwise hold every form's text at once).
+        (!is_list(part))
+            .then(|| c.canonical(&part.id, text).ok().flatten())?
+            .map(|form| meaning(&form))
     });
     let (reps_of, rep_inputs) = representatives(&distinct, canon);
     // Each row's distinct answer becomes its representative.
     for d in row_distinct.iter_mut().flatten() {
-        *d = reps_of[*d as usize] as u32;
+        *d = reps_of[*d as usize];
     }
     drop((reps_of, distinct));
     phases.end("canonical");
@@ -327,15 +223,30 @@ pub fn judge(
     }
     bar.start(rep_inputs.len() as u64);
     let messages = Messages::default();
-    judged.reps.reserve_exact(rep_inputs.len());
+    let mut judged = Judged {
+        rows: Vec::new(),
+        kept: Vec::new(),
+        reps: Vec::with_capacity(rep_inputs.len()),
+        readings: String::new(),
+        spans: Vec::with_capacity(rep_inputs.len()),
+        penalised: FxHashMap::default(),
+    };
+    let w = Window {
+        bank,
+        answers: &table.answers,
+        policy: settings.policy,
+        bar: &bar,
+        messages: &messages,
+    };
     // Checked a window at a time, each window's representatives then moved into this
     // thread's memory: the long-lived verdicts are not left scattered among the checkers'
     // scratch memory in the workers' heaps (which is then freed whole), so a class of
     // all-different answers needs less memory (issue 20 §5). Verdicts do not depend on which
     // checker reads an answer, so neither do the outputs on the window's size.
     for window in rep_inputs.chunks(window_size()) {
-        let checked = check_window(bank, window, &bar, &messages);
-        judged.reps.extend(checked.into_iter().map(Rep::rehomed));
+        for (rep, reading) in check_window(&w, window) {
+            judged.push(rep, &reading);
+        }
         if bar.stopped() {
             break;
         }
@@ -346,23 +257,19 @@ pub fn judge(
     }
     phases.end("check");
     drop(rep_inputs);
-    judged.outcomes.reserve_exact(judged.reps.len());
-    let rep_outcomes: Vec<u32> = (0..judged.reps.len())
-        .map(|r| {
-            let o = outcome(r, &judged.reps[r], bank, settings.policy);
-            judged.add(o)
-        })
-        .collect();
+    // A representative's outcome is numbered as the representative; rows' own come after.
+    let first_own = judged.reps.len() as u32;
     judged.rows = row_distinct
         .iter()
         .map(|d| Graded {
             outcome: match d {
-                Ok(r) => rep_outcomes[*r as usize],
-                Err(own) => *own,
+                Ok(r) => *r,
+                Err(o) => first_own + o,
             },
             counts: false,
         })
         .collect();
+    judged.kept = own;
     drop(row_distinct);
     phases.end("outcomes");
     if let Some(o) = settings.overrides {
@@ -403,12 +310,6 @@ fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Ou
     }
 }
 
-/// No diagnosis codes: one shared empty list (rows that are errors have no codes each).
-pub fn no_codes() -> Arc<[Code]> {
-    static EMPTY: std::sync::OnceLock<Arc<[Code]>> = std::sync::OnceLock::new();
-    EMPTY.get_or_init(|| Arc::from([])).clone()
-}
-
 /// Whether a part's answer is a list (equilibria, frequencies, values).
 fn is_list(part: &Part) -> bool {
     matches!(
@@ -423,8 +324,9 @@ fn is_list(part: &Part) -> bool {
 /// which makes a long chunk slower per answer, so chunks are not long either.
 fn par_map<'b, R: Send>(
     bank: &'b Bank,
+    answers: &super::intern::Interner,
     items: &[Item],
-    f: impl Fn(&mut Checker<'b>, &'b Part, Item) -> R + Sync + Send,
+    f: impl Fn(&mut Checker<'b>, &'b Part, Item, &str) -> R + Sync + Send,
 ) -> Vec<R> {
     let n = bank.problems.len();
     items
@@ -433,10 +335,15 @@ fn par_map<'b, R: Send>(
         .with_max_len(CHUNK)
         .map_init(
             || (0..n).map(|_| None).collect::<Vec<Option<Checker<'b>>>>(),
-            |checkers, &(p, q, text, answer)| {
+            |checkers, &(p, q, answer)| {
                 let problem = &bank.problems[p];
                 let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
-                f(checker, &problem.parts[q], (p, q, text, answer))
+                f(
+                    checker,
+                    &problem.parts[q],
+                    (p, q, answer),
+                    answers.get(answer),
+                )
             },
         )
         .collect()
@@ -444,20 +351,16 @@ fn par_map<'b, R: Send>(
 
 /// For each distinct answer, the index of its representative, and the representatives (the
 /// first distinct answer of each canonical form; unreadable answers stand for themselves).
-#[allow(clippy::type_complexity)]
-fn representatives<'r>(
-    distinct: &[Item<'r>],
-    canon: Vec<Option<String>>,
-) -> (Vec<usize>, Vec<Item<'r>>) {
+fn representatives(distinct: &[Item], canon: Vec<Option<u128>>) -> (Vec<u32>, Vec<Item>) {
     let mut reps: Vec<Item> = Vec::new();
-    let mut by_form: FxHashMap<(usize, usize, String), usize> = FxHashMap::default();
+    let mut by_form: FxHashMap<(usize, usize, Result<u128, u32>), u32> = FxHashMap::default();
     let mut of = Vec::with_capacity(distinct.len());
-    for (&(p, q, text, answer), form) in distinct.iter().zip(canon) {
-        // A leading NUL cannot start a canonical form, so raw text never collides with one.
-        let key = form.unwrap_or_else(|| format!("\0{text}"));
+    for (&(p, q, answer), form) in distinct.iter().zip(canon) {
+        // An answer without a canonical form stands for itself (its distinct text).
+        let key = form.ok_or(answer);
         let r = *by_form.entry((p, q, key)).or_insert_with(|| {
-            reps.push((p, q, text, answer));
-            reps.len() - 1
+            reps.push((p, q, answer));
+            reps.len() as u32 - 1
         });
         of.push(r);
     }
@@ -486,38 +389,6 @@ fn resolve(problem_id: &str, part_id: &str, bank: &Bank) -> Resolved {
         ));
     };
     Ok((p, q))
-}
-
-/// The outcome of representative `r`: its verdict scored by the policy.
-fn outcome(r: usize, rep: &Rep, bank: &Bank, policy: &Policy) -> Outcome {
-    let (p, q) = (rep.problem, rep.part);
-    // A problem pinned to a student's numbers counts as its bank problem (the first of its id).
-    let p = (bank.problems[..p].iter())
-        .position(|x| x.id == bank.problems[p].id)
-        .unwrap_or(p);
-    let points = bank.problems[p].parts[q].points;
-    let (status, score, codes) = match &rep.verdict {
-        Ok(v) => (
-            match v.status {
-                Checked::Correct => Status::Correct,
-                Checked::Incorrect => Status::Incorrect,
-                Checked::Invalid => Status::Invalid,
-            },
-            policy.answer_fraction(v.status, v.score, &v.codes) * points,
-            v.codes.clone(),
-        ),
-        Err(_) => (Status::Error, 0.0, no_codes()),
-    };
-    Outcome {
-        status,
-        score,
-        codes,
-        // The verdict's first message (or the error), read through `Judged::message`.
-        message: None,
-        target: Some((p, q)),
-        rep: Some(r),
-        decision: None,
-    }
 }
 
 #[cfg(test)]
@@ -572,10 +443,10 @@ mod tests {
                 .check(part, answer)
                 .unwrap_or_else(|e| panic!("{answer}: {e}"));
             assert_eq!(v.status, status, "{answer}");
-            let slim = Slim::new(v.clone());
-            assert_eq!(slim.verdict(), kept(v.clone()), "{answer}");
+            let (slim, unicode) = Slim::new(v.clone());
+            assert_eq!(slim.verdict(&unicode), kept(v.clone()), "{answer}");
             assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
-            assert_eq!(&*slim.unicode, v.reading.unicode.as_str(), "{answer}");
+            assert_eq!(unicode, v.reading.unicode, "{answer}");
             if status != Checked::Correct {
                 assert!(
                     !slim.codes.is_empty() && !slim.message.is_empty(),

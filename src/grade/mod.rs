@@ -224,7 +224,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     // With about as many verdicts as rows (all-different answers), the summary's working
     // memory is a verdict's worth per row: made before results.csv is written rather than
     // beside it, so the two never add up (issue 20 §5). The bytes are the same either way.
-    let one_at_a_time = judged.outcomes.len() * 4 > table.rows.len();
+    let one_at_a_time = judged.outcome_count() * 4 > table.rows.len();
     let (summary, written) = match write_outputs(&dir, &names, results, others, one_at_a_time)? {
         Ok(done) => done,
         Err(message) => {

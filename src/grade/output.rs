@@ -134,12 +134,14 @@ pub fn results(
         push_plain(t, run);
         t.push(b'\n');
     };
-    let shared = judged.outcomes.len() * 4 <= table.rows.len();
+    let shared = judged.outcome_count() * 4 <= table.rows.len();
     let tails: Vec<Vec<u8>> = if shared {
-        (judged.outcomes.par_iter())
-            .map(|o| {
-                let mut t = Vec::with_capacity(judged.message(o).len() + 48);
-                tail(o, &mut t);
+        (0..judged.outcome_count() as u32)
+            .into_par_iter()
+            .map(|k| {
+                let o = judged.outcome_at(k);
+                let mut t = Vec::with_capacity(judged.message(&o).len() + 48);
+                tail(&o, &mut t);
                 t
             })
             .collect()
@@ -158,10 +160,10 @@ pub fn results(
             push_cell(&mut w, table.part(r));
             w.push(b',');
             push_cell(&mut w, table.answer(r));
-            let o = judged.rows[first + k].outcome as usize;
-            match tails.get(o) {
+            let o = judged.rows[first + k].outcome;
+            match tails.get(o as usize) {
                 Some(t) => w.extend_from_slice(t),
-                None => tail(&judged.outcomes[o], &mut w),
+                None => tail(&judged.outcome_at(o), &mut w),
             }
         }
         w
@@ -214,8 +216,7 @@ pub fn gradebook(
     let targets: Vec<(usize, usize)> = match parts {
         Some(p) => p.to_vec(),
         None => {
-            let mut t: Vec<(usize, usize)> =
-                (judged.outcomes.iter()).filter_map(|o| o.target).collect();
+            let mut t: Vec<(usize, usize)> = (judged.outcomes()).filter_map(|o| o.target).collect();
             t.sort_unstable();
             t.dedup();
             t
@@ -224,7 +225,7 @@ pub fn gradebook(
     let column: rustc_hash::FxHashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
     // Each outcome's column, looked up once.
-    let columns: Vec<Option<usize>> = (judged.outcomes.iter())
+    let columns: Vec<Option<usize>> = (judged.outcomes())
         .map(|o| column.get(&o.target?).copied())
         .collect();
     let names = students(table);

@@ -162,7 +162,7 @@ impl Overrides {
         let mut made: FxHashMap<(usize, u32), u32> = FxHashMap::default();
         for (i, row) in table.rows.iter().enumerate() {
             let old = judged.rows[i].outcome;
-            let o = &judged.outcomes[old as usize];
+            let o = judged.outcome_at(old).into_owned();
             let Some((p, q)) = o.target else { continue };
             if o.status == Status::Error {
                 continue;
@@ -172,7 +172,7 @@ impl Overrides {
             let key = (
                 problem.id.as_str(),
                 part.id.as_str(),
-                variants.label(judged.judged_with(o).unwrap_or(p)),
+                variants.label(judged.judged_with(&o).unwrap_or(p)),
                 table.answer(row),
             );
             let Some(&e) = by_key.get(&key) else {
@@ -184,7 +184,7 @@ impl Overrides {
                 None => {
                     let d = self.entries[e].decision;
                     let mut g = o.clone();
-                    let said = judged.message(o).to_string();
+                    let said = judged.message(&o).to_string();
                     g.status = match d {
                         Decision::Correct => Status::Correct,
                         _ => Status::Incorrect,

@@ -38,7 +38,7 @@ struct Said<'j> {
 fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
     let rep = o.rep.map(|r| &judged.reps[r]);
     let verdict = rep.and_then(|r| r.verdict.as_ref().ok());
-    let read_as = verdict.map_or("", |v| &*v.unicode);
+    let read_as = o.rep.map_or("", |r| judged.reading(r));
     if o.decision.is_none() {
         return Said {
             status: o.status.name(),
@@ -58,7 +58,7 @@ fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
             status: Status::Error.name(),
             codes: Vec::new(),
             read_as,
-            message: r.verdict.as_ref().err().map_or("", String::as_str),
+            message: r.verdict.as_ref().err().map_or("", |e| &**e),
         },
         // Only an answer too long to read has no representative.
         (None, None) => Said {
@@ -95,8 +95,8 @@ pub fn review_csv(
         if o.status == Status::Error {
             continue;
         }
-        if o.decision.is_some() || needs_review(&said(o, judged)) {
-            let pinned = judged.judged_with(o).unwrap_or(p);
+        if o.decision.is_some() || needs_review(&said(&o, judged)) {
+            let pinned = judged.judged_with(&o).unwrap_or(p);
             listed.push((p, q, pinned, row.answer, row.student, i as u32));
         }
     }
@@ -160,7 +160,7 @@ pub fn review_csv(
         let variant = variants.label(g.pinned);
         let answer = text(g);
         let o = judged.outcome(g.row);
-        let s = said(o, judged);
+        let s = said(&o, judged);
         let decision = decided
             .as_ref()
             .and_then(|d| d.get(&(problem, part, variant, answer)).copied());

@@ -93,7 +93,7 @@ type GroupKey = ((u32, u32), Status, u32);
 pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let rows = &table.rows;
     // Rows per outcome, then everything an outcome decides is counted once per outcome.
-    let mut per_outcome = vec![0u32; judged.outcomes.len()];
+    let mut per_outcome = vec![0u32; judged.outcome_count()];
     let mut parts: FxHashMap<(usize, usize), PartSummary> = FxHashMap::default();
     let mut sums: FxHashMap<(usize, usize), f64> = FxHashMap::default();
     // The meaning of each representative as a number: a group is (part, status, meaning).
@@ -111,10 +111,10 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     drop(ids);
     let mut keyed: Vec<(u64, u64, u32)> = (judged.reps.par_iter().enumerate())
         .map(|(i, r)| {
-            let mut m = r.fingerprint.unwrap_or_else(|| {
+            let mut m = r.fingerprint().unwrap_or_else(|| {
                 super::judge::meaning(&format!("text:{}", table.answers.get(r.answer).trim()))
             });
-            if let (true, Ok(v)) = (pinned[r.problem], &r.verdict) {
+            if let (true, Ok(v)) = (pinned[r.problem as usize], &r.verdict) {
                 m ^= super::judge::meaning(&format!("told:{}", v.message));
             }
             ((m >> 64) as u64, m as u64, i as u32)
@@ -131,7 +131,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     // Each outcome's group (wrong and unreadable answers only), numbered in order of first
     // appearance (by outcome), found by sorting the outcomes' keys rather than through a map
     // of them (a class of all-different answers has a group per answer).
-    let mut keyed: Vec<(GroupKey, u32)> = (judged.outcomes.iter().enumerate())
+    let mut keyed: Vec<(GroupKey, u32)> = (judged.outcomes().enumerate())
         .filter_map(|(i, o)| match (o.target, o.rep, o.status) {
             (Some((p, q)), Some(rep), Status::Incorrect | Status::Invalid) => {
                 Some((((p as u32, q as u32), o.status, meaning[rep]), i as u32))
@@ -149,7 +149,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
     }
     firsts.par_sort_unstable();
-    let mut group_of = vec![u32::MAX; judged.outcomes.len()];
+    let mut group_of = vec![u32::MAX; judged.outcome_count()];
     let mut groups: Vec<GroupKey> = Vec::with_capacity(firsts.len());
     for (id, &(_, start)) in firsts.iter().enumerate() {
         let key = keyed[start as usize].0;
@@ -206,7 +206,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     drop(members);
     let mut status = BTreeMap::new();
     let mut codes = BTreeMap::new();
-    for (o, &n) in judged.outcomes.iter().zip(&per_outcome) {
+    for (o, &n) in judged.outcomes().zip(&per_outcome) {
         let n = n as usize;
         if n == 0 {
             continue;

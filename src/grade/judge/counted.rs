@@ -15,7 +15,7 @@ use lagrange::tutor::follow::{Earlier, accepts, follows_from_earlier};
 
 use super::super::input::Row;
 use super::super::intern::Interner;
-use super::{Judged, Rep, Slim, Status};
+use super::{Judged, Status};
 
 /// The row that counts for each (student, problem, part), as the policy chooses it (the last
 /// graded attempt, or the best after the attempt penalty). Error rows never count. Rows are
@@ -212,7 +212,7 @@ pub(super) fn follow_through(
     // `follows_from_earlier` takes the most recent earlier answer the wrong one follows from,
     // judging each earlier answer on its own: so each (answer, earlier answer) pair is asked
     // once, in parallel, and a question's answer is its first pair that follows, latest first.
-    let reps = &judged.reps;
+    let read: &Judged = judged;
     let mut pairs: Vec<(usize, usize)> = keys
         .iter()
         .flat_map(|((rep, earlier), _)| earlier.iter().map(move |&e| (*rep, e)))
@@ -221,7 +221,7 @@ pub(super) fn follow_through(
     pairs.dedup();
     let pair_answers: Vec<Option<Diagnosis>> = pairs
         .par_iter()
-        .map(|&(rep, e)| follows(&(rep, vec![e]), reps, answers, bank))
+        .map(|&(rep, e)| follows(&(rep, vec![e]), read, answers, bank))
         .collect();
     let pair_answer: FxHashMap<(usize, usize), &Diagnosis> = (pairs.iter().zip(&pair_answers))
         .filter_map(|(&k, d)| Some((k, d.as_ref()?)))
@@ -238,7 +238,7 @@ pub(super) fn follow_through(
         .zip(&answers)
         .map(|((_, own), d)| {
             let d = d.as_ref()?;
-            let mut g = judged.outcomes[*own as usize].clone();
+            let mut g = judged.outcome_at(*own).into_owned();
             let (p, q) = g.target.unwrap_or_default();
             let points = bank.problems[p].parts[q].points;
             // Right for the student's own accepted L (a total derivative added): full marks.
@@ -267,19 +267,20 @@ pub(super) fn follow_through(
 
 /// The `follows-from-earlier` diagnosis when the wrong answer of `key` follows from the
 /// earlier answers of `key`.
-fn follows(key: &FollowKey, reps: &[Rep], answers: &Interner, bank: &Bank) -> Option<Diagnosis> {
+fn follows(key: &FollowKey, judged: &Judged, answers: &Interner, bank: &Bank) -> Option<Diagnosis> {
+    let reps = &judged.reps;
     let rep = &reps[key.0];
-    let problem = &bank.problems[rep.problem];
-    let part = &problem.parts[rep.part];
+    let problem = &bank.problems[rep.problem as usize];
+    let part = &problem.parts[rep.part as usize];
     let earlier: Vec<(Earlier, Option<Verdict>)> = key
         .1
         .iter()
         .map(|&r| {
             let e = &reps[r];
-            let id = problem.parts[e.part].id.clone();
+            let id = problem.parts[e.part as usize].id.clone();
             (
                 Earlier::new(id, answers.get(e.answer).to_string()),
-                e.verdict.as_ref().ok().map(Slim::verdict),
+                (e.verdict.as_ref().ok()).map(|v| v.verdict(judged.reading(r))),
             )
         })
         .collect();

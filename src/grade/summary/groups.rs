@@ -141,8 +141,8 @@ pub(super) struct Shown {
 pub(super) fn shown(status: Status, t: Tally, table: &Table, judged: &Judged) -> Shown {
     let shown_of = |rep: usize| {
         let r = &judged.reps[rep];
-        match &r.verdict {
-            Ok(v) if !v.unicode.is_empty() => v.unicode.to_string(),
+        match (&r.verdict, judged.reading(rep)) {
+            (Ok(_), reading) if !reading.is_empty() => reading.to_string(),
             _ => table.answers.get(r.answer).trim().to_string(),
         }
     };
@@ -200,7 +200,6 @@ fn cut(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grade::judge::Rep;
     use crate::grade::summary::empty;
 
     /// Many wrong-answer groups in one part, most of them tied (one student, one attempt
@@ -216,21 +215,7 @@ mod tests {
         }
         let table = super::super::super::input::parse(csv.as_bytes(), &mut Default::default());
         let table = table.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
-        let reps: Vec<Rep> = (0..n)
-            .map(|a| Rep {
-                problem: 0,
-                part: 0,
-                answer: a as u32,
-                verdict: Err(String::new()),
-                fingerprint: None,
-            })
-            .collect();
-        let judged = Judged {
-            rows: Vec::new(),
-            outcomes: Vec::new(),
-            reps,
-            penalised: Default::default(),
-        };
+        let judged = Judged::unchecked((0..n).map(|a| a as u32));
         // Group g holds representative g; a few groups have more students and attempts.
         let tallies = |k: usize| -> Vec<((String, Status), Tally)> {
             (0..k)

@@ -1,0 +1,262 @@
+//! What judging gives: every row's [`Outcome`] (status, score, codes, message), the
+//! representatives checked ([`Rep`]) and their readings, held in [`Judged`] in a form small
+//! enough for a class of all-different answers (one representative per row): a
+//! representative's outcome is made when asked for, not kept.
+
+use std::borrow::Cow;
+use std::sync::Arc;
+
+use lagrange::check::{Code, Status as Checked};
+use lagrange::policy::Decision;
+use rustc_hash::FxHashMap;
+
+use super::Slim;
+
+/// The status column of results.csv.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Status {
+    Correct,
+    Incorrect,
+    /// The answer could not be read (or is too long to read).
+    Invalid,
+    /// The row could not be graded at all (bad line, unknown problem or part, empty answer).
+    Error,
+}
+
+impl Status {
+    /// The name written in results.csv and the summary.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Correct => "correct",
+            Status::Incorrect => "incorrect",
+            Status::Invalid => "invalid",
+            Status::Error => "error",
+        }
+    }
+}
+
+/// One checked representative: the verdict every row of its canonical form shares. Kept
+/// small (no text of its own: its reading is in [`Judged::readings`], its codes and message
+/// shared), since a class of all-different answers keeps one per row (issue 20 §5).
+pub struct Rep {
+    /// The problem's index in the bank (for a part that accepts numbers, the problem pinned
+    /// to the student's numbers).
+    pub problem: u32,
+    /// The part's index in the problem.
+    pub part: u32,
+    /// The answer checked (the first spelling of the form in input order), as its index in
+    /// [`Table::answers`].
+    pub answer: u32,
+    /// The bank problem its rows count for (the first of its id: a pinned problem counts as
+    /// the bank's own).
+    pub counted_as: u32,
+    /// The verdict's score times the part's points, by the policy.
+    pub score: f64,
+    /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
+    /// checked.
+    pub verdict: Result<Slim, std::sync::Arc<str>>,
+    /// Equal for answers equal at the sample points: the summary's grouping key (the
+    /// checker's fingerprint, hashed: see [`meaning`]); `[0, 0]`: none.
+    pub(in crate::grade) fingerprint: [u64; 2],
+}
+
+impl Rep {
+    /// The summary's grouping key, if the checker gave one.
+    pub fn fingerprint(&self) -> Option<u128> {
+        let [a, b] = self.fingerprint;
+        let f = (u128::from(a) << 64) | u128::from(b);
+        (f != 0).then_some(f)
+    }
+
+    /// The outcome every row of this representative shares (`r`: its index).
+    pub(in crate::grade) fn outcome(&self, r: usize) -> Outcome {
+        let (status, codes) = match &self.verdict {
+            Ok(v) => (
+                match v.status {
+                    Checked::Correct => Status::Correct,
+                    Checked::Incorrect => Status::Incorrect,
+                    Checked::Invalid => Status::Invalid,
+                },
+                v.codes.clone(),
+            ),
+            Err(_) => (Status::Error, no_codes()),
+        };
+        Outcome {
+            status,
+            score: self.score,
+            codes,
+            // The verdict's first message (or the error), read through `Judged::message`.
+            message: None,
+            target: Some((self.counted_as as usize, self.part as usize)),
+            rep: Some(r),
+            decision: None,
+        }
+    }
+}
+
+/// What a row is given: shared by every row with the same representative (and the same
+/// follow-through question), or a row's own (an error, an answer too long to read).
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// The status column.
+    pub status: Status,
+    /// The verdict's score times the part's points (follow-through credit included).
+    pub score: f64,
+    /// The diagnosis codes, most specific first (`follows-from-earlier` leading); shared with
+    /// the verdict's own (a class of all-different answers has an outcome per row).
+    pub codes: Arc<[Code]>,
+    /// The first diagnosis, or why the row is an error or unread; `None`: the first
+    /// diagnosis of the representative's verdict, or why it could not be checked (not copied:
+    /// a class of all-different answers has as many outcomes as rows). See
+    /// [`Judged::message`].
+    pub message: Option<String>,
+    /// `(problem, part)` indices into the bank, for rows that name a real part.
+    pub target: Option<(usize, usize)>,
+    /// The representative whose verdict this is.
+    pub rep: Option<usize>,
+    /// The instructor's decision that replaced the checker's (`--overrides`), if any.
+    pub decision: Option<Decision>,
+}
+
+/// The outcome of one row of the input.
+#[derive(Clone, Copy, Debug)]
+pub struct Graded {
+    /// Its outcome in [`Judged::outcomes`].
+    pub outcome: u32,
+    /// Whether this row is the student's answer that counts for the part.
+    pub counts: bool,
+}
+
+/// Every row's outcome (same order as the input) and the representatives checked.
+///
+/// Outcomes are numbered: `0..reps.len()` are the representatives' own (made when asked for,
+/// not kept: a class of all-different answers has one per row), the others are kept
+/// ([`Judged::add`]: rows' errors, overrides, follow-through).
+pub struct Judged {
+    /// One entry per input row, in input order.
+    pub rows: Vec<Graded>,
+    /// The outcomes after the representatives' own.
+    pub(in crate::grade) kept: Vec<Outcome>,
+    /// The answers actually checked.
+    pub reps: Vec<Rep>,
+    /// The representatives' readings, one after the other ([`Judged::reading`]).
+    pub(in crate::grade) readings: String,
+    /// Where each representative's reading is in `readings`: (start, end).
+    pub(in crate::grade) spans: Vec<(u32, u32)>,
+    /// The score a counted row counts for when the attempt penalty lowers it below its
+    /// outcome's (few rows: only later attempts, only with a penalty).
+    pub penalised: FxHashMap<u32, f64>,
+}
+
+impl Judged {
+    /// The bank problem that judged an outcome: for a part that accepts numbers, the one
+    /// pinned to the student's numbers (the outcome's `target` names its bank problem).
+    pub fn judged_with(&self, o: &Outcome) -> Option<usize> {
+        o.rep.map(|r| self.reps[r].problem as usize)
+    }
+
+    /// How many outcomes there are (the numbers [`Judged::outcome_at`] takes).
+    pub fn outcome_count(&self) -> usize {
+        self.reps.len() + self.kept.len()
+    }
+
+    /// Outcome `k`.
+    pub fn outcome_at(&self, k: u32) -> Cow<'_, Outcome> {
+        let k = k as usize;
+        match k.checked_sub(self.reps.len()) {
+            None => Cow::Owned(self.reps[k].outcome(k)),
+            Some(i) => Cow::Borrowed(&self.kept[i]),
+        }
+    }
+
+    /// Every outcome, in number order.
+    pub fn outcomes(&self) -> impl Iterator<Item = Cow<'_, Outcome>> {
+        (0..self.outcome_count() as u32).map(|k| self.outcome_at(k))
+    }
+
+    /// Row `i`'s outcome.
+    pub fn outcome(&self, i: usize) -> Cow<'_, Outcome> {
+        self.outcome_at(self.rows[i].outcome)
+    }
+
+    /// How a representative's answer was read (Unicode; empty when it could not be).
+    pub fn reading(&self, rep: usize) -> &str {
+        self.spans
+            .get(rep)
+            .map_or("", |&(a, b)| &self.readings[a as usize..b as usize])
+    }
+
+    /// An outcome's message (results.csv's `message`).
+    pub fn message<'s>(&'s self, o: &'s Outcome) -> &'s str {
+        match (&o.message, o.rep) {
+            (Some(m), _) => m,
+            (None, Some(r)) => match &self.reps[r].verdict {
+                Ok(v) => &v.message,
+                Err(e) => e,
+            },
+            (None, None) => "",
+        }
+    }
+
+    /// The score row `i` counts for in the gradebook (after the attempt penalty).
+    pub fn counted_score(&self, i: usize) -> f64 {
+        match self.penalised.get(&(i as u32)) {
+            Some(&s) => s,
+            None => self.outcome(i).score,
+        }
+    }
+
+    /// Adds an outcome; its number.
+    pub(in crate::grade) fn add(&mut self, o: Outcome) -> u32 {
+        self.kept.push(o);
+        (self.outcome_count() - 1) as u32
+    }
+
+    /// Representatives of problem 0, part 0 that could not be checked, one per answer given
+    /// (for tests of what is made from them).
+    #[cfg(test)]
+    pub fn unchecked(answers: impl Iterator<Item = u32>) -> Judged {
+        let mut judged = Judged {
+            rows: Vec::new(),
+            kept: Vec::new(),
+            reps: Vec::new(),
+            readings: String::new(),
+            spans: Vec::new(),
+            penalised: FxHashMap::default(),
+        };
+        for answer in answers {
+            let rep = Rep {
+                problem: 0,
+                part: 0,
+                answer,
+                counted_as: 0,
+                score: 0.0,
+                verdict: Err(Arc::from("")),
+                fingerprint: [0, 0],
+            };
+            judged.push(rep, "");
+        }
+        judged
+    }
+
+    /// Adds a checked representative and its reading.
+    pub(in crate::grade) fn push(&mut self, rep: Rep, reading: &str) {
+        let start = self.readings.len();
+        // Offsets are 32-bit: past 4 GB of readings (never, for a 512 MB file) none is kept.
+        let span = match u32::try_from(start + reading.len()) {
+            Ok(end) => {
+                self.readings.push_str(reading);
+                (start as u32, end)
+            }
+            Err(_) => (0, 0),
+        };
+        self.spans.push(span);
+        self.reps.push(rep);
+    }
+}
+
+/// No diagnosis codes: one shared empty list (rows that are errors have no codes each).
+pub fn no_codes() -> Arc<[Code]> {
+    static EMPTY: std::sync::OnceLock<Arc<[Code]>> = std::sync::OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from([])).clone()
+}
