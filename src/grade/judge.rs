@@ -195,6 +195,7 @@ pub fn judge(
     // Freed before the answers are checked, which is where a class of all-different answers
     // needs its memory.
     drop((by_text, resolved));
+    super::memory::give_back();
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
@@ -217,6 +218,7 @@ pub fn judge(
         *d = reps_of[*d as usize];
     }
     drop((reps_of, distinct));
+    super::memory::give_back();
     phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
@@ -247,6 +249,8 @@ pub fn judge(
         for (rep, reading) in check_window(&w, window) {
             judged.push(rep, &reading);
         }
+        // The checkers' scratch memory of this window, freed in the workers' heaps.
+        super::memory::give_back();
         if bar.stopped() {
             break;
         }
@@ -257,6 +261,7 @@ pub fn judge(
     }
     phases.end("check");
     drop(rep_inputs);
+    super::memory::give_back();
     // A representative's outcome is numbered as the representative; rows' own come after.
     let first_own = judged.reps.len() as u32;
     judged.rows = row_distinct

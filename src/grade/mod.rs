@@ -16,6 +16,7 @@ mod header;
 mod input;
 mod intern;
 mod judge;
+mod memory;
 mod output;
 mod overrides;
 mod phases;
@@ -172,6 +173,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     };
     let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
+    memory::give_back();
     let mut bank = bank;
     let variants = variants::extend(&mut bank, &table.students, seed);
     let settings = judge::Settings {
