@@ -19,6 +19,15 @@ pub struct Interner {
 }
 
 impl Interner {
+    /// Room for `strings` distinct strings of `bytes` bytes in all.
+    pub fn with_capacity(strings: usize, bytes: usize) -> Interner {
+        Interner {
+            text: String::with_capacity(bytes),
+            spans: Vec::with_capacity(strings),
+            table: HashTable::with_capacity(strings),
+        }
+    }
+
     /// The index of `s`, added if new.
     pub fn intern(&mut self, s: &str) -> u32 {
         let hash = FxBuildHasher.hash_one(s);

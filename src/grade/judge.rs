@@ -27,7 +27,7 @@ mod slim;
 use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
 pub use judged::{Graded, Judged, Outcome, Rep, Status, no_codes};
-pub use slim::{Messages, Slim, meaning};
+pub use slim::{Codes, Slim, Words, meaning};
 
 /// The instructor's decisions applied to judged rows (`--overrides`, in `overrides.rs`): a
 /// trait so that judging does not import the file that reads the decisions.
@@ -81,11 +81,11 @@ struct Window<'a, 'b, 's> {
     answers: &'a super::intern::Interner,
     policy: &'a Policy,
     bar: &'a Shared<'s>,
-    messages: &'a Messages,
+    codes: &'a Codes,
 }
 
-/// Checks a window of representatives in parallel, in order: each with its reading.
-fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, String)> {
+/// Checks a window of representatives in parallel, in order: each with its words.
+fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, Words)> {
     par_map(
         w.bank,
         w.answers,
@@ -108,12 +108,12 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, String)> {
                 .position(|x| x.id == w.bank.problems[problem].id)
                 .unwrap_or(problem);
             let points = w.bank.problems[counted_as].parts[q].points;
-            let (verdict, reading) = match verdict {
+            let (verdict, words) = match verdict {
                 Ok(v) => {
-                    let (slim, reading) = Slim::shared(v, w.messages);
-                    (Ok(slim), reading)
+                    let (slim, words) = Slim::shared(v, w.codes);
+                    (Ok(slim), Some(words))
                 }
-                Err(e) => (Err(Arc::from(e)), String::new()),
+                Err(e) => (Err(Arc::from(e)), None),
             };
             let score = (verdict.as_ref()).map_or(0.0, |v| {
                 w.policy.answer_fraction(v.status, v.score, &v.codes) * points
@@ -127,7 +127,11 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, String)> {
                 verdict,
                 fingerprint: [(fingerprint >> 64) as u64, fingerprint as u64],
             };
-            (rep, reading)
+            let words = words.unwrap_or(Words {
+                reading: String::new(),
+                message: String::new(),
+            });
+            (rep, words)
         },
     )
 }
@@ -224,21 +228,19 @@ pub fn judge(
         return Err(Interrupted);
     }
     bar.start(rep_inputs.len() as u64);
-    let messages = Messages::default();
-    let mut judged = Judged {
-        rows: Vec::new(),
-        kept: Vec::new(),
-        reps: Vec::with_capacity(rep_inputs.len()),
-        readings: String::new(),
-        spans: Vec::with_capacity(rep_inputs.len()),
-        penalised: FxHashMap::default(),
-    };
+    let codes = Codes::default();
+    // Room reserved at once (a reading is about as long as its answer; a message about a
+    // line): growing by doubling would copy each block, the old one still held, at the peak.
+    let typed: usize = (rep_inputs.iter())
+        .map(|&(_, _, a)| table.answers.get(a).len())
+        .sum();
+    let mut judged = Judged::with_capacity(rep_inputs.len(), 2 * typed);
     let w = Window {
         bank,
         answers: &table.answers,
         policy: settings.policy,
         bar: &bar,
-        messages: &messages,
+        codes: &codes,
     };
     // Checked a window at a time, each window's representatives then moved into this
     // thread's memory: the long-lived verdicts are not left scattered among the checkers'
@@ -246,8 +248,8 @@ pub fn judge(
     // all-different answers needs less memory (issue 20 §5). Verdicts do not depend on which
     // checker reads an answer, so neither do the outputs on the window's size.
     for window in rep_inputs.chunks(window_size()) {
-        for (rep, reading) in check_window(&w, window) {
-            judged.push(rep, &reading);
+        for (rep, words) in check_window(&w, window) {
+            judged.push(rep, &words);
         }
         // The checkers' scratch memory of this window, freed in the workers' heaps.
         super::memory::give_back();
@@ -255,7 +257,7 @@ pub fn judge(
             break;
         }
     }
-    drop(messages);
+    drop(codes);
     if bar.stopped() {
         return Err(Interrupted);
     }
@@ -448,15 +450,17 @@ mod tests {
                 .check(part, answer)
                 .unwrap_or_else(|e| panic!("{answer}: {e}"));
             assert_eq!(v.status, status, "{answer}");
-            let (slim, unicode) = Slim::new(v.clone());
-            assert_eq!(slim.verdict(&unicode), kept(v.clone()), "{answer}");
-            assert_eq!(slim.first(), v.diagnoses.first().cloned(), "{answer}");
-            assert_eq!(unicode, v.reading.unicode, "{answer}");
+            let (slim, words) = Slim::new(v.clone());
+            let (unicode, message) = (&words.reading, &words.message);
+            assert_eq!(slim.verdict(unicode, message), kept(v.clone()), "{answer}");
+            assert_eq!(
+                slim.first(message),
+                v.diagnoses.first().cloned(),
+                "{answer}"
+            );
+            assert_eq!(*unicode, v.reading.unicode, "{answer}");
             if status != Checked::Correct {
-                assert!(
-                    !slim.codes.is_empty() && !slim.message.is_empty(),
-                    "{answer}"
-                );
+                assert!(!slim.codes.is_empty() && !message.is_empty(), "{answer}");
             }
         }
     }

@@ -52,7 +52,7 @@ fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
             status: v.status.name(),
             codes: v.codes.to_vec(),
             read_as,
-            message: &v.message,
+            message: judged.said(v),
         },
         (Some(r), None) => Said {
             status: Status::Error.name(),

@@ -115,7 +115,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
                 super::judge::meaning(&format!("text:{}", table.answers.get(r.answer).trim()))
             });
             if let (true, Ok(v)) = (pinned[r.problem as usize], &r.verdict) {
-                m ^= super::judge::meaning(&format!("told:{}", v.message));
+                m ^= super::judge::meaning(&format!("told:{}", judged.said(v)));
             }
             ((m >> 64) as u64, m as u64, i as u32)
         })

@@ -143,6 +143,8 @@ pub struct Judged {
     pub(in crate::grade) readings: String,
     /// Where each representative's reading is in `readings`: (start, end).
     pub(in crate::grade) spans: Vec<(u32, u32)>,
+    /// The representatives' first messages, each kept once ([`Slim::message`]).
+    messages: super::super::intern::Interner,
     /// The score a counted row counts for when the attempt penalty lowers it below its
     /// outcome's (few rows: only later attempts, only with a penalty).
     pub penalised: FxHashMap<u32, f64>,
@@ -191,7 +193,7 @@ impl Judged {
         match (&o.message, o.rep) {
             (Some(m), _) => m,
             (None, Some(r)) => match &self.reps[r].verdict {
-                Ok(v) => &v.message,
+                Ok(v) => self.said(v),
                 Err(e) => e,
             },
             (None, None) => "",
@@ -216,14 +218,7 @@ impl Judged {
     /// (for tests of what is made from them).
     #[cfg(test)]
     pub fn unchecked(answers: impl Iterator<Item = u32>) -> Judged {
-        let mut judged = Judged {
-            rows: Vec::new(),
-            kept: Vec::new(),
-            reps: Vec::new(),
-            readings: String::new(),
-            spans: Vec::new(),
-            penalised: FxHashMap::default(),
-        };
+        let mut judged = Judged::with_capacity(0, 0);
         for answer in answers {
             let rep = Rep {
                 problem: 0,
@@ -234,13 +229,40 @@ impl Judged {
                 verdict: Err(Arc::from("")),
                 fingerprint: [0, 0],
             };
-            judged.push(rep, "");
+            let words = super::Words {
+                reading: String::new(),
+                message: String::new(),
+            };
+            judged.push(rep, &words);
         }
         judged
     }
 
-    /// Adds a checked representative and its reading.
-    pub(in crate::grade) fn push(&mut self, rep: Rep, reading: &str) {
+    /// What a verdict said: its first diagnosis's message (empty without one).
+    pub fn said(&self, v: &Slim) -> &str {
+        self.messages.get(v.message)
+    }
+
+    /// No outcome yet, room for `reps` representatives and `text` bytes of readings and as
+    /// many of messages (reserved, not touched: only what is written takes memory).
+    pub(in crate::grade) fn with_capacity(reps: usize, text: usize) -> Judged {
+        Judged {
+            rows: Vec::new(),
+            kept: Vec::new(),
+            reps: Vec::with_capacity(reps),
+            readings: String::with_capacity(text),
+            spans: Vec::with_capacity(reps),
+            messages: super::super::intern::Interner::with_capacity(reps, text),
+            penalised: FxHashMap::default(),
+        }
+    }
+
+    /// Adds a checked representative and its words.
+    pub(in crate::grade) fn push(&mut self, mut rep: Rep, words: &super::Words) {
+        if let Ok(v) = &mut rep.verdict {
+            v.message = self.messages.intern(&words.message);
+        }
+        let reading = words.reading.as_str();
         let start = self.readings.len();
         // Offsets are 32-bit: past 4 GB of readings (never, for a 512 MB file) none is kept.
         let span = match u32::try_from(start + reading.len()) {

@@ -1,14 +1,14 @@
-//! What grading keeps of a checked answer: the slim verdict ([`Slim`]), its messages and code
-//! lists stored once ([`Messages`]) and the 128-bit grouping key of a text ([`meaning`]).
+//! What grading keeps of a checked answer: the slim verdict ([`Slim`]), its code lists stored
+//! once ([`Codes`]), its words kept apart ([`Words`]) and the 128-bit grouping key of a text
+//! ([`meaning`]).
 
 use lagrange::check::{Code, Diagnosis, Status as Checked, Verdict};
 
 /// A verdict as grading keeps it for every representative until the outputs are written:
-/// the status, the score, every code and the first diagnosis's message (results.csv, the
-/// summary, follow-through's earlier answer), both shared with the equal ones of other
-/// answers. The Unicode reading is kept apart, in one string for all
-/// (`Judged::reading`). Far smaller than a [`Verdict`]: a class of all-different answers
-/// keeps one per answer.
+/// the status, the score, every code (shared with the equal lists of other answers) and the
+/// first diagnosis's message (results.csv, the summary, follow-through's earlier answer), by
+/// its number in `Judged`'s messages. The Unicode reading is kept there too (`Judged::reading`).
+/// Far smaller than a [`Verdict`]: a class of all-different answers keeps one per answer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Slim {
     /// The checker's status.
@@ -19,81 +19,75 @@ pub struct Slim {
     pub seed: u64,
     /// Every diagnosis's code, most specific first (shared with the outcomes scored from it).
     pub codes: std::sync::Arc<[Code]>,
-    /// The first diagnosis's message (empty without one), shared by the representatives
-    /// given the same ([`Messages`]).
-    pub message: std::sync::Arc<str>,
+    /// The first diagnosis's message (empty without one), as its number in the interned
+    /// messages (`Judged::said`): equal messages are kept once, and none in a block of its
+    /// own (a class of all-different answers has nearly a message per answer).
+    pub message: u32,
 }
 
-/// The messages and code lists of one run's verdicts, each kept once: most wrong answers of
-/// a class get one of a few (a class of all-different answers would otherwise keep a copy
-/// for each answer).
-#[derive(Default)]
-pub struct Messages(std::sync::Mutex<Shared>);
-
-/// The messages and code lists given so far.
-#[derive(Default)]
-pub struct Shared {
-    messages: rustc_hash::FxHashSet<std::sync::Arc<str>>,
-    codes: rustc_hash::FxHashSet<std::sync::Arc<[Code]>>,
+/// What a checked answer says in words, kept apart from its [`Slim`] verdict: its Unicode
+/// reading and its first diagnosis's message.
+pub struct Words {
+    /// How the answer was read (Unicode).
+    pub reading: String,
+    /// The first diagnosis's message (empty without one).
+    pub message: String,
 }
 
-impl Messages {
-    /// `m` and `codes`, each shared with the equal one given before if there is one.
-    fn share(&self, m: String, codes: Vec<Code>) -> (std::sync::Arc<str>, std::sync::Arc<[Code]>) {
-        // A worker that panicked holding the lock left the sets whole (insertions are atomic).
-        let mut shared = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        let m = match shared.messages.get(m.as_str()) {
-            Some(a) => a.clone(),
-            None => {
-                let a: std::sync::Arc<str> = m.into();
-                shared.messages.insert(a.clone());
-                a
-            }
-        };
-        let codes = match shared.codes.get(codes.as_slice()) {
-            Some(a) => a.clone(),
-            None => {
-                let a: std::sync::Arc<[Code]> = codes.into();
-                shared.codes.insert(a.clone());
-                a
-            }
-        };
-        (m, codes)
+/// The code lists of one run's verdicts, each kept once: most wrong answers of a class get
+/// one of a few (a class of all-different answers would otherwise keep a copy for each).
+#[derive(Default)]
+pub struct Codes(std::sync::Mutex<rustc_hash::FxHashSet<std::sync::Arc<[Code]>>>);
+
+impl Codes {
+    /// `codes`, shared with the equal list given before if there is one.
+    fn share(&self, codes: Vec<Code>) -> std::sync::Arc<[Code]> {
+        // A worker that panicked holding the lock left the set whole (insertions are atomic).
+        let mut set = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(a) = set.get(codes.as_slice()) {
+            return a.clone();
+        }
+        let a: std::sync::Arc<[Code]> = codes.into();
+        set.insert(a.clone());
+        a
     }
 }
 
 impl Slim {
-    /// What grading reads of `v`, and its Unicode reading.
+    /// What grading reads of `v`, and its words (its message numbered 0).
     #[cfg(test)]
-    pub fn new(v: Verdict) -> (Slim, String) {
-        Slim::shared(v, &Messages::default())
+    pub fn new(v: Verdict) -> (Slim, Words) {
+        Slim::shared(v, &Codes::default())
     }
 
-    /// What grading reads of `v`, its message and codes shared through `messages`; and its
-    /// Unicode reading.
-    pub fn shared(v: Verdict, messages: &Messages) -> (Slim, String) {
-        let codes = v.diagnoses.iter().map(|d| d.code).collect();
-        let first = (v.diagnoses.into_iter().next()).map_or_else(String::new, |d| d.message);
-        let (message, codes) = messages.share(first, codes);
+    /// What grading reads of `v`, its codes shared through `codes`; and its words, to be
+    /// kept apart (the message's number is set when they are: `Judged::push`).
+    pub fn shared(v: Verdict, codes: &Codes) -> (Slim, Words) {
+        let list = v.diagnoses.iter().map(|d| d.code).collect();
+        let message = (v.diagnoses.into_iter().next()).map_or_else(String::new, |d| d.message);
         let slim = Slim {
             status: v.status,
             score: v.score,
             seed: v.seed,
-            codes,
+            codes: codes.share(list),
+            message: 0,
+        };
+        let words = Words {
+            reading: v.reading.unicode,
             message,
         };
-        (slim, v.reading.unicode)
+        (slim, words)
     }
 
     /// The verdict with only what grading reads (no ids, no plain reading or note, no
-    /// parse error, and only the first diagnosis's message), read as `unicode`: what
-    /// follow-through is given of an earlier answer.
-    pub fn verdict(&self, unicode: &str) -> Verdict {
+    /// parse error, and only the first diagnosis's message), read as `unicode` and saying
+    /// `message`: what follow-through is given of an earlier answer.
+    pub fn verdict(&self, unicode: &str, message: &str) -> Verdict {
         let diagnoses = (self.codes.iter().enumerate())
             .map(|(i, &code)| Diagnosis {
                 code,
                 message: if i == 0 {
-                    self.message.to_string()
+                    message.to_string()
                 } else {
                     String::new()
                 },
@@ -108,10 +102,10 @@ impl Slim {
         )
     }
 
-    /// The first diagnosis, as the verdict gave it.
-    pub fn first(&self) -> Option<Diagnosis> {
+    /// The first diagnosis, as the verdict gave it (its message `message`).
+    pub fn first(&self, message: &str) -> Option<Diagnosis> {
         let &code = self.codes.first()?;
-        Some(Diagnosis::new(code, self.message.to_string()))
+        Some(Diagnosis::new(code, message.to_string()))
     }
 }
 
