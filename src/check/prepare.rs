@@ -40,6 +40,8 @@ pub struct Prepared {
     pub(crate) expansion: Option<super::taylor::Expansion>,
     /// The answer being checked, for quoting the student's own terms in diagnoses.
     pub(crate) quotes: Quotes,
+    /// The wrong answers generated from the part's physics, made once.
+    pub(crate) generated: super::misconception::Generated,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -109,6 +111,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         reference: std::cell::OnceCell::new(),
         expansion,
         quotes: Quotes::default(),
+        generated: Default::default(),
     })
 }
 

@@ -10,6 +10,7 @@ use crate::expr::{Func, Id, Node, read_expr};
 use crate::mechanics::Body;
 use crate::problem::{Part, PartKind, Problem};
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 /// The first documented mistake a student's list follows.
 pub fn diagnose(
@@ -26,6 +27,21 @@ pub fn diagnose(
     }
 }
 
+/// The wrong frequencies of a part, each set made when first needed (see
+/// [`super::Generated`]).
+#[derive(Default)]
+pub(crate) struct Generated {
+    /// The part's `at` point, read once (`None` inside: it cannot be read).
+    at: Option<Option<Arc<[Id]>>>,
+    /// [`effective_mass`]'s candidates.
+    effective_mass: Option<Arc<[Wrong]>>,
+    /// [`expansion_point`]'s candidates.
+    expansion_point: Option<Arc<[Wrong]>>,
+}
+
+/// A generated wrong ω² and, for a part asking for ω, its square root (see [`follows`]).
+type Wrong = (Candidate<Id>, Option<Id>);
+
 /// A student frequency that is no reference item but a generated wrong one.
 fn frequency(
     problem: &Problem,
@@ -34,25 +50,60 @@ fn frequency(
     items: &[Vec<Id>],
     refs: &[Vec<Id>],
 ) -> Option<Diagnosis> {
-    let q0 = at_point(part, p)?;
+    let q0 = match &p.generated.frequencies.at {
+        Some(q0) => q0.clone(),
+        None => {
+            let q0: Option<Arc<[Id]>> = at_point(part, p).map(Into::into);
+            p.generated.frequencies.at = Some(q0.clone());
+            q0
+        }
+    }?;
     // The wrong inertia replaces a right frequency; with every right one listed, an extra
     // item is a different slip, so effective-mass would mislead.
-    let mut cands = if all_listed(p, items, refs) {
-        Vec::new()
+    let effective = if all_listed(p, items, refs) {
+        None
     } else {
-        effective_mass(part, p, &q0)
+        Some(match &p.generated.frequencies.effective_mass {
+            Some(c) => c.clone(),
+            None => {
+                let made = effective_mass(part, p, &q0);
+                let c = with_roots(part, p, made);
+                p.generated.frequencies.effective_mass = Some(c.clone());
+                c
+            }
+        })
     };
-    cands.extend(expansion_point(problem, p, &q0));
+    let expansion = match &p.generated.frequencies.expansion_point {
+        Some(c) => c.clone(),
+        None => {
+            let made = expansion_point(problem, p, &q0);
+            let c = with_roots(part, p, made);
+            p.generated.frequencies.expansion_point = Some(c.clone());
+            c
+        }
+    };
+    let cands = effective.iter().flat_map(|c| c.iter()).chain(expansion.iter());
     for it in items {
         let &[s] = it.as_slice() else { continue };
         if is_reference(p, s, refs) {
             continue;
         }
-        if let Some(c) = cands.iter().find(|c| follows(part, p, s, c.answer)) {
+        if let Some((c, _)) = cands.clone().find(|(c, w)| follows(p, s, c.answer, *w)) {
             return Some(c.diagnosis());
         }
     }
     None
+}
+
+/// The candidates with the square root of each ω² for a part asking for ω.
+fn with_roots(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Wrong]> {
+    cands
+        .into_iter()
+        .map(|c| {
+            let w = (!part.squared).then(|| p.system.pool.sqrt(c.answer));
+            (c, w)
+        })
+        .collect()
 }
 
 /// Whether the single-value item `s` is one of the reference items.
@@ -116,13 +167,13 @@ fn mass_and_stiffness(p: &mut Prepared, q0: &[Id]) -> (Vec<Vec<Id>>, Vec<Vec<Id>
 }
 
 /// Whether the student's item `s` is the frequency whose square is `w2`: ω² itself for a
-/// `squared` part; ω, or the square root of exactly `w2` written out (about an unstable point
-/// ω² < 0 and the root is undefined everywhere, yet it is the mistake), otherwise.
-fn follows(part: &Part, p: &mut Prepared, s: Id, w2: Id) -> bool {
-    if part.squared {
+/// `squared` part; ω (`w`, the root of `w2`), or the square root of exactly `w2` written out
+/// (about an unstable point ω² < 0 and the root is undefined everywhere, yet it is the
+/// mistake), otherwise.
+fn follows(p: &mut Prepared, s: Id, w2: Id, w: Option<Id>) -> bool {
+    let Some(w) = w else {
         return equal(p, s, w2, false);
-    }
-    let w = p.system.pool.sqrt(w2);
+    };
     if equal(p, s, w, false) {
         return true;
     }

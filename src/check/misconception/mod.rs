@@ -18,6 +18,8 @@ mod motion;
 mod numeric;
 mod roots;
 
+use std::sync::Arc;
+
 use super::prepare::Prepared;
 use super::verdict::{Code, Diagnosis, Status, Verdict};
 use crate::expr::Id;
@@ -44,6 +46,22 @@ impl<T> Candidate<T> {
         Diagnosis::new(self.code, self.message.clone())
     }
 }
+
+/// The wrong answers generated for one prepared part, each made when first needed and then
+/// kept: they come from the part's physics alone, never from the answer checked, and making
+/// them (derivations, their accelerations at every sample point) costs more than comparing an
+/// answer with them. Shared (`Arc`) so that a check reads them while it uses the pool.
+#[derive(Default)]
+pub(crate) struct Generated {
+    /// The wrong systems of equations of motion that differ from the truth, each with the
+    /// accelerations it implies at the sample points (see `motion.rs`).
+    motion: Option<Arc<[Motion]>>,
+    /// The wrong frequencies (`frequencies.rs`); `None` inside until first needed.
+    frequencies: frequencies::Generated,
+}
+
+/// A generated wrong system of equations and the accelerations it implies at each point.
+type Motion = (Candidate<Vec<Id>>, Vec<Option<Vec<f64>>>);
 
 /// Adds `found` to a wrong verdict, dropping the generic `not-equal` it makes redundant.
 fn report(v: &mut Verdict, found: Option<Diagnosis>) {
