@@ -41,7 +41,12 @@ pub struct Prepared {
     /// The answer being checked, for quoting the student's own terms in diagnoses.
     pub(crate) quotes: Quotes,
     /// The wrong answers generated from the part's physics, made once.
-    pub(crate) generated: super::misconception::Generated,
+    pub(crate) generated: super::generated::Generated,
+    /// The accelerations of the equations linearized about rest at q = 0, at each point, and
+    /// the part's reference equations (lhs, rhs) read: made for the first wrong equation
+    /// (`equation_diagnosis.rs`), then kept.
+    pub(crate) linearized: Option<std::sync::Arc<[Option<Vec<f64>>]>>,
+    pub(crate) reference_equations: Option<std::sync::Arc<[(Id, Id)]>>,
 }
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
@@ -112,6 +117,8 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         expansion,
         quotes: Quotes::default(),
         generated: Default::default(),
+        linearized: None,
+        reference_equations: None,
     })
 }
 

@@ -2,9 +2,9 @@
 //! (`effective-mass`), a frequency about another equilibrium (`expansion-point`), and
 //! equilibria lost by dividing the equilibrium condition by a factor (`lost-root`).
 
+use super::super::generated::{Candidate, Frequency};
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
-use super::Candidate;
 use super::numeric::equal;
 use crate::expr::{Func, Id, Node, read_expr};
 use crate::mechanics::Body;
@@ -27,21 +27,6 @@ pub fn diagnose(
     }
 }
 
-/// The wrong frequencies of a part, each set made when first needed (see
-/// [`super::Generated`]).
-#[derive(Default)]
-pub(crate) struct Generated {
-    /// The part's `at` point, read once (`None` inside: it cannot be read).
-    at: Option<Option<Arc<[Id]>>>,
-    /// [`effective_mass`]'s candidates.
-    effective_mass: Option<Arc<[Wrong]>>,
-    /// [`expansion_point`]'s candidates.
-    expansion_point: Option<Arc<[Wrong]>>,
-}
-
-/// A generated wrong ω² and, for a part asking for ω, its square root (see [`follows`]).
-type Wrong = (Candidate<Id>, Option<Id>);
-
 /// A student frequency that is no reference item but a generated wrong one.
 fn frequency(
     problem: &Problem,
@@ -50,11 +35,11 @@ fn frequency(
     items: &[Vec<Id>],
     refs: &[Vec<Id>],
 ) -> Option<Diagnosis> {
-    let q0 = match &p.generated.frequencies.at {
+    let q0 = match &p.generated.at {
         Some(q0) => q0.clone(),
         None => {
             let q0: Option<Arc<[Id]>> = at_point(part, p).map(Into::into);
-            p.generated.frequencies.at = Some(q0.clone());
+            p.generated.at = Some(q0.clone());
             q0
         }
     }?;
@@ -63,26 +48,29 @@ fn frequency(
     let effective = if all_listed(p, items, refs) {
         None
     } else {
-        Some(match &p.generated.frequencies.effective_mass {
+        Some(match &p.generated.effective_mass {
             Some(c) => c.clone(),
             None => {
                 let made = effective_mass(part, p, &q0);
                 let c = with_roots(part, p, made);
-                p.generated.frequencies.effective_mass = Some(c.clone());
+                p.generated.effective_mass = Some(c.clone());
                 c
             }
         })
     };
-    let expansion = match &p.generated.frequencies.expansion_point {
+    let expansion = match &p.generated.expansion_point {
         Some(c) => c.clone(),
         None => {
             let made = expansion_point(problem, p, &q0);
             let c = with_roots(part, p, made);
-            p.generated.frequencies.expansion_point = Some(c.clone());
+            p.generated.expansion_point = Some(c.clone());
             c
         }
     };
-    let cands = effective.iter().flat_map(|c| c.iter()).chain(expansion.iter());
+    let cands = effective
+        .iter()
+        .flat_map(|c| c.iter())
+        .chain(expansion.iter());
     for it in items {
         let &[s] = it.as_slice() else { continue };
         if is_reference(p, s, refs) {
@@ -96,7 +84,7 @@ fn frequency(
 }
 
 /// The candidates with the square root of each ω² for a part asking for ω.
-fn with_roots(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Wrong]> {
+fn with_roots(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Frequency]> {
     cands
         .into_iter()
         .map(|c| {

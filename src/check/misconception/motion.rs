@@ -3,11 +3,12 @@
 //! momentum put into L before differentiating (`premature-substitution`), and in another sign
 //! convention (`convention`). Answers are compared through the accelerations each implies.
 
+use super::super::generated::{Candidate, Motion};
 use super::super::prepare::Prepared;
 use super::super::prepare::true_accelerations;
 use super::super::verdict::{Code, Diagnosis};
+use super::energies;
 use super::numeric::{accelerations, differ, full_rank, holds_at};
-use super::{Candidate, Motion, energies};
 use crate::expr::Id;
 use crate::problem::{Part, PartKind};
 use rustc_hash::FxHashMap;
