@@ -8,7 +8,6 @@ use std::ops::Range;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Pow};
 
 use super::error::{ParseError, ParseErrorKind};
 use super::names;
@@ -330,13 +329,14 @@ fn number(src: &str, start: usize) -> Result<(BigRational, usize), ParseError> {
     }
     let mantissa: BigInt = digits.parse().unwrap_or_default();
     let shift = exp - frac_len;
-    let ten = BigRational::from_integer(BigInt::from(10));
-    let scale = if shift >= 0 {
-        ten.pow(shift as u32)
+    // One reduction (a single gcd), not a power of a ratio times a ratio.
+    let scale = num_traits::Pow::pow(BigInt::from(10), shift.unsigned_abs());
+    let value = if shift >= 0 {
+        BigRational::from_integer(mantissa * scale)
     } else {
-        BigRational::one() / ten.pow((-shift) as u32)
+        BigRational::new(mantissa, scale)
     };
-    Ok((BigRational::from_integer(mantissa) * scale, i))
+    Ok((value, i))
 }
 
 #[cfg(test)]
