@@ -281,22 +281,35 @@ fn extract_big(mut rest: BigInt, q: u32) -> (BigInt, BigInt) {
 
 /// [`extract_perfect_power`] for a positive `n` that fits in 128 bits, in machine integers
 /// (a decimal coefficient such as 1.000003 has its numerator and denominator checked on every
-/// reading). The same trial division, stopped once p^q exceeds what is left: no larger prime
-/// power divides it then, so the result is the same.
-fn extract_small(mut rest: u128, q: u32) -> (BigInt, BigInt) {
-    let mut root = 1u128;
+/// reading), 64-bit ones when `n` fits. The same trial division, stopped once p^q exceeds what
+/// is left: no larger prime power divides it then, so the result is the same.
+fn extract_small(rest: u128, q: u32) -> (BigInt, BigInt) {
+    match u64::try_from(rest) {
+        Ok(n) => extract_machine(n, q),
+        Err(_) => extract_machine(rest, q),
+    }
+}
+
+/// [`extract_small`] in the integer type `T`.
+fn extract_machine<T>(mut rest: T, q: u32) -> (BigInt, BigInt)
+where
+    T: num_traits::PrimInt + From<u32> + Into<BigInt>,
+{
+    let mut root = T::one();
     let mut p = 2u32;
     while p < 1000 {
-        let Some(pq) = u128::from(p).checked_pow(q).filter(|&pq| pq <= rest) else {
+        let Some(pq) =
+            num_traits::checked_pow(<T as From<u32>>::from(p), q as usize).filter(|&pq| pq <= rest)
+        else {
             break;
         };
-        while rest % pq == 0 {
-            rest /= pq;
-            root *= u128::from(p);
+        while (rest % pq).is_zero() {
+            rest = rest / pq;
+            root = root * <T as From<u32>>::from(p);
         }
         p += if p == 2 { 1 } else { 2 };
     }
-    (BigInt::from(root), BigInt::from(rest))
+    (root.into(), rest.into())
 }
 
 #[cfg(test)]
@@ -316,11 +329,11 @@ mod tests {
         ]);
         for n in ns {
             for q in [1, 2, 3, 5, 64] {
-                assert_eq!(
-                    extract_small(n, q),
-                    extract_big(BigInt::from(n), q),
-                    "{n}^(1/{q})"
-                );
+                let big = extract_big(BigInt::from(n), q);
+                assert_eq!(extract_machine(n, q), big, "{n}^(1/{q})");
+                if let Ok(m) = u64::try_from(n) {
+                    assert_eq!(extract_machine(m, q), big, "{n}^(1/{q}) in 64 bits");
+                }
             }
         }
     }
