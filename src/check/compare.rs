@@ -72,28 +72,14 @@ pub fn relate(
     pts: &PointSet,
     tol: f64,
 ) -> Result<Relation, CheckError> {
-    let vals = values(sys, &[b], pts)?;
-    let avals = values(sys, &[a], pts)?;
-    let sizes = term_sizes(sys, a, b, pts)?;
-    // (point, a, b, size of the terms of a and of b at that point)
-    let mut pairs = Vec::new();
-    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
-        let Some(vb) = vb else { continue };
-        let Some(va) = va else {
-            return Ok(Relation::Undefined { point: k });
-        };
-        pairs.push((k, va[0], vb[0], sizes[k]));
-    }
+    let pairs = match pairs(sys, a, b, pts)? {
+        Ok(pairs) => pairs,
+        Err(point) => return Ok(Relation::Undefined { point }),
+    };
     if pairs.is_empty() {
         return Err(CheckError::ReferenceUndefined);
     }
-    // Every comparison is relative to the size of the quantities at its own point (the sum of
-    // the magnitudes of the terms of both sides there), never to other points: a point where
-    // everything is small must not be judged against one where everything is large.
-    if pairs
-        .iter()
-        .all(|&(_, x, y, (sa, sb))| close(x, y, sa + sb, tol))
-    {
+    if all_close(&pairs, tol) {
         return Ok(Relation::Equal);
     }
     // Up to a constant: the difference does not change when the state (t, q, q', q'') changes
@@ -127,6 +113,48 @@ pub fn relate(
         .find(|&&(_, x, y, (sa, sb))| !close(x, y, sa + sb, tol))
         .map_or(0, |p| p.0);
     Ok(Relation::Different { point: bad })
+}
+
+/// Whether [`relate`] finds `a` and `b` [`Relation::Equal`], without the tests for the other
+/// relations (a constant, a factor: half of its work) that a caller asking only this needs
+/// not run.
+pub fn equal(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
+    matches!(pairs(sys, a, b, pts), Ok(Ok(pairs)) if !pairs.is_empty() && all_close(&pairs, tol))
+}
+
+/// One point's comparison: (point, a, b, size of the terms of a and of b at that point).
+type Pair = (usize, f64, f64, (f64, f64));
+
+/// The comparisons at every point where `b` is defined; `Err(k)`: `a` is undefined at point
+/// `k`, where `b` is defined.
+fn pairs(
+    sys: &System,
+    a: Id,
+    b: Id,
+    pts: &PointSet,
+) -> Result<Result<Vec<Pair>, usize>, CheckError> {
+    let vals = values(sys, &[b], pts)?;
+    let avals = values(sys, &[a], pts)?;
+    let sizes = term_sizes(sys, a, b, pts)?;
+    let mut pairs = Vec::new();
+    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
+        let Some(vb) = vb else { continue };
+        let Some(va) = va else {
+            return Ok(Err(k));
+        };
+        pairs.push((k, va[0], vb[0], sizes[k]));
+    }
+    Ok(Ok(pairs))
+}
+
+/// Whether `a` and `b` agree at every point. Every comparison is relative to the size of the
+/// quantities at its own point (the sum of the magnitudes of the terms of both sides there),
+/// never to other points: a point where everything is small must not be judged against one
+/// where everything is large.
+fn all_close(pairs: &[Pair], tol: f64) -> bool {
+    pairs
+        .iter()
+        .all(|&(_, x, y, (sa, sb))| close(x, y, sa + sb, tol))
 }
 
 /// Whether `a = c·b` with c nonzero and independent of the state (it may depend on the
@@ -290,7 +318,7 @@ fn same_difference_when_moved(
     a: Id,
     b: Id,
     pts: &PointSet,
-    pairs: &[(usize, f64, f64, (f64, f64))],
+    pairs: &[Pair],
     tol: f64,
 ) -> Result<bool, CheckError> {
     let time = sys.pool.time();

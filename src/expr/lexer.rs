@@ -382,7 +382,7 @@ mod tests {
     #[test]
     fn short_decimals_reduce_as_big_ones_do() {
         for (digits, shift) in [
-            ("1000003", -6),
+            ("1000003", -6i64),
             ("0", -3),
             ("120", 2),
             ("25", -1),
