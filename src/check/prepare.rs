@@ -47,7 +47,13 @@ pub struct Prepared {
     /// (`equation_diagnosis.rs`), then kept.
     pub(crate) linearized: Option<std::sync::Arc<[Option<Vec<f64>>]>>,
     pub(crate) reference_equations: Option<std::sync::Arc<[(Id, Id)]>>,
+    /// The last equation's affine form at the sample points (`residual.rs`): for each point,
+    /// the coefficients of q'' and the rest.
+    pub(crate) last_affine: Option<AffineForm>,
 }
+
+/// An equation and its affine form at each sample point (see [`Prepared::last_affine`]).
+pub(crate) type AffineForm = (Id, std::sync::Arc<[Option<(Vec<f64>, f64)>]>);
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
 pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
@@ -119,6 +125,7 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         generated: Default::default(),
         linearized: None,
         reference_equations: None,
+        last_affine: None,
     })
 }
 
