@@ -6,6 +6,7 @@
 
 use std::sync::Arc;
 
+use super::compare::Sampled;
 use super::verdict::{Code, Diagnosis};
 use crate::expr::Id;
 
@@ -44,10 +45,18 @@ pub(crate) struct Generated {
     pub(crate) effective_mass: Option<Arc<[Frequency]>>,
     /// The frequencies about another equilibrium (`expansion-point`).
     pub(crate) expansion_point: Option<Arc<[Frequency]>>,
+    /// The reference frequencies evaluated at the sample points (`None` inside: not a single
+    /// value, or not evaluable).
+    pub(crate) references: Option<Arc<[Option<Sampled>]>>,
 }
 
 /// A generated wrong system of equations and the accelerations it implies at each point.
 pub(crate) type Motion = (Candidate<Vec<Id>>, Vec<Option<Vec<f64>>>);
 
-/// A generated wrong ω² and, for a part asking for ω, its square root.
-pub(crate) type Frequency = (Candidate<Id>, Option<Id>);
+/// A generated wrong ω², evaluated at the sample points, and for a part asking for ω its
+/// square root too (each `None` where it cannot be evaluated).
+pub(crate) struct Frequency {
+    pub(crate) candidate: Candidate<Id>,
+    pub(crate) squared: Option<Sampled>,
+    pub(crate) root: Option<Sampled>,
+}

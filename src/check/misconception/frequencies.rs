@@ -2,6 +2,7 @@
 //! (`effective-mass`), a frequency about another equilibrium (`expansion-point`), and
 //! equilibria lost by dividing the equilibrium condition by a factor (`lost-root`).
 
+use super::super::compare::{Sampled, equal_sampled};
 use super::super::generated::{Candidate, Frequency};
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
@@ -27,7 +28,9 @@ pub fn diagnose(
     }
 }
 
-/// A student frequency that is no reference item but a generated wrong one.
+/// A student frequency that is no reference item but a generated wrong one. Each item, each
+/// reference item and each generated frequency is evaluated at the sample points once, not
+/// once per comparison.
 fn frequency(
     problem: &Problem,
     part: &Part,
@@ -43,16 +46,33 @@ fn frequency(
             q0
         }
     }?;
+    // Single-value items and references, sampled (`None`: several values, or unevaluable).
+    let single = |p: &Prepared, it: &[Id]| match it {
+        &[s] => sample(p, s),
+        _ => None,
+    };
+    let refs = match &p.generated.references {
+        Some(r) => r.clone(),
+        None => {
+            let r: Arc<[Option<Sampled>]> = refs.iter().map(|r| single(p, r)).collect();
+            p.generated.references = Some(r.clone());
+            r
+        }
+    };
+    let mine: Vec<Option<Sampled>> = items.iter().map(|it| single(p, it)).collect();
     // The wrong inertia replaces a right frequency; with every right one listed, an extra
     // item is a different slip, so effective-mass would mislead.
-    let effective = if all_listed(p, items, refs) {
+    let all_listed = refs
+        .iter()
+        .all(|r| mine.iter().any(|s| same(p, s.as_ref(), r.as_ref())));
+    let effective = if all_listed {
         None
     } else {
         Some(match &p.generated.effective_mass {
             Some(c) => c.clone(),
             None => {
                 let made = effective_mass(part, p, &q0);
-                let c = with_roots(part, p, made);
+                let c = sampled(part, p, made);
                 p.generated.effective_mass = Some(c.clone());
                 c
             }
@@ -62,7 +82,7 @@ fn frequency(
         Some(c) => c.clone(),
         None => {
             let made = expansion_point(problem, p, &q0);
-            let c = with_roots(part, p, made);
+            let c = sampled(part, p, made);
             p.generated.expansion_point = Some(c.clone());
             c
         }
@@ -71,43 +91,55 @@ fn frequency(
         .iter()
         .flat_map(|c| c.iter())
         .chain(expansion.iter());
-    for it in items {
-        let &[s] = it.as_slice() else { continue };
-        if is_reference(p, s, refs) {
+    let half = num_rational::BigRational::new(1.into(), 2.into());
+    for (it, s) in items.iter().zip(&mine) {
+        let &[id] = it.as_slice() else { continue };
+        if refs.iter().any(|r| same(p, s.as_ref(), r.as_ref())) {
             continue;
         }
-        if let Some((c, _)) = cands.clone().find(|(c, w)| follows(p, s, c.answer, *w)) {
-            return Some(c.diagnosis());
+        // `√(x)` written out: its radicand, compared with ω² itself.
+        let radicand = match p.system.pool.node(id) {
+            Node::Pow(base, e) if matches!(p.system.pool.node(*e), Node::Num(h) if *h == half) => {
+                Some(sample(p, *base))
+            }
+            _ => None,
+        };
+        if let Some(f) = cands
+            .clone()
+            .find(|f| follows(part, p, s.as_ref(), radicand.as_ref(), f))
+        {
+            return Some(f.candidate.diagnosis());
         }
     }
     None
 }
 
-/// The candidates with the square root of each ω² for a part asking for ω.
-fn with_roots(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Frequency]> {
+/// `e` evaluated at the sample points; `None` where it cannot be.
+fn sample(p: &Prepared, e: Id) -> Option<Sampled> {
+    Sampled::of(&p.system, e, &p.points).ok()
+}
+
+/// Whether two sampled values are equal at the sample points ([`equal`]'s test).
+fn same(p: &Prepared, a: Option<&Sampled>, b: Option<&Sampled>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => equal_sampled(a, b, p.tolerance),
+        _ => false,
+    }
+}
+
+/// The candidates sampled: each ω², and for a part asking for ω its square root.
+fn sampled(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Frequency]> {
     cands
         .into_iter()
         .map(|c| {
-            let w = (!part.squared).then(|| p.system.pool.sqrt(c.answer));
-            (c, w)
+            let root = (!part.squared).then(|| p.system.pool.sqrt(c.answer));
+            Frequency {
+                squared: sample(p, c.answer),
+                root: root.and_then(|w| sample(p, w)),
+                candidate: c,
+            }
         })
         .collect()
-}
-
-/// Whether the single-value item `s` is one of the reference items.
-fn is_reference(p: &Prepared, s: Id, refs: &[Vec<Id>]) -> bool {
-    refs.iter()
-        .any(|r| r.len() == 1 && equal(p, s, r[0], false))
-}
-
-/// Whether every reference item is among the student's items.
-fn all_listed(p: &Prepared, items: &[Vec<Id>], refs: &[Vec<Id>]) -> bool {
-    refs.iter().all(|r| {
-        let &[r] = r.as_slice() else { return false };
-        items
-            .iter()
-            .any(|it| matches!(it.as_slice(), &[s] if equal(p, s, r, false)))
-    })
 }
 
 /// The part's `at` point, one value per coordinate.
@@ -154,25 +186,21 @@ fn mass_and_stiffness(p: &mut Prepared, q0: &[Id]) -> (Vec<Vec<Id>>, Vec<Vec<Id>
     (m, k)
 }
 
-/// Whether the student's item `s` is the frequency whose square is `w2`: ω² itself for a
-/// `squared` part; ω (`w`, the root of `w2`), or the square root of exactly `w2` written out
-/// (about an unstable point ω² < 0 and the root is undefined everywhere, yet it is the
-/// mistake), otherwise.
-fn follows(p: &mut Prepared, s: Id, w2: Id, w: Option<Id>) -> bool {
-    let Some(w) = w else {
-        return equal(p, s, w2, false);
-    };
-    if equal(p, s, w, false) {
-        return true;
+/// Whether the student's item `s` is the generated frequency `f` whose square is ω²: ω² itself
+/// for a `squared` part; ω, or the square root of exactly ω² written out (`radicand`: about
+/// an unstable point ω² < 0 and the root is undefined everywhere, yet it is the mistake),
+/// otherwise.
+fn follows(
+    part: &Part,
+    p: &Prepared,
+    s: Option<&Sampled>,
+    radicand: Option<&Option<Sampled>>,
+    f: &Frequency,
+) -> bool {
+    if part.squared {
+        return same(p, s, f.squared.as_ref());
     }
-    let half = num_rational::BigRational::new(1.into(), 2.into());
-    match p.system.pool.node(s) {
-        Node::Pow(base, e) if matches!(p.system.pool.node(*e), Node::Num(h) if *h == half) => {
-            let base = *base;
-            equal(p, base, w2, false)
-        }
-        _ => false,
-    }
+    same(p, s, f.root.as_ref()) || radicand.is_some_and(|r| same(p, r.as_ref(), f.squared.as_ref()))
 }
 
 /// ω² = `k/m` (compared with the student's items by [`follows`]).
