@@ -72,28 +72,14 @@ pub fn relate(
     pts: &PointSet,
     tol: f64,
 ) -> Result<Relation, CheckError> {
-    let vals = values(sys, &[b], pts)?;
-    let avals = values(sys, &[a], pts)?;
-    let sizes = term_sizes(sys, a, b, pts)?;
-    // (point, a, b, size of the terms of a and of b at that point)
-    let mut pairs = Vec::new();
-    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
-        let Some(vb) = vb else { continue };
-        let Some(va) = va else {
-            return Ok(Relation::Undefined { point: k });
-        };
-        pairs.push((k, va[0], vb[0], sizes[k]));
-    }
+    let pairs = match pairs(sys, a, b, pts)? {
+        Ok(pairs) => pairs,
+        Err(point) => return Ok(Relation::Undefined { point }),
+    };
     if pairs.is_empty() {
         return Err(CheckError::ReferenceUndefined);
     }
-    // Every comparison is relative to the size of the quantities at its own point (the sum of
-    // the magnitudes of the terms of both sides there), never to other points: a point where
-    // everything is small must not be judged against one where everything is large.
-    if pairs
-        .iter()
-        .all(|&(_, x, y, (sa, sb))| close(x, y, sa + sb, tol))
-    {
+    if all_close(&pairs, tol) {
         return Ok(Relation::Equal);
     }
     // Up to a constant: the difference does not change when the state (t, q, q', q'') changes
@@ -127,6 +113,92 @@ pub fn relate(
         .find(|&&(_, x, y, (sa, sb))| !close(x, y, sa + sb, tol))
         .map_or(0, |p| p.0);
     Ok(Relation::Different { point: bad })
+}
+
+/// Whether [`relate`] finds `a` and `b` [`Relation::Equal`], without the tests for the other
+/// relations (a constant, a factor: half of its work) that a caller asking only this needs
+/// not run.
+pub fn equal(sys: &System, a: Id, b: Id, pts: &PointSet, tol: f64) -> bool {
+    matches!(pairs(sys, a, b, pts), Ok(Ok(pairs)) if !pairs.is_empty() && all_close(&pairs, tol))
+}
+
+/// An expression evaluated once at a point set, to be compared with many others
+/// ([`equal_sampled`]): its values and those of its top-level terms, `None` where undefined.
+pub(crate) struct Sampled {
+    values: Vec<Option<Vec<f64>>>,
+    terms: Vec<Option<Vec<f64>>>,
+}
+
+impl Sampled {
+    /// `e` at `pts`; an error where it cannot be evaluated (a symbol without a value).
+    pub(crate) fn of(sys: &System, e: Id, pts: &PointSet) -> Result<Sampled, CheckError> {
+        Ok(Sampled {
+            values: values(sys, &[e], pts)?,
+            terms: values(sys, &top_terms(sys, e), pts)?,
+        })
+    }
+}
+
+/// [`equal`] of two sampled expressions (at the same points): the same comparisons, each
+/// side evaluated once however many it is compared with. Each value and each term's value
+/// is the same whichever program computes it, and the terms of both sides are defined at a
+/// point exactly where each side's are, so the sizes are [`term_sizes`]' too.
+pub(crate) fn equal_sampled(a: &Sampled, b: &Sampled, tol: f64) -> bool {
+    let sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+    let mut pairs = Vec::with_capacity(b.values.len());
+    for (k, (va, vb)) in a.values.iter().zip(&b.values).enumerate() {
+        let Some(vb) = vb else { continue };
+        let Some(va) = va else { return false };
+        let sizes = match (&a.terms[k], &b.terms[k]) {
+            (Some(ta), Some(tb)) => (sum(ta), sum(tb)),
+            _ => (0.0, 0.0),
+        };
+        pairs.push((k, va[0], vb[0], sizes));
+    }
+    !pairs.is_empty() && all_close(&pairs, tol)
+}
+
+/// The top-level terms of `e` (itself when it is no sum).
+fn top_terms(sys: &System, e: Id) -> Vec<Id> {
+    match sys.pool.node(e) {
+        crate::expr::Node::Add(t) => t.to_vec(),
+        _ => vec![e],
+    }
+}
+
+/// One point's comparison: (point, a, b, size of the terms of a and of b at that point).
+type Pair = (usize, f64, f64, (f64, f64));
+
+/// The comparisons at every point where `b` is defined; `Err(k)`: `a` is undefined at point
+/// `k`, where `b` is defined.
+fn pairs(
+    sys: &System,
+    a: Id,
+    b: Id,
+    pts: &PointSet,
+) -> Result<Result<Vec<Pair>, usize>, CheckError> {
+    let vals = values(sys, &[b], pts)?;
+    let avals = values(sys, &[a], pts)?;
+    let sizes = term_sizes(sys, a, b, pts)?;
+    let mut pairs = Vec::new();
+    for (k, (va, vb)) in avals.iter().zip(&vals).enumerate() {
+        let Some(vb) = vb else { continue };
+        let Some(va) = va else {
+            return Ok(Err(k));
+        };
+        pairs.push((k, va[0], vb[0], sizes[k]));
+    }
+    Ok(Ok(pairs))
+}
+
+/// Whether `a` and `b` agree at every point. Every comparison is relative to the size of the
+/// quantities at its own point (the sum of the magnitudes of the terms of both sides there),
+/// never to other points: a point where everything is small must not be judged against one
+/// where everything is large.
+fn all_close(pairs: &[Pair], tol: f64) -> bool {
+    pairs
+        .iter()
+        .all(|&(_, x, y, (sa, sb))| close(x, y, sa + sb, tol))
 }
 
 /// Whether `a = c·b` with c nonzero and independent of the state (it may depend on the
@@ -267,13 +339,7 @@ pub fn fmt_value(x: f64) -> String {
 /// each one's top-level terms (0 where undefined). Rounding in a sum is relative to this, not
 /// to the sum itself, which may cancel to (nearly) nothing.
 fn term_sizes(sys: &System, a: Id, b: Id, pts: &PointSet) -> Result<Vec<(f64, f64)>, CheckError> {
-    let terms = |e: Id| -> Vec<Id> {
-        match sys.pool.node(e) {
-            crate::expr::Node::Add(t) => t.to_vec(),
-            _ => vec![e],
-        }
-    };
-    let (ta, tb) = (terms(a), terms(b));
+    let (ta, tb) = (top_terms(sys, a), top_terms(sys, b));
     let ids: Vec<Id> = ta.iter().chain(&tb).copied().collect();
     let sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
     Ok(values(sys, &ids, pts)?
@@ -290,7 +356,7 @@ fn same_difference_when_moved(
     a: Id,
     b: Id,
     pts: &PointSet,
-    pairs: &[(usize, f64, f64, (f64, f64))],
+    pairs: &[Pair],
     tol: f64,
 ) -> Result<bool, CheckError> {
     let time = sys.pool.time();
@@ -314,4 +380,44 @@ fn same_difference_when_moved(
             }
             _ => true,
         }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sampled_comparisons_agree_with_equal() {
+        let pr = crate::bank::embedded::problem("simple-pendulum").expect("problem in the bank");
+        let part = pr.part("frequencies").expect("part");
+        let mut p = crate::check::prepare::prepare(&pr, part).expect("prepared");
+        let texts = [
+            "sqrt(g/l)",
+            "sqrt(1.000003*g/l)",
+            "g/l",
+            "sqrt(-g/l)",
+            "sqrt(g/l) + 1e-12",
+            "1/theta",
+            "sqrt(g/l) + theta - theta",
+            "sqrt(g/l) + sin(theta)^2 + cos(theta)^2 - 1",
+            "0",
+        ];
+        let ids: Vec<Id> = (texts.iter())
+            .map(|t| crate::expr::read_expr(t, &p.context, &mut p.system.pool).expect("reads"))
+            .collect();
+        let sampled: Vec<Sampled> = (ids.iter())
+            .map(|&e| Sampled::of(&p.system, e, &p.points).expect("evaluates"))
+            .collect();
+        for (i, &a) in ids.iter().enumerate() {
+            for (j, &b) in ids.iter().enumerate() {
+                assert_eq!(
+                    equal_sampled(&sampled[i], &sampled[j], p.tolerance),
+                    equal(&p.system, a, b, &p.points, p.tolerance),
+                    "{} vs {}",
+                    texts[i],
+                    texts[j]
+                );
+            }
+        }
+    }
 }

@@ -5,6 +5,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 use super::compare::values;
 use super::diagnose::{has_decimal, percent, student_numbers, swapped, tolerance_text};
@@ -66,7 +67,7 @@ fn linearized_accelerations(p: &mut Prepared) -> Vec<Option<Vec<f64>>> {
         .collect()
 }
 
-/// The part's reference equations (lhs, rhs), read afresh (only wrong answers need them).
+/// The part's reference equations (lhs, rhs) (only wrong answers need them).
 fn reference_equations(part: &Part, p: &mut Prepared) -> Vec<(Id, Id)> {
     part.answers
         .iter()
@@ -142,7 +143,14 @@ pub(super) fn diagnose_equation(
     v: &mut Verdict,
 ) {
     let pts = p.points.clone();
-    let lin = linearized_accelerations(p);
+    let lin = match &p.linearized {
+        Some(lin) => lin.clone(),
+        None => {
+            let lin: Arc<[_]> = linearized_accelerations(p).into();
+            p.linearized = Some(lin.clone());
+            lin
+        }
+    };
     if has_coordinate(p, r) && holds(p, r, &pts, &lin) {
         v.diagnoses.push(Diagnosis::new(Code::SmallAngle,
             format!("{which} is the small-angle (linearized) equation, but the full equation is asked: keep sin θ and cos θ, and the velocity terms"),
@@ -173,7 +181,14 @@ pub(super) fn diagnose_equation(
             .push(Diagnosis::new(Code::RoundedConstant, message));
         return;
     }
-    let refs = reference_equations(part, p);
+    let refs = match &p.reference_equations {
+        Some(refs) => refs.clone(),
+        None => {
+            let refs: Arc<[_]> = reference_equations(part, p).into();
+            p.reference_equations = Some(refs.clone());
+            refs
+        }
+    };
     let term = term_in_equation(p, &refs, eq, which);
     if let Some(d) = term.as_ref().filter(|d| d.code == Code::SignError) {
         v.diagnoses.push(d.clone());

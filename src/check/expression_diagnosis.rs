@@ -147,7 +147,7 @@ fn not_quadratic(p: &mut Prepared, t: Id) -> bool {
 /// found nothing.
 fn term_mistakes(p: &mut Prepared, s: Id, reference: Id) -> Vec<Mistake> {
     let eq = |p: &mut Prepared, cand: Id| {
-        relate(&p.system, cand, reference, &p.points, tolerance::SAME).ok() == Some(Relation::Equal)
+        super::compare::equal(&p.system, cand, reference, &p.points, tolerance::SAME)
     };
     if let Some(d) = rounded(p, s, reference) {
         return vec![Mistake::Found(d)];

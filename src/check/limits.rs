@@ -189,7 +189,7 @@ pub(super) fn has_function_of_coordinate(p: &Prepared, e: Id) -> bool {
 pub(super) fn right_in_limit(p: &mut Prepared, s: Id, reference: Id) -> Option<Diagnosis> {
     for limit in applicable(p, reference) {
         let pts = points_in(p, limit);
-        if relate(&p.system, s, reference, &pts, tolerance::SAME).ok() == Some(Relation::Equal) {
+        if super::compare::equal(&p.system, s, reference, &pts, tolerance::SAME) {
             return Some(right_in(p, limit, "your answer"));
         }
     }

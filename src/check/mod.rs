@@ -17,6 +17,7 @@ pub(crate) mod error;
 mod expression_diagnosis;
 mod fingerprint;
 mod freq_label;
+mod generated;
 mod item_reading;
 mod items;
 mod lagrangian;

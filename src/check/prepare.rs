@@ -40,7 +40,20 @@ pub struct Prepared {
     pub(crate) expansion: Option<super::taylor::Expansion>,
     /// The answer being checked, for quoting the student's own terms in diagnoses.
     pub(crate) quotes: Quotes,
+    /// The wrong answers generated from the part's physics, made once.
+    pub(crate) generated: super::generated::Generated,
+    /// The accelerations of the equations linearized about rest at q = 0, at each point, and
+    /// the part's reference equations (lhs, rhs) read: made for the first wrong equation
+    /// (`equation_diagnosis.rs`), then kept.
+    pub(crate) linearized: Option<std::sync::Arc<[Option<Vec<f64>>]>>,
+    pub(crate) reference_equations: Option<std::sync::Arc<[(Id, Id)]>>,
+    /// The last equation's affine form at the sample points (`residual.rs`): for each point,
+    /// the coefficients of q'' and the rest.
+    pub(crate) last_affine: Option<AffineForm>,
 }
+
+/// An equation and its affine form at each sample point (see [`Prepared::last_affine`]).
+pub(crate) type AffineForm = (Id, std::sync::Arc<[Option<(Vec<f64>, f64)>]>);
 
 /// Prepares a part: substitutes, derives and draws points seeded by the problem and part.
 pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
@@ -109,6 +122,10 @@ pub fn prepare(problem: &Problem, part: &Part) -> Result<Prepared, CheckError> {
         reference: std::cell::OnceCell::new(),
         expansion,
         quotes: Quotes::default(),
+        generated: Default::default(),
+        linearized: None,
+        reference_equations: None,
+        last_affine: None,
     })
 }
 

@@ -8,6 +8,7 @@ use super::points::PointSet;
 use super::prepare::Prepared;
 use super::tolerance;
 use crate::expr::Id;
+use std::sync::Arc;
 
 /// An equation's affine form at one point: the coefficients of q'' and the rest.
 pub(super) type AffineRow = (Vec<f64>, f64);
@@ -39,6 +40,28 @@ pub(super) fn affine(
         .collect())
 }
 
+/// [`affine`], kept for the last equation read at the sample points: a wrong equation is
+/// tried at the true accelerations, then at the linearized ones and to a looser tolerance,
+/// and its affine form is the same each time (it does not depend on the accelerations).
+fn affine_once(
+    p: &mut Prepared,
+    r: Id,
+    pts: &PointSet,
+) -> Result<Arc<[Option<AffineRow>]>, CheckError> {
+    let samples = pts.points == p.points.points;
+    if let Some((id, rows)) = &p.last_affine
+        && samples
+        && *id == r
+    {
+        return Ok(rows.clone());
+    }
+    let rows: Arc<[_]> = affine(p, r, pts)?.into();
+    if samples {
+        p.last_affine = Some((r, rows.clone()));
+    }
+    Ok(rows)
+}
+
 /// Why an equation fails at given accelerations.
 pub(super) enum Miss {
     /// The residual at the first point where it does not vanish.
@@ -58,7 +81,7 @@ pub(super) fn miss(
     acc: &[Option<Vec<f64>>],
     tol: f64,
 ) -> Option<Miss> {
-    let Ok(rows) = affine(p, r, pts) else {
+    let Ok(rows) = affine_once(p, r, pts) else {
         return Some(Miss::Unevaluable);
     };
     let mut any_acc = false;

@@ -251,14 +251,22 @@ fn exact_int_pow(b: &BigRational, e: &BigRational) -> Option<BigRational> {
 
 /// Writes `n = root^q · rest` with `root` as large as trial division by small primes finds.
 fn extract_perfect_power(n: &BigInt, q: &BigInt) -> (BigInt, BigInt) {
-    let mut root = BigInt::one();
-    let mut rest = n.clone();
+    let rest = n.clone();
     let Some(q) = q.to_u32() else {
-        return (root, rest);
+        return (BigInt::one(), rest);
     };
     if rest.bits() > 128 || q > 64 {
-        return (root, rest);
+        return (BigInt::one(), rest);
     }
+    if let Some(n) = rest.to_u128().filter(|&n| n > 0) {
+        return extract_small(n, q);
+    }
+    extract_big(rest, q)
+}
+
+/// [`extract_perfect_power`]'s trial division in big integers.
+fn extract_big(mut rest: BigInt, q: u32) -> (BigInt, BigInt) {
+    let mut root = BigInt::one();
     let mut p = 2u32;
     while p < 1000 {
         let pq = num_traits::Pow::pow(BigInt::from(p), q);
@@ -269,4 +277,64 @@ fn extract_perfect_power(n: &BigInt, q: &BigInt) -> (BigInt, BigInt) {
         p += if p == 2 { 1 } else { 2 };
     }
     (root, rest)
+}
+
+/// [`extract_perfect_power`] for a positive `n` that fits in 128 bits, in machine integers
+/// (a decimal coefficient such as 1.000003 has its numerator and denominator checked on every
+/// reading), 64-bit ones when `n` fits. The same trial division, stopped once p^q exceeds what
+/// is left: no larger prime power divides it then, so the result is the same.
+fn extract_small(rest: u128, q: u32) -> (BigInt, BigInt) {
+    match u64::try_from(rest) {
+        Ok(n) => extract_machine(n, q),
+        Err(_) => extract_machine(rest, q),
+    }
+}
+
+/// [`extract_small`] in the integer type `T`.
+fn extract_machine<T>(mut rest: T, q: u32) -> (BigInt, BigInt)
+where
+    T: num_traits::PrimInt + From<u32> + Into<BigInt>,
+{
+    let mut root = T::one();
+    let mut p = 2u32;
+    while p < 1000 {
+        let Some(pq) =
+            num_traits::checked_pow(<T as From<u32>>::from(p), q as usize).filter(|&pq| pq <= rest)
+        else {
+            break;
+        };
+        while (rest % pq).is_zero() {
+            rest = rest / pq;
+            root = root * <T as From<u32>>::from(p);
+        }
+        p += if p == 2 { 1 } else { 2 };
+    }
+    (root.into(), rest.into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn machine_integers_extract_the_same_powers() {
+        let mut ns: Vec<u128> = (1..3000).collect();
+        ns.extend([
+            1_000_000,
+            1_000_003,
+            999_983 * 999_983,
+            (1 << 100) * 243,
+            u128::MAX,
+            u128::MAX - 1,
+        ]);
+        for n in ns {
+            for q in [1, 2, 3, 5, 64] {
+                let big = extract_big(BigInt::from(n), q);
+                assert_eq!(extract_machine(n, q), big, "{n}^(1/{q})");
+                if let Ok(m) = u64::try_from(n) {
+                    assert_eq!(extract_machine(m, q), big, "{n}^(1/{q}) in 64 bits");
+                }
+            }
+        }
+    }
 }

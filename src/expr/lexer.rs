@@ -8,7 +8,6 @@ use std::ops::Range;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Pow};
 
 use super::error::{ParseError, ParseErrorKind};
 use super::names;
@@ -82,7 +81,8 @@ pub struct Token {
 
 /// Splits `src` into tokens.
 pub(crate) fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
-    let mut out = Vec::new();
+    // About a token per two bytes: growing one at a time reallocates several times.
+    let mut out = Vec::with_capacity(src.len() / 2 + 4);
     let mut chars = src.char_indices().peekable();
     while let Some(&(i, c)) = chars.peek() {
         if c.is_whitespace() {
@@ -283,7 +283,7 @@ fn name(src: &str, start: usize) -> (Tok, usize) {
 fn number(src: &str, start: usize) -> Result<(BigRational, usize), ParseError> {
     let bytes = src.as_bytes();
     let mut i = start;
-    let mut digits = String::new();
+    let mut digits = String::with_capacity(24);
     let mut frac_len: i64 = 0;
     while i < bytes.len() && bytes[i].is_ascii_digit() {
         digits.push(bytes[i] as char);
@@ -328,15 +328,36 @@ fn number(src: &str, start: usize) -> Result<(BigRational, usize), ParseError> {
             start..i,
         ));
     }
-    let mantissa: BigInt = digits.parse().unwrap_or_default();
     let shift = exp - frac_len;
-    let ten = BigRational::from_integer(BigInt::from(10));
-    let scale = if shift >= 0 {
-        ten.pow(shift as u32)
+    if let Some(value) = small_decimal(&digits, shift) {
+        return Ok((value, i));
+    }
+    let mantissa: BigInt = digits.parse().unwrap_or_default();
+    // One reduction (a single gcd), not a power of a ratio times a ratio.
+    let scale = num_traits::Pow::pow(BigInt::from(10), shift.unsigned_abs());
+    let value = if shift >= 0 {
+        BigRational::from_integer(mantissa * scale)
     } else {
-        BigRational::one() / ten.pow((-shift) as u32)
+        BigRational::new(mantissa, scale)
     };
-    Ok((BigRational::from_integer(mantissa) * scale, i))
+    Ok((value, i))
+}
+
+/// The number `digits` × 10^`shift` when the digits and the power of ten fit in 64 bits
+/// (every number a student types): reduced by a machine gcd, as `BigRational::new` would.
+fn small_decimal(digits: &str, shift: i64) -> Option<BigRational> {
+    use num_integer::Integer;
+    let mantissa: u64 = digits.parse().ok()?;
+    let scale = 10u64.checked_pow(u32::try_from(shift.unsigned_abs()).ok()?)?;
+    if shift >= 0 {
+        let n = mantissa.checked_mul(scale)?;
+        return Some(BigRational::from_integer(BigInt::from(n)));
+    }
+    let g = mantissa.gcd(&scale);
+    Some(BigRational::new_raw(
+        BigInt::from(mantissa / g),
+        BigInt::from(scale / g),
+    ))
 }
 
 #[cfg(test)]
@@ -356,6 +377,33 @@ mod tests {
 
     fn num(n: i64, d: i64) -> Tok {
         Tok::Num(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
+
+    #[test]
+    fn short_decimals_reduce_as_big_ones_do() {
+        for (digits, shift) in [
+            ("1000003", -6i64),
+            ("0", -3),
+            ("120", 2),
+            ("25", -1),
+            ("4", -19),
+        ] {
+            let ten = num_traits::Pow::pow(BigInt::from(10), shift.unsigned_abs());
+            let m: BigInt = digits.parse().unwrap();
+            let want = if shift >= 0 {
+                BigRational::from_integer(m * ten)
+            } else {
+                BigRational::new(m, ten)
+            };
+            let got = small_decimal(digits, shift).expect("fits in 64 bits");
+            assert_eq!(
+                (got.numer(), got.denom()),
+                (want.numer(), want.denom()),
+                "{digits}e{shift}"
+            );
+        }
+        assert_eq!(small_decimal("18446744073709551616", 0), None);
+        assert_eq!(small_decimal("1", -20), None);
     }
 
     #[test]

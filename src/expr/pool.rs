@@ -6,14 +6,40 @@
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 use rustc_hash::FxHashMap;
 
 use super::node::{Id, Node, Sym};
 
+/// The hash of a node for the pool's index. A number is hashed by its numerator and
+/// denominator in lowest terms, not by `BigRational`'s own hash, which expands the ratio as a
+/// continued fraction (a big division per step) to stay equal for unreduced ratios: numbers
+/// are hashed on every node built and again whenever the index grows. Equal numbers still
+/// hash alike: a ratio that fits in machine integers is reduced here, and a larger one is
+/// already reduced (every `BigRational` the crate makes is).
 fn hash_node(node: &Node) -> u64 {
-    use std::hash::BuildHasher;
-    rustc_hash::FxBuildHasher.hash_one(node)
+    use std::hash::{BuildHasher, Hash, Hasher};
+    let Node::Num(v) = node else {
+        return rustc_hash::FxBuildHasher.hash_one(node);
+    };
+    let mut h = rustc_hash::FxBuildHasher.build_hasher();
+    match (v.numer().to_i64(), v.denom().to_i64()) {
+        (Some(n), Some(d)) if d != 0 => {
+            let g = gcd(n.unsigned_abs(), d.unsigned_abs()).max(1);
+            let sign = n != 0 && (n < 0) != (d < 0);
+            (sign, n.unsigned_abs() / g, d.unsigned_abs() / g).hash(&mut h);
+        }
+        _ => (v.numer(), v.denom()).hash(&mut h),
+    }
+    h.finish()
+}
+
+/// Greatest common divisor (Euclid's).
+fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
 }
 
 /// Largest expression a differentiation may produce, and past which expansion is not done,

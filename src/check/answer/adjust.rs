@@ -79,11 +79,15 @@ pub(super) fn numbers_for_symbols(part: &Part, p: &Prepared, input: &str, v: &mu
         }
         Some((named, decimal))
     };
+    // The answer first: it rarely is bare decimals, and then the references need no reading.
+    if scan(input) != Some((false, true)) {
+        return;
+    }
     let reference_named = part
         .answers
         .iter()
         .any(|a| scan(a).is_some_and(|(named, _)| named));
-    if !reference_named || scan(input) != Some((false, true)) {
+    if !reference_named {
         return;
     }
     let mut names: Vec<String> = (p.system.parameters.iter())

@@ -2,9 +2,9 @@
 //! the energy function taken as T + V where they differ (`h-vs-e`), and the same quantity in
 //! another sign convention (`convention`).
 
+use super::super::generated::Candidate;
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
-use super::Candidate;
 use super::numeric::{distinct, equal};
 use crate::expr::{Id, Node, Sym};
 use crate::mechanics::Body;

@@ -2,14 +2,16 @@
 //! (`effective-mass`), a frequency about another equilibrium (`expansion-point`), and
 //! equilibria lost by dividing the equilibrium condition by a factor (`lost-root`).
 
+use super::super::compare::{Sampled, equal_sampled};
+use super::super::generated::{Candidate, Frequency};
 use super::super::prepare::Prepared;
 use super::super::verdict::{Code, Diagnosis};
-use super::Candidate;
 use super::numeric::equal;
 use crate::expr::{Func, Id, Node, read_expr};
 use crate::mechanics::Body;
 use crate::problem::{Part, PartKind, Problem};
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 /// The first documented mistake a student's list follows.
 pub fn diagnose(
@@ -26,7 +28,9 @@ pub fn diagnose(
     }
 }
 
-/// A student frequency that is no reference item but a generated wrong one.
+/// A student frequency that is no reference item but a generated wrong one. Each item, each
+/// reference item and each generated frequency is evaluated at the sample points once, not
+/// once per comparison.
 fn frequency(
     problem: &Problem,
     part: &Part,
@@ -34,41 +38,108 @@ fn frequency(
     items: &[Vec<Id>],
     refs: &[Vec<Id>],
 ) -> Option<Diagnosis> {
-    let q0 = at_point(part, p)?;
+    let q0 = match &p.generated.at {
+        Some(q0) => q0.clone(),
+        None => {
+            let q0: Option<Arc<[Id]>> = at_point(part, p).map(Into::into);
+            p.generated.at = Some(q0.clone());
+            q0
+        }
+    }?;
+    // Single-value items and references, sampled (`None`: several values, or unevaluable).
+    let single = |p: &Prepared, it: &[Id]| match it {
+        &[s] => sample(p, s),
+        _ => None,
+    };
+    let refs = match &p.generated.references {
+        Some(r) => r.clone(),
+        None => {
+            let r: Arc<[Option<Sampled>]> = refs.iter().map(|r| single(p, r)).collect();
+            p.generated.references = Some(r.clone());
+            r
+        }
+    };
+    let mine: Vec<Option<Sampled>> = items.iter().map(|it| single(p, it)).collect();
     // The wrong inertia replaces a right frequency; with every right one listed, an extra
     // item is a different slip, so effective-mass would mislead.
-    let mut cands = if all_listed(p, items, refs) {
-        Vec::new()
+    let all_listed = refs
+        .iter()
+        .all(|r| mine.iter().any(|s| same(p, s.as_ref(), r.as_ref())));
+    let effective = if all_listed {
+        None
     } else {
-        effective_mass(part, p, &q0)
+        Some(match &p.generated.effective_mass {
+            Some(c) => c.clone(),
+            None => {
+                let made = effective_mass(part, p, &q0);
+                let c = sampled(part, p, made);
+                p.generated.effective_mass = Some(c.clone());
+                c
+            }
+        })
     };
-    cands.extend(expansion_point(problem, p, &q0));
-    for it in items {
-        let &[s] = it.as_slice() else { continue };
-        if is_reference(p, s, refs) {
+    let expansion = match &p.generated.expansion_point {
+        Some(c) => c.clone(),
+        None => {
+            let made = expansion_point(problem, p, &q0);
+            let c = sampled(part, p, made);
+            p.generated.expansion_point = Some(c.clone());
+            c
+        }
+    };
+    let cands = effective
+        .iter()
+        .flat_map(|c| c.iter())
+        .chain(expansion.iter());
+    let half = num_rational::BigRational::new(1.into(), 2.into());
+    for (it, s) in items.iter().zip(&mine) {
+        let &[id] = it.as_slice() else { continue };
+        if refs.iter().any(|r| same(p, s.as_ref(), r.as_ref())) {
             continue;
         }
-        if let Some(c) = cands.iter().find(|c| follows(part, p, s, c.answer)) {
-            return Some(c.diagnosis());
+        // `√(x)` written out: its radicand, compared with ω² itself.
+        let radicand = match p.system.pool.node(id) {
+            Node::Pow(base, e) if matches!(p.system.pool.node(*e), Node::Num(h) if *h == half) => {
+                Some(sample(p, *base))
+            }
+            _ => None,
+        };
+        if let Some(f) = cands
+            .clone()
+            .find(|f| follows(part, p, s.as_ref(), radicand.as_ref(), f))
+        {
+            return Some(f.candidate.diagnosis());
         }
     }
     None
 }
 
-/// Whether the single-value item `s` is one of the reference items.
-fn is_reference(p: &Prepared, s: Id, refs: &[Vec<Id>]) -> bool {
-    refs.iter()
-        .any(|r| r.len() == 1 && equal(p, s, r[0], false))
+/// `e` evaluated at the sample points; `None` where it cannot be.
+fn sample(p: &Prepared, e: Id) -> Option<Sampled> {
+    Sampled::of(&p.system, e, &p.points).ok()
 }
 
-/// Whether every reference item is among the student's items.
-fn all_listed(p: &Prepared, items: &[Vec<Id>], refs: &[Vec<Id>]) -> bool {
-    refs.iter().all(|r| {
-        let &[r] = r.as_slice() else { return false };
-        items
-            .iter()
-            .any(|it| matches!(it.as_slice(), &[s] if equal(p, s, r, false)))
-    })
+/// Whether two sampled values are equal at the sample points ([`equal`]'s test).
+fn same(p: &Prepared, a: Option<&Sampled>, b: Option<&Sampled>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => equal_sampled(a, b, p.tolerance),
+        _ => false,
+    }
+}
+
+/// The candidates sampled: each ω², and for a part asking for ω its square root.
+fn sampled(part: &Part, p: &mut Prepared, cands: Vec<Candidate<Id>>) -> Arc<[Frequency]> {
+    cands
+        .into_iter()
+        .map(|c| {
+            let root = (!part.squared).then(|| p.system.pool.sqrt(c.answer));
+            Frequency {
+                squared: sample(p, c.answer),
+                root: root.and_then(|w| sample(p, w)),
+                candidate: c,
+            }
+        })
+        .collect()
 }
 
 /// The part's `at` point, one value per coordinate.
@@ -115,25 +186,21 @@ fn mass_and_stiffness(p: &mut Prepared, q0: &[Id]) -> (Vec<Vec<Id>>, Vec<Vec<Id>
     (m, k)
 }
 
-/// Whether the student's item `s` is the frequency whose square is `w2`: ω² itself for a
-/// `squared` part; ω, or the square root of exactly `w2` written out (about an unstable point
-/// ω² < 0 and the root is undefined everywhere, yet it is the mistake), otherwise.
-fn follows(part: &Part, p: &mut Prepared, s: Id, w2: Id) -> bool {
+/// Whether the student's item `s` is the generated frequency `f` whose square is ω²: ω² itself
+/// for a `squared` part; ω, or the square root of exactly ω² written out (`radicand`: about
+/// an unstable point ω² < 0 and the root is undefined everywhere, yet it is the mistake),
+/// otherwise.
+fn follows(
+    part: &Part,
+    p: &Prepared,
+    s: Option<&Sampled>,
+    radicand: Option<&Option<Sampled>>,
+    f: &Frequency,
+) -> bool {
     if part.squared {
-        return equal(p, s, w2, false);
+        return same(p, s, f.squared.as_ref());
     }
-    let w = p.system.pool.sqrt(w2);
-    if equal(p, s, w, false) {
-        return true;
-    }
-    let half = num_rational::BigRational::new(1.into(), 2.into());
-    match p.system.pool.node(s) {
-        Node::Pow(base, e) if matches!(p.system.pool.node(*e), Node::Num(h) if *h == half) => {
-            let base = *base;
-            equal(p, base, w2, false)
-        }
-        _ => false,
-    }
+    same(p, s, f.root.as_ref()) || radicand.is_some_and(|r| same(p, r.as_ref(), f.squared.as_ref()))
 }
 
 /// ω² = `k/m` (compared with the student's items by [`follows`]).

@@ -3,14 +3,16 @@
 //! momentum put into L before differentiating (`premature-substitution`), and in another sign
 //! convention (`convention`). Answers are compared through the accelerations each implies.
 
+use super::super::generated::{Candidate, Motion};
 use super::super::prepare::Prepared;
 use super::super::prepare::true_accelerations;
 use super::super::verdict::{Code, Diagnosis};
+use super::energies;
 use super::numeric::{accelerations, differ, full_rank, holds_at};
-use super::{Candidate, energies};
 use crate::expr::Id;
 use crate::problem::{Part, PartKind};
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 /// Most coordinates for which wrong systems are generated (each costs a derivation).
 const MAX_COORDINATES: usize = 6;
@@ -24,23 +26,38 @@ pub fn diagnose(part: &Part, p: &mut Prepared, res: &[Id]) -> Option<Diagnosis> 
         return None;
     }
     let truth = true_accelerations(p).ok()?;
-    let mut cands = derivative_rule(p);
-    cands.extend(premature_substitution(p));
-    cands.extend(convention(p));
-    for c in cands {
-        let acc = accelerations(p, &c.answer);
-        if !differ(&acc, &truth) {
-            continue;
-        }
+    let cands = generated(p, &truth);
+    for (c, acc) in cands.iter() {
         let follows = match part.kind {
-            PartKind::Equations => res.iter().all(|&r| holds_at(p, r, &acc)) && full_rank(p, res),
-            _ => res.len() == 1 && holds_at(p, res[0], &acc) && !holds_at(p, res[0], &truth),
+            PartKind::Equations => res.iter().all(|&r| holds_at(p, r, acc)) && full_rank(p, res),
+            _ => res.len() == 1 && holds_at(p, res[0], acc) && !holds_at(p, res[0], &truth),
         };
         if follows {
             return Some(c.diagnosis());
         }
     }
     None
+}
+
+/// The generated wrong systems that differ from the `truth`, with their accelerations: made
+/// on the part's first wrong equations, then kept (they do not depend on the answer).
+fn generated(p: &mut Prepared, truth: &[Option<Vec<f64>>]) -> Arc<[Motion]> {
+    if let Some(g) = &p.generated.motion {
+        return g.clone();
+    }
+    let mut cands = derivative_rule(p);
+    cands.extend(premature_substitution(p));
+    cands.extend(convention(p));
+    let mut kept = Vec::with_capacity(cands.len());
+    for c in cands {
+        let acc = accelerations(p, &c.answer);
+        if differ(&acc, truth) {
+            kept.push((c, acc));
+        }
+    }
+    let g: Arc<[Motion]> = kept.into();
+    p.generated.motion = Some(g.clone());
+    g
 }
 
 /// The Euler–Lagrange residuals of `l` (with the system's generalized forces).
