@@ -226,6 +226,43 @@ pub(crate) fn missing_field(v: &Spanned<DeValue<'_>>, field: &str) -> ReadError 
     ReadError::new(format!("missing field `{field}`"), v.span())
 }
 
+/// Hands each field of a struct read from `v` to `put`, by its position in `fields`: from a
+/// table, in the file's order, with serde's `unknown field` error for a key not in `fields`;
+/// from an array (serde's derive reads a struct from one too), field by field, with serde's
+/// `invalid length` error where the array ends before a field without a default
+/// (`defaults`). A field the table lacks is left to the caller. One compiled copy serves
+/// every schema struct: only `put` is per struct.
+pub(crate) fn fields(
+    v: &Spanned<DeValue<'_>>,
+    name: &str,
+    fields: &[&str],
+    defaults: &[bool],
+    put: &mut dyn FnMut(usize, &Spanned<DeValue<'_>>) -> Result<(), ReadError>,
+) -> Result<(), ReadError> {
+    if let DeValue::Array(items) = v.get_ref() {
+        for (index, default) in defaults.iter().enumerate() {
+            match items.get(index) {
+                Some(x) => put(index, x)?,
+                None if *default => {}
+                None => {
+                    let n = fields.len();
+                    let s = if n == 1 { "" } else { "s" };
+                    let expecting = format!("struct {name} with {n} element{s}");
+                    return Err(invalid_length(v, index, &expecting));
+                }
+            }
+        }
+        return Ok(());
+    }
+    for (key, value) in entries(v, &format!("struct {name}"))? {
+        match fields.iter().position(|f| *f == key.get_ref().as_str()) {
+            Some(index) => put(index, &value)?,
+            None => return Err(unknown_field(&key, fields)),
+        }
+    }
+    Ok(())
+}
+
 impl FromToml for String {
     fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
         match seen(v)? {
@@ -359,35 +396,20 @@ macro_rules! schema_struct {
             ) -> Result<Self, $crate::bank::schema_read::ReadError> {
                 use $crate::bank::schema_read as read;
                 const FIELDS: &[&str] = &[$(schema_struct!(@key $field $($($attr)*)?)),*];
-                // serde's derive also reads a struct from an array, field by field.
-                if let toml::de::DeValue::Array(items) = v.get_ref() {
-                    let n = FIELDS.len();
-                    let expecting = format!(
-                        "struct {} with {n} element{}",
-                        stringify!($name),
-                        if n == 1 { "" } else { "s" }
-                    );
-                    let mut items = items.iter();
-                    let mut index = 0usize;
-                    $(
-                        let $field: $ty = match items.next() {
-                            Some(x) => read::FromToml::read(x)?,
-                            None => schema_struct!(@short v, $ty, index, &expecting $(, $($attr)*)?),
-                        };
-                        index += 1;
-                    )*
-                    let _ = index;
-                    return Ok($name { $($field,)* });
-                }
+                const DEFAULTS: &[bool] = &[$(schema_struct!(@default $($($attr)*)?)),*];
                 $(let mut $field: Option<$ty> = None;)*
-                for (key, value) in read::entries(v, concat!("struct ", stringify!($name)))? {
-                    match key.get_ref().as_str() {
-                        $(schema_struct!(@key $field $($($attr)*)?) => {
-                            $field = Some(read::FromToml::read(&value)?);
-                        })*
-                        _ => return Err(read::unknown_field(&key, FIELDS)),
-                    }
-                }
+                // Field `i` read from `x`: the one typed step, shared by both forms.
+                read::fields(v, stringify!($name), FIELDS, DEFAULTS, &mut |i, x| {
+                    let mut k = 0usize;
+                    $(
+                        if i == k {
+                            $field = Some(read::FromToml::read(x)?);
+                        }
+                        k += 1;
+                    )*
+                    let _ = k;
+                    Ok(())
+                })?;
                 Ok($name {
                     $($field: match $field {
                         Some(x) => x,
@@ -402,11 +424,9 @@ macro_rules! schema_struct {
     // The key a field is read from.
     (@key $field:ident rename = $key:literal) => { $key };
     (@key $field:ident $($attr:tt)*) => { stringify!($field) };
-    // A field the array form lacks.
-    (@short $v:ident, $ty:ty, $index:ident, $expecting:expr, default) => { <$ty>::default() };
-    (@short $v:ident, $ty:ty, $index:ident, $expecting:expr $(, $($attr:tt)*)?) => {
-        return Err($crate::bank::schema_read::invalid_length($v, $index, $expecting))
-    };
+    // Whether a field the file lacks takes its type's default.
+    (@default default) => { true };
+    (@default $($attr:tt)*) => { false };
     // A field the table form lacks.
     (@missing $v:ident, $ty:ty, $key:expr, default) => { <$ty>::default() };
     (@missing $v:ident, $ty:ty, $key:expr $(, $($attr:tt)*)?) => {
