@@ -326,7 +326,14 @@ impl<T: FromToml> FromToml for Option<T> {
 impl<T: FromToml> FromToml for Vec<T> {
     fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
         match seen(v)? {
-            Seen::Seq(items) => items.iter().map(T::read).collect(),
+            // A loop rather than `collect`: a collected `Result` costs more code per element type.
+            Seen::Seq(items) => {
+                let mut out = Vec::with_capacity(items.len());
+                for x in items {
+                    out.push(T::read(x)?);
+                }
+                Ok(out)
+            }
             what => Err(invalid_type(v, &what, "a sequence")),
         }
     }
