@@ -9,6 +9,7 @@
 //! type: …, expected …`), which the bank's findings and their tests rely on; a unit test
 //! compares the two readers on every bank file and thousands of broken variations of them.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::ops::Range;
 
@@ -155,27 +156,28 @@ pub(crate) fn wrong_type(v: &Spanned<DeValue<'_>>, expected: &str) -> ReadError 
     }
 }
 
-/// A table's entries: each key with its span, and its value.
-pub(crate) type Entries<'i> = Vec<(Spanned<String>, Spanned<DeValue<'i>>)>;
+/// A table's entries: each key with its span, and its value (borrowed from the table; owned
+/// only for a date-time's one entry, so reading never clones a parsed value).
+pub(crate) type Entries<'a, 'i> = Vec<(Spanned<String>, Cow<'a, Spanned<DeValue<'i>>>)>;
 
 /// The entries of `v` as a table (a date-time is the one-entry map serde sees), or serde's
 /// error for a value of another type.
-pub(crate) fn entries<'i>(
-    v: &Spanned<DeValue<'i>>,
+pub(crate) fn entries<'a, 'i>(
+    v: &'a Spanned<DeValue<'i>>,
     expected: &str,
-) -> Result<Entries<'i>, ReadError> {
+) -> Result<Entries<'a, 'i>, ReadError> {
     match seen(v)? {
         Seen::Map(t) => Ok(t
             .iter()
             .map(|(k, x)| {
                 let key = Spanned::new(k.span(), k.get_ref().to_string());
-                (key, x.clone())
+                (key, Cow::Borrowed(x))
             })
             .collect()),
         Seen::Datetime(text) => {
             let key = Spanned::new(v.span(), "$__toml_private_datetime".to_string());
             let value = DeValue::String(text.into());
-            Ok(vec![(key, Spanned::new(v.span(), value))])
+            Ok(vec![(key, Cow::Owned(Spanned::new(v.span(), value)))])
         }
         what => Err(invalid_type(v, &what, expected)),
     }
