@@ -228,6 +228,10 @@ pub(crate) fn missing_field(v: &Spanned<DeValue<'_>>, field: &str) -> ReadError 
     ReadError::new(format!("missing field `{field}`"), v.span())
 }
 
+/// The per-struct step of [`fields`]: reads field `i` (by position) from a value.
+pub(crate) type PutField<'f> =
+    dyn FnMut(usize, &Spanned<DeValue<'_>>) -> Result<(), ReadError> + 'f;
+
 /// Hands each field of a struct read from `v` to `put`, by its position in `fields`: from a
 /// table, in the file's order, with serde's `unknown field` error for a key not in `fields`;
 /// from an array (serde's derive reads a struct from one too), field by field, with serde's
@@ -239,7 +243,7 @@ pub(crate) fn fields(
     name: &str,
     fields: &[&str],
     defaults: &[bool],
-    put: &mut dyn FnMut(usize, &Spanned<DeValue<'_>>) -> Result<(), ReadError>,
+    put: &mut PutField<'_>,
 ) -> Result<(), ReadError> {
     if let DeValue::Array(items) = v.get_ref() {
         for (index, default) in defaults.iter().enumerate() {
