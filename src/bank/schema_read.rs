@@ -9,6 +9,7 @@
 //! type: …, expected …`), which the bank's findings and their tests rely on; a unit test
 //! compares the two readers on every bank file and thousands of broken variations of them.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::ops::Range;
 
@@ -155,27 +156,28 @@ pub(crate) fn wrong_type(v: &Spanned<DeValue<'_>>, expected: &str) -> ReadError 
     }
 }
 
-/// A table's entries: each key with its span, and its value.
-pub(crate) type Entries<'i> = Vec<(Spanned<String>, Spanned<DeValue<'i>>)>;
+/// A table's entries: each key with its span, and its value (borrowed from the table; owned
+/// only for a date-time's one entry, so reading never clones a parsed value).
+pub(crate) type Entries<'a, 'i> = Vec<(Spanned<String>, Cow<'a, Spanned<DeValue<'i>>>)>;
 
 /// The entries of `v` as a table (a date-time is the one-entry map serde sees), or serde's
 /// error for a value of another type.
-pub(crate) fn entries<'i>(
-    v: &Spanned<DeValue<'i>>,
+pub(crate) fn entries<'a, 'i>(
+    v: &'a Spanned<DeValue<'i>>,
     expected: &str,
-) -> Result<Entries<'i>, ReadError> {
+) -> Result<Entries<'a, 'i>, ReadError> {
     match seen(v)? {
         Seen::Map(t) => Ok(t
             .iter()
             .map(|(k, x)| {
                 let key = Spanned::new(k.span(), k.get_ref().to_string());
-                (key, x.clone())
+                (key, Cow::Borrowed(x))
             })
             .collect()),
         Seen::Datetime(text) => {
             let key = Spanned::new(v.span(), "$__toml_private_datetime".to_string());
             let value = DeValue::String(text.into());
-            Ok(vec![(key, Spanned::new(v.span(), value))])
+            Ok(vec![(key, Cow::Owned(Spanned::new(v.span(), value)))])
         }
         what => Err(invalid_type(v, &what, expected)),
     }
@@ -224,6 +226,47 @@ pub(crate) fn numbers_fit(v: &Spanned<DeValue<'_>>) -> Result<(), ReadError> {
 /// serde's `missing field` error, at the table `v` that lacks it.
 pub(crate) fn missing_field(v: &Spanned<DeValue<'_>>, field: &str) -> ReadError {
     ReadError::new(format!("missing field `{field}`"), v.span())
+}
+
+/// The per-struct step of [`fields`]: reads field `i` (by position) from a value.
+pub(crate) type PutField<'f> =
+    dyn FnMut(usize, &Spanned<DeValue<'_>>) -> Result<(), ReadError> + 'f;
+
+/// Hands each field of a struct read from `v` to `put`, by its position in `fields`: from a
+/// table, in the file's order, with serde's `unknown field` error for a key not in `fields`;
+/// from an array (serde's derive reads a struct from one too), field by field, with serde's
+/// `invalid length` error where the array ends before a field without a default
+/// (`defaults`). A field the table lacks is left to the caller. One compiled copy serves
+/// every schema struct: only `put` is per struct.
+pub(crate) fn fields(
+    v: &Spanned<DeValue<'_>>,
+    name: &str,
+    fields: &[&str],
+    defaults: &[bool],
+    put: &mut PutField<'_>,
+) -> Result<(), ReadError> {
+    if let DeValue::Array(items) = v.get_ref() {
+        for (index, default) in defaults.iter().enumerate() {
+            match items.get(index) {
+                Some(x) => put(index, x)?,
+                None if *default => {}
+                None => {
+                    let n = fields.len();
+                    let s = if n == 1 { "" } else { "s" };
+                    let expecting = format!("struct {name} with {n} element{s}");
+                    return Err(invalid_length(v, index, &expecting));
+                }
+            }
+        }
+        return Ok(());
+    }
+    for (key, value) in entries(v, &format!("struct {name}"))? {
+        match fields.iter().position(|f| *f == key.get_ref().as_str()) {
+            Some(index) => put(index, &value)?,
+            None => return Err(unknown_field(&key, fields)),
+        }
+    }
+    Ok(())
 }
 
 impl FromToml for String {
@@ -289,7 +332,14 @@ impl<T: FromToml> FromToml for Option<T> {
 impl<T: FromToml> FromToml for Vec<T> {
     fn read(v: &Spanned<DeValue<'_>>) -> Result<Self, ReadError> {
         match seen(v)? {
-            Seen::Seq(items) => items.iter().map(T::read).collect(),
+            // A loop rather than `collect`: a collected `Result` costs more code per element type.
+            Seen::Seq(items) => {
+                let mut out = Vec::with_capacity(items.len());
+                for x in items {
+                    out.push(T::read(x)?);
+                }
+                Ok(out)
+            }
             what => Err(invalid_type(v, &what, "a sequence")),
         }
     }
@@ -359,35 +409,20 @@ macro_rules! schema_struct {
             ) -> Result<Self, $crate::bank::schema_read::ReadError> {
                 use $crate::bank::schema_read as read;
                 const FIELDS: &[&str] = &[$(schema_struct!(@key $field $($($attr)*)?)),*];
-                // serde's derive also reads a struct from an array, field by field.
-                if let toml::de::DeValue::Array(items) = v.get_ref() {
-                    let n = FIELDS.len();
-                    let expecting = format!(
-                        "struct {} with {n} element{}",
-                        stringify!($name),
-                        if n == 1 { "" } else { "s" }
-                    );
-                    let mut items = items.iter();
-                    let mut index = 0usize;
-                    $(
-                        let $field: $ty = match items.next() {
-                            Some(x) => read::FromToml::read(x)?,
-                            None => schema_struct!(@short v, $ty, index, &expecting $(, $($attr)*)?),
-                        };
-                        index += 1;
-                    )*
-                    let _ = index;
-                    return Ok($name { $($field,)* });
-                }
+                const DEFAULTS: &[bool] = &[$(schema_struct!(@default $($($attr)*)?)),*];
                 $(let mut $field: Option<$ty> = None;)*
-                for (key, value) in read::entries(v, concat!("struct ", stringify!($name)))? {
-                    match key.get_ref().as_str() {
-                        $(schema_struct!(@key $field $($($attr)*)?) => {
-                            $field = Some(read::FromToml::read(&value)?);
-                        })*
-                        _ => return Err(read::unknown_field(&key, FIELDS)),
-                    }
-                }
+                // Field `i` read from `x`: the one typed step, shared by both forms.
+                read::fields(v, stringify!($name), FIELDS, DEFAULTS, &mut |i, x| {
+                    let mut k = 0usize;
+                    $(
+                        if i == k {
+                            $field = Some(read::FromToml::read(x)?);
+                        }
+                        k += 1;
+                    )*
+                    let _ = k;
+                    Ok(())
+                })?;
                 Ok($name {
                     $($field: match $field {
                         Some(x) => x,
@@ -402,11 +437,9 @@ macro_rules! schema_struct {
     // The key a field is read from.
     (@key $field:ident rename = $key:literal) => { $key };
     (@key $field:ident $($attr:tt)*) => { stringify!($field) };
-    // A field the array form lacks.
-    (@short $v:ident, $ty:ty, $index:ident, $expecting:expr, default) => { <$ty>::default() };
-    (@short $v:ident, $ty:ty, $index:ident, $expecting:expr $(, $($attr:tt)*)?) => {
-        return Err($crate::bank::schema_read::invalid_length($v, $index, $expecting))
-    };
+    // Whether a field the file lacks takes its type's default.
+    (@default default) => { true };
+    (@default $($attr:tt)*) => { false };
     // A field the table form lacks.
     (@missing $v:ident, $ty:ty, $key:expr, default) => { <$ty>::default() };
     (@missing $v:ident, $ty:ty, $key:expr $(, $($attr:tt)*)?) => {

@@ -56,8 +56,8 @@ pub(super) fn verify_frequencies(problem: &Problem, part: &Part, p: &mut Prepare
             .map_err(|e| Failed::new(FindingCode::Unusable, e.to_string()))?;
         let mut want = wanted(part, &modes);
         let mut got: Vec<f64> = v[..stated.len()].to_vec();
-        want.sort_by(f64::total_cmp);
-        got.sort_by(f64::total_cmp);
+        crate::sort::sort_by(&mut want, f64::total_cmp);
+        crate::sort::sort_by(&mut got, f64::total_cmp);
         let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if want.len() != got.len()
             || !want

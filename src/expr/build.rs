@@ -83,12 +83,16 @@ impl Pool {
 
     /// The canonical sum of `terms`.
     pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
+        self.sum_of(terms.into_iter().collect())
+    }
+
+    /// [`Pool::sum`] of a list: the work is compiled once, not once per iterator type.
+    fn sum_of(&mut self, mut stack: Vec<Id>) -> Id {
         let mut constant = BigRational::zero();
         // Terms and their coefficients; an index is built only for long sums, short ones
         // are scanned (most sums have a handful of terms).
         let mut keys: Vec<(Id, BigRational)> = Vec::new();
         let mut index: Option<FxHashMap<Id, usize>> = None;
-        let mut stack: Vec<Id> = terms.into_iter().collect();
         stack.reverse();
         while let Some(t) = stack.pop() {
             if self.is_undefined(t) {
@@ -179,6 +183,11 @@ impl Pool {
 
     /// The canonical product of `factors`.
     pub fn product(&mut self, factors: impl IntoIterator<Item = Id>) -> Id {
+        self.product_of(factors.into_iter().collect())
+    }
+
+    /// [`Pool::product`] of a list: the work is compiled once, not once per iterator type.
+    fn product_of(&mut self, factors: Vec<Id>) -> Id {
         let (mut coeff, bases) = match self.gather_bases(factors) {
             Ok(x) => x,
             Err(undefined) => return undefined,
@@ -192,22 +201,18 @@ impl Pool {
         if again {
             let c = self.num(coeff);
             out.push(c);
-            return self.product(out);
+            return self.product_of(out);
         }
         self.finish_product(coeff, out)
     }
 
-    /// Flattens `factors` into a coefficient and bases: for each base, its first exponent,
-    /// the factor it came from, and any further exponents. `Err` carries an undefined
+    /// Flattens the factors `stack` (in order) into a coefficient and bases: for each base,
+    /// its first exponent, the factor it came from, and any further exponents. `Err` carries an undefined
     /// factor, which makes the whole product undefined.
-    fn gather_bases(
-        &mut self,
-        factors: impl IntoIterator<Item = Id>,
-    ) -> Result<(BigRational, Vec<Base>), Id> {
+    fn gather_bases(&mut self, mut stack: Vec<Id>) -> Result<(BigRational, Vec<Base>), Id> {
         let mut coeff = BigRational::one();
         // Products are short, so bases are found by scanning.
         let mut bases: Vec<Base> = Vec::new();
-        let mut stack: Vec<Id> = factors.into_iter().collect();
         stack.reverse();
         let one = self.one();
         while let Some(f) = stack.pop() {

@@ -157,8 +157,8 @@ fn symmetric_modes(lin: &Linear, q0: &[f64]) -> Result<Modes, MechError> {
             shape,
         });
     }
-    out.frequencies.sort_by(f64::total_cmp);
-    out.growth_rates.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut out.frequencies, f64::total_cmp);
+    crate::sort::sort_by(&mut out.growth_rates, f64::total_cmp);
     out.stability = if !out.growth_rates.is_empty() {
         Stability::Unstable
     } else if out.free_directions.is_empty() {

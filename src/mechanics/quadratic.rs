@@ -125,9 +125,9 @@ pub(crate) fn solve(
         zeros.saturating_sub(out.free_directions.len())
     };
     out.frequencies.extend(std::iter::repeat_n(0.0, zero_modes));
-    out.frequencies.sort_by(f64::total_cmp);
-    out.growth_rates.sort_by(f64::total_cmp);
-    out.decay_rates.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut out.frequencies, f64::total_cmp);
+    crate::sort::sort_by(&mut out.growth_rates, f64::total_cmp);
+    crate::sort::sort_by(&mut out.decay_rates, f64::total_cmp);
     crate::sort::sort_by(&mut out.damped, |a, b| a.frequency.total_cmp(&b.frequency));
     out.stability = if !out.growth_rates.is_empty() {
         Stability::Unstable
@@ -222,7 +222,7 @@ mod tests {
             let s = solve(&m, &c, &k, 0.0).unwrap();
             assert_eq!(s.stability, Stability::Stable, "Ω = {om}");
             let mut want = [(2.0f64 - om).abs(), 2.0 + om];
-            want.sort_by(f64::total_cmp);
+            crate::sort::sort_by(&mut want, f64::total_cmp);
             assert_eq!(s.frequencies.len(), 2);
             for (a, b) in s.frequencies.iter().zip(want) {
                 assert!((a - b).abs() < 1e-12, "{:?} vs {want:?}", s.frequencies);

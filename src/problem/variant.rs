@@ -92,7 +92,7 @@ pub fn digits_grid(lo: f64, hi: f64, digits: u32) -> Option<Vec<f64>> {
             }
         }
     }
-    out.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut out, f64::total_cmp);
     Some(out)
 }
 

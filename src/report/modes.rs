@@ -460,7 +460,7 @@ fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) ->
         gyroscopic: m.gyroscopic,
         modes: m.modes.iter().map(|x| x.shape.clone()).collect(),
         omega_squared: m.modes.iter().map(|x| x.omega_squared).collect(),
-        point: names.iter().cloned().zip(m.point.iter().copied()).collect(),
+        point: point_map(names, &m.point),
         stability: m.stability,
         stable: m.stability == Stability::Stable,
         free: shape.free.clone(),
@@ -474,4 +474,15 @@ fn equilibrium(m: &Modes, shape: &Shape, names: &[String], labels: &[String]) ->
         rates: Vec::new(),
         descriptions: m.describe(labels),
     }
+}
+
+/// Each coordinate's value at the point, by name (a repeated name keeps its last value, as
+/// `collect` does). Inserted one by one rather than collected: collecting a `BTreeMap` sorts,
+/// one more copy of the standard sort in the page's WebAssembly module.
+fn point_map(names: &[String], values: &[f64]) -> BTreeMap<String, f64> {
+    let mut point = BTreeMap::new();
+    for (name, value) in names.iter().zip(values) {
+        point.insert(name.clone(), *value);
+    }
+    point
 }

@@ -269,7 +269,7 @@ fn reports_at(
     asked: &[f64],
 ) -> Result<Vec<TimedState>, SimError> {
     let mut times = asked.to_vec();
-    times.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut times, f64::total_cmp);
     times.dedup();
     times
         .iter()

@@ -93,7 +93,7 @@ pub(super) fn numbers_for_symbols(part: &Part, p: &Prepared, input: &str, v: &mu
     let mut names: Vec<String> = (p.system.parameters.iter())
         .map(|q| crate::expr::names::unicode_name(&q.name))
         .collect();
-    names.sort();
+    crate::sort::sort(&mut names);
     v.status = Status::Invalid;
     v.score = 0.0;
     v.diagnoses = vec![Diagnosis::new(

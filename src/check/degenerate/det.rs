@@ -417,7 +417,7 @@ pub(super) fn median(v: Vec<f64>) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
-    v.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut v, f64::total_cmp);
     let m = v[v.len() / 2];
     (m > 0.0).then_some(m)
 }

@@ -104,7 +104,7 @@ pub(super) fn force_scale(b: Block, starts: &[Vec<f64>]) -> f64 {
     if sizes.is_empty() {
         return 0.0;
     }
-    sizes.sort_by(f64::total_cmp);
+    crate::sort::sort_by(&mut sizes, f64::total_cmp);
     sizes[sizes.len() / 2]
 }
 
