@@ -223,7 +223,7 @@ impl Part {
     /// Whether the prompt asks about stability (`stable`, `stability`, `unstable`), so that an
     /// equilibria part should require it.
     pub fn prompt_asks_stability(&self) -> bool {
-        self.prompt.to_lowercase().contains("stab")
+        self.prompt.to_ascii_lowercase().contains("stab")
     }
 }
 

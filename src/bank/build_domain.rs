@@ -92,7 +92,8 @@ fn read_domain(
         )
     };
     match spec {
-        DomainSpec::Word(w) => match w.trim().to_lowercase().as_str() {
+        // ASCII case is enough: only ASCII capitals lowercase to exactly these words.
+        DomainSpec::Word(w) => match w.trim().to_ascii_lowercase().as_str() {
             "positive" => Ok(Domain {
                 lower: Some(pool.zero()),
                 upper: None,
@@ -102,8 +103,9 @@ fn read_domain(
                 upper: Some(pool.zero()),
             }),
             "any" | "real" => Ok(Domain::ANY),
-            other => Err(bad(format!(
-                "is `{other}`; write \"positive\", \"negative\", \"any\" or an interval [low, high]"
+            _ => Err(bad(format!(
+                "is `{}`; write \"positive\", \"negative\", \"any\" or an interval [low, high]",
+                w.trim()
             ))),
         },
         DomainSpec::Interval(ends) => {

@@ -112,8 +112,10 @@ fn without_stability(piece: &str) -> Option<&str> {
         return Some(&t[..open]);
     }
     let (head, last) = t.rsplit_once(char::is_whitespace)?;
+    // ASCII case is enough: only ASCII capitals lowercase to exactly these words.
     ["stable", "unstable", "marginal", "neutral"]
-        .contains(&last.to_lowercase().as_str())
+        .iter()
+        .any(|w| w.eq_ignore_ascii_case(last))
         .then_some(head)
 }
 

@@ -173,12 +173,24 @@ impl Variant {
 ///
 /// `None` when the problem declares no variants.
 pub fn pick(problem: &Problem, seed: u64, key: &str) -> Option<Variant> {
+    pick_normalised(problem, seed, &normalise_key(key))
+}
+
+/// The variant a learner practising on their own gets from their `seed` (the empty key):
+/// [`pick`] with `""`, without the Unicode case tables a key needs (the browser's module
+/// is smaller without them).
+pub fn pick_own(problem: &Problem, seed: u64) -> Option<Variant> {
+    pick_normalised(problem, seed, "")
+}
+
+/// [`pick`] for a key already normalised.
+fn pick_normalised(problem: &Problem, seed: u64, key: &str) -> Option<Variant> {
     if problem.variants.is_empty() {
         return None;
     }
     let mut bytes = problem.id.as_bytes().to_vec();
     bytes.push(0xff);
-    bytes.extend_from_slice(normalise_key(key).as_bytes());
+    bytes.extend_from_slice(key.as_bytes());
     let mut state = seed ^ fnv1a64(&bytes);
     Some(Variant {
         values: problem

@@ -135,7 +135,7 @@ pub struct ConstraintLine {
 }
 
 fn lowercase_kind<S: Serializer>(k: &ConstraintKind, s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_str(&format!("{k:?}").to_lowercase())
+    s.serialize_str(&format!("{k:?}").to_ascii_lowercase())
 }
 
 /// Derives `sys` and gathers everything `derive` shows. `sys` itself is left unchanged.

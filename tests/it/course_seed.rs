@@ -384,3 +384,27 @@ fn the_summary_never_groups_one_number_told_differently_to_different_students() 
     let groups = summary.lines().filter(|l| l.contains(wrong)).count();
     assert_eq!(groups, 2, "one group per thing told: {summary}");
 }
+
+/// A learner practising alone gets the empty key's numbers: `pick_own` (which the page and
+/// the REPL call, without the Unicode case tables) is `pick` with `""` or blanks, for every
+/// varied problem of the bank and many seeds; a real key gives other numbers.
+#[test]
+fn practising_alone_is_the_empty_key() {
+    use lagrange::problem::variant::{pick, pick_own};
+    let bank = lagrange::bank::embedded::bank();
+    let varied: Vec<_> = (bank.problems.iter())
+        .filter(|p| !p.variants.is_empty())
+        .collect();
+    assert!(!varied.is_empty(), "the bank has a problem with variants");
+    for p in varied {
+        let mut differs = false;
+        for seed in 0..64 {
+            let own = pick_own(p, seed);
+            assert!(own.is_some(), "{}", p.id);
+            assert_eq!(own, pick(p, seed, ""), "{} seed {seed}", p.id);
+            assert_eq!(own, pick(p, seed, "  "), "{} seed {seed}", p.id);
+            differs |= own != pick(p, seed, "Ada@uni.example");
+        }
+        assert!(differs, "{}: a key changes the numbers", p.id);
+    }
+}

@@ -245,11 +245,28 @@ fn a_spring_on_a_positive_coordinate_has_no_abs() {
     );
 }
 
+/// A domain word is read whatever its ASCII case.
+#[test]
+fn a_domain_word_is_read_in_any_case() {
+    let text = std::fs::read_to_string("tests/singular/kepler.toml").expect("reads");
+    for word in ["Positive", "POSITIVE", " positive "] {
+        let file = text.replace("domain = \"positive\"", &format!("domain = \"{word}\""));
+        assert_ne!(file, text);
+        let p = lagrange::bank::load_str("kepler.toml", &file)
+            .unwrap_or_else(|e| panic!("{word}: {e}"));
+        assert!(verify(&p).is_empty(), "{word}");
+    }
+}
+
 #[test]
 fn a_bad_domain_is_a_finding() {
     let text = std::fs::read_to_string("tests/singular/kepler.toml").expect("reads");
     for (domain, why) in [
         ("\"sideways\"", "write \"positive\""),
+        // The word is quoted as written; only ASCII capitals are read as small letters
+        // (`POSİTİVE`'s dotted İ lowercases to i and a combining dot, not to `i`).
+        ("\" Sideways \"", "is `Sideways`; write"),
+        ("\"POSİTİVE\"", "is `POSİTİVE`; write"),
         ("[\"1\"]", "an interval is [low, high]"),
         ("[\"2\", \"1\"]", "is empty"),
         ("[\"0\", \"1\"]", "outside its domain"),

@@ -346,7 +346,7 @@ fn with_tex(
         bank.problem(problem)
             .and_then(|p| p.parts.iter().find(|q| q.id == part))
     };
-    let practised = |p: &lagrange::Problem| seed(&p.id).and_then(|s| variant::pick(p, s, ""));
+    let practised = |p: &lagrange::Problem| seed(&p.id).and_then(|s| variant::pick_own(p, s));
     match r {
         Response::Statement(s) => {
             let Some(p) = bank.problem(&s.sheet.id) else {

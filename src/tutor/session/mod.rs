@@ -282,7 +282,7 @@ impl Session {
             .first_unsolved(problem, 0)
             .or((!problem.parts.is_empty()).then_some(0));
         let seed = (self.progress.problems.get(&problem.id)).and_then(|p| p.variant_seed);
-        let variant = seed.and_then(|s| crate::problem::variant::pick(problem, s, ""));
+        let variant = seed.and_then(|s| crate::problem::variant::pick_own(problem, s));
         let sheet = match &variant {
             Some(v) => crate::report::sheets::variant_sheet(problem, false, v),
             None => problem_sheet(problem, false),
