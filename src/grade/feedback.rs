@@ -129,7 +129,7 @@ pub fn write(
         .collect();
     let key = |i: u32| {
         let r = &table.rows[i as usize];
-        let t = judged.outcome(i as usize).target.unwrap_or((usize::MAX, 0));
+        let t = judged.brief(i as usize).target.unwrap_or((usize::MAX, 0));
         (r.student, t, i)
     };
     order.sort_unstable_by_key(|&i| key(i));
@@ -177,11 +177,11 @@ fn shown(
     let mut out: Vec<Shown> = Vec::with_capacity(rows.len());
     let mut k = 0;
     while k < rows.len() {
-        let target = judged.outcome(rows[k] as usize).target;
+        let target = judged.brief(rows[k] as usize).target;
         let mut end = k + 1;
         while target.is_some()
             && end < rows.len()
-            && judged.outcome(rows[end] as usize).target == target
+            && judged.brief(rows[end] as usize).target == target
         {
             end += 1;
         }

@@ -199,7 +199,15 @@ pub fn judge(
     // Freed before the answers are checked, which is where a class of all-different answers
     // needs its memory.
     drop((by_text, resolved));
-    super::memory::give_back();
+    // Only a class of many different answers frees enough between passes to be worth giving
+    // back (each time costs some milliseconds).
+    let many = distinct.len() >= window_size();
+    let trim = || {
+        if many {
+            super::memory::give_back();
+        }
+    };
+    trim();
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
@@ -222,7 +230,7 @@ pub fn judge(
         *d = reps_of[*d as usize];
     }
     drop((reps_of, distinct));
-    super::memory::give_back();
+    trim();
     phases.end("canonical");
     if bar.stopped() {
         return Err(Interrupted);
@@ -252,7 +260,7 @@ pub fn judge(
             judged.push(rep, &words);
         }
         // The checkers' scratch memory of this window, freed in the workers' heaps.
-        super::memory::give_back();
+        trim();
         if bar.stopped() {
             break;
         }
@@ -263,7 +271,7 @@ pub fn judge(
     }
     phases.end("check");
     drop(rep_inputs);
-    super::memory::give_back();
+    trim();
     // A representative's outcome is numbered as the representative; rows' own come after.
     let first_own = judged.reps.len() as u32;
     judged.rows = row_distinct

@@ -173,7 +173,6 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     };
     let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
-    memory::give_back();
     let mut bank = bank;
     let variants = variants::extend(&mut bank, &table.students, seed);
     let settings = judge::Settings {

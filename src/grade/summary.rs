@@ -164,7 +164,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     let mut members: Vec<(u32, u32, u32, u32)> = Vec::new();
     for (i, (row, g)) in rows.iter().zip(&judged.rows).enumerate() {
         per_outcome[g.outcome as usize] += 1;
-        let o = judged.outcome(i);
+        let o = judged.brief(i);
         let Some((p, q)) = o.target else { continue };
         if g.counts {
             parts

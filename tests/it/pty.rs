@@ -115,6 +115,9 @@ fn tab_space_wrapping_and_an_open_bracket_at_80_columns() {
         .expect("the open bracket is explained on one line");
     p.send_line(")").unwrap();
     p.exp_string("score").expect("the finished line is checked");
+    // A Ctrl-D typed before the line editor has the terminal again is read by the terminal
+    // itself and lost (the test once timed out so): wait for the prompt, as a person would.
+    p.exp_string("kinetic> ").expect("the prompt again");
     p.send_control('d').unwrap();
     p.exp_eof().expect("Ctrl-D ends the session");
 }

@@ -37,9 +37,9 @@ impl Finals {
     /// The rows that count, per student.
     fn new(rows: &[Row], judged: &Judged, bank: &Bank, policy: &Policy, students: usize) -> Finals {
         let bucket = |row: &Row| (row.student as usize).min(students);
-        let target = |i: u32| judged.outcome(i as usize).target;
+        let target = |i: u32| judged.brief(i as usize).target;
         let graded = |i: usize| {
-            let g = judged.outcome(i);
+            let g = judged.brief(i);
             g.target.is_some() && g.status != Status::Error
         };
         let mut start = vec![0u32; students + 3];
@@ -84,10 +84,10 @@ impl Finals {
                         j += 1;
                     }
                     let points = t.map_or(0.0, |(p, q)| bank.problems[p].parts[q].points);
-                    let scores = rows[i..j].iter().map(|&r| judged.outcome(r as usize).score);
+                    let scores = rows[i..j].iter().map(|&r| judged.brief(r as usize).score);
                     let (k, score) = policy.counted(scores, points).unwrap_or((j - i - 1, 0.0));
                     let slot = rows[i + k];
-                    if score != judged.outcome(slot as usize).score {
+                    if score != judged.brief(slot as usize).score {
                         penalised.push((slot, score));
                     }
                     rows[kept] = slot;
@@ -130,7 +130,7 @@ impl Finals {
         let b = (student as usize).min(self.count.len() - 1);
         let rows = self.chosen(b, self.count[b]);
         let k = rows
-            .binary_search_by_key(&Some(target), |&i| judged.outcome(i as usize).target)
+            .binary_search_by_key(&Some(target), |&i| judged.brief(i as usize).target)
             .ok()?;
         Some(rows[k] as usize)
     }
@@ -185,14 +185,14 @@ pub(super) fn follow_through(
     let mut index: FxHashMap<FollowKey, usize> = FxHashMap::default();
     let mut asks: Vec<(usize, usize)> = Vec::new();
     for (i, row) in rows.iter().enumerate() {
-        let g = judged.outcome(i);
+        let g = judged.brief(i);
         let (Status::Incorrect, Some((p, q)), Some(rep)) = (g.status, g.target, g.rep) else {
             continue;
         };
         let earlier: Vec<usize> = (0..bank.problems[p].parts.len())
             .filter(|&o| o != q)
             .filter_map(|o| finals.get(judged, row.student, (p, o)))
-            .filter_map(|j| judged.outcome(j).rep)
+            .filter_map(|j| judged.brief(j).rep)
             .filter(|&r| source[r])
             .collect();
         if earlier.is_empty() {

@@ -68,6 +68,24 @@ impl Rep {
         (f != 0).then_some(f)
     }
 
+    /// [`Rep::outcome`] without its codes and message.
+    fn brief(&self, r: usize) -> Brief {
+        let status = match &self.verdict {
+            Ok(v) => match v.status {
+                Checked::Correct => Status::Correct,
+                Checked::Incorrect => Status::Incorrect,
+                Checked::Invalid => Status::Invalid,
+            },
+            Err(_) => Status::Error,
+        };
+        Brief {
+            status,
+            score: self.score,
+            target: Some((self.counted_as as usize, self.part as usize)),
+            rep: Some(r),
+        }
+    }
+
     /// The outcome every row of this representative shares (`r`: its index).
     pub(in crate::grade) fn outcome(&self, r: usize) -> Outcome {
         let (status, codes) = match &self.verdict {
@@ -116,6 +134,20 @@ pub struct Outcome {
     pub rep: Option<usize>,
     /// The instructor's decision that replaced the checker's (`--overrides`), if any.
     pub decision: Option<Decision>,
+}
+
+/// What the passes over every row read of an outcome ([`Judged::brief`]): an [`Outcome`]
+/// without its codes and message.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Brief {
+    /// The status column.
+    pub status: Status,
+    /// The score (follow-through credit and decisions included).
+    pub score: f64,
+    /// `(problem, part)` indices into the bank, for rows that name a real part.
+    pub target: Option<(usize, usize)>,
+    /// The representative whose verdict this is.
+    pub rep: Option<usize>,
 }
 
 /// The outcome of one row of the input.
@@ -181,6 +213,29 @@ impl Judged {
         self.outcome_at(self.rows[i].outcome)
     }
 
+    /// Outcome `k` without its codes and message: what the passes over every row read, made
+    /// without touching the shared code lists (a row's outcome is asked for several times).
+    pub fn brief_at(&self, k: u32) -> Brief {
+        let k = k as usize;
+        match k.checked_sub(self.reps.len()) {
+            None => self.reps[k].brief(k),
+            Some(i) => {
+                let o = &self.kept[i];
+                Brief {
+                    status: o.status,
+                    score: o.score,
+                    target: o.target,
+                    rep: o.rep,
+                }
+            }
+        }
+    }
+
+    /// Row `i`'s outcome without its codes and message ([`Judged::brief_at`]).
+    pub fn brief(&self, i: usize) -> Brief {
+        self.brief_at(self.rows[i].outcome)
+    }
+
     /// How a representative's answer was read (Unicode; empty when it could not be).
     pub fn reading(&self, rep: usize) -> &str {
         self.spans
@@ -204,7 +259,7 @@ impl Judged {
     pub fn counted_score(&self, i: usize) -> f64 {
         match self.penalised.get(&(i as u32)) {
             Some(&s) => s,
-            None => self.outcome(i).score,
+            None => self.brief(i).score,
         }
     }
 
