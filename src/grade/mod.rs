@@ -174,7 +174,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     let run = run_id(hash, opts, &bank, &extra, seed);
     drop(bytes);
     let mut bank = bank;
-    let variants = variants::extend(&mut bank, &table.students, seed);
+    let variants = variants::extend(&mut bank, &table, seed);
     let settings = judge::Settings {
         policy: &policy,
         overrides: decisions.as_ref().map(|d| d as &dyn judge::Override),

@@ -40,13 +40,21 @@ impl Variants {
 }
 
 /// Appends to `bank` the problems pinned to the students' variants under `seed` (for each
-/// problem with variants and a part that accepts numbers), and says which judges whom.
-pub fn extend(bank: &mut Bank, students: &[String], seed: u64) -> Variants {
+/// problem with variants and a part that accepts numbers that some row of `table` names),
+/// and says which judges whom.
+pub fn extend(bank: &mut Bank, table: &Table, seed: u64) -> Variants {
     let mut variants = Variants::default();
+    let named = named(table);
+    let students = &table.students;
     let n = bank.problems.len();
     for p in 0..n {
         let problem = &bank.problems[p];
-        if problem.variants.is_empty() || !problem.parts.iter().any(|x| x.numbers) {
+        // A problem no row names needs no student's numbers (a class of 10,000 students
+        // would otherwise pick them all for every such problem of the bank).
+        if problem.variants.is_empty()
+            || !problem.parts.iter().any(|x| x.numbers)
+            || !named.contains(problem.id.as_str())
+        {
             continue;
         }
         let mut by_key: FxHashMap<String, usize> = FxHashMap::default();
@@ -72,12 +80,17 @@ pub fn extend(bank: &mut Bank, students: &[String], seed: u64) -> Variants {
 /// The ids of the problems the class answers whose numbers differ per student (variants and a
 /// part that accepts numbers), in bank order: grading them needs the course seed.
 pub fn answered_with_variants(bank: &Bank, table: &Table) -> Vec<String> {
-    let named: rustc_hash::FxHashSet<&str> = (0..table.names.len())
-        .map(|i| table.names.get(i as u32))
-        .collect();
+    let named = named(table);
     (bank.problems.iter())
         .filter(|p| !p.variants.is_empty() && p.parts.iter().any(|x| x.numbers))
         .filter(|p| named.contains(p.id.as_str()))
         .map(|p| format!("`{}`", p.id))
+        .collect()
+}
+
+/// The problem and part ids the rows name, as typed.
+fn named(table: &Table) -> rustc_hash::FxHashSet<&str> {
+    (0..table.names.len())
+        .map(|i| table.names.get(i as u32))
         .collect()
 }
