@@ -26,7 +26,7 @@ mod judged;
 mod slim;
 use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
-pub use judged::{Graded, Judged, Outcome, Rep, Status, no_codes};
+pub use judged::{Brief, Graded, Judged, Outcome, Rep, Status, no_codes};
 pub use slim::{Codes, Slim, Words, meaning};
 
 /// The instructor's decisions applied to judged rows (`--overrides`, in `overrides.rs`): a
@@ -314,15 +314,13 @@ pub fn judge(
 
 /// The outcome of a row that is not checked.
 fn unread(status: Status, message: String, target: Option<(usize, usize)>) -> Outcome {
-    Outcome {
+    let brief = Brief {
         status,
         score: 0.0,
-        codes: no_codes(),
-        message: Some(message),
         target,
         rep: None,
-        decision: None,
-    }
+    };
+    Outcome::new(brief, no_codes(), Some(message))
 }
 
 /// Whether a part's answer is a list (equilibria, frequencies, values).

@@ -216,7 +216,7 @@ pub fn gradebook(
     let targets: Vec<(usize, usize)> = match parts {
         Some(p) => p.to_vec(),
         None => {
-            let mut t: Vec<(usize, usize)> = (judged.outcomes()).filter_map(|o| o.target).collect();
+            let mut t: Vec<(usize, usize)> = (judged.briefs()).filter_map(|o| o.target).collect();
             t.sort_unstable();
             t.dedup();
             t
@@ -225,7 +225,7 @@ pub fn gradebook(
     let column: rustc_hash::FxHashMap<(usize, usize), usize> =
         targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
     // Each outcome's column, looked up once.
-    let columns: Vec<Option<usize>> = (judged.outcomes())
+    let columns: Vec<Option<usize>> = (judged.briefs())
         .map(|o| column.get(&o.target?).copied())
         .collect();
     let names = students(table);

@@ -140,13 +140,15 @@ impl Overrides {
             .map(|(i, e)| (e.key(), i))
             .collect()
     }
+}
 
+impl Override for Overrides {
     /// Applies the decisions: every graded row (not an error) whose part and exact answer an
     /// entry names gets the decision's status and score, the entry in its `override` column
     /// and a message saying what the checker had said. Rows sharing an outcome share the new
     /// one. The number of rows each entry changed, in entry order.
     /// A decision about an answer on a problem with variants holds for that variant only.
-    pub fn apply(
+    fn apply(
         &self,
         table: &Table,
         judged: &mut Judged,
@@ -217,18 +219,6 @@ impl Entry {
             self.variant.as_str(),
             self.answer.as_str(),
         )
-    }
-}
-
-impl Override for Overrides {
-    fn apply(
-        &self,
-        table: &Table,
-        judged: &mut Judged,
-        bank: &Bank,
-        variants: &Variants,
-    ) -> Vec<usize> {
-        Overrides::apply(self, table, judged, bank, variants)
     }
 }
 

@@ -131,7 +131,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     // Each outcome's group (wrong and unreadable answers only), numbered in order of first
     // appearance (by outcome), found by sorting the outcomes' keys rather than through a map
     // of them (a class of all-different answers has a group per answer).
-    let mut keyed: Vec<(GroupKey, u32)> = (judged.outcomes().enumerate())
+    let mut keyed: Vec<(GroupKey, u32)> = (judged.briefs().enumerate())
         .filter_map(|(i, o)| match (o.target, o.rep, o.status) {
             (Some((p, q)), Some(rep), Status::Incorrect | Status::Invalid) => {
                 Some((((p as u32, q as u32), o.status, meaning[rep]), i as u32))

@@ -262,6 +262,35 @@ fn sheet_numbers(bank: &str, key: &str, seed: &str) -> (String, f64) {
     (numbers, l)
 }
 
+/// Writes `rows` (after the long format's header) as `dir/class.csv` and grades it with the
+/// problems of `bank`, course seed 7 and `extra` options, into `dir/out` (returned); the run
+/// must grade (exit 0 or 1).
+fn grade_at_seed_7(
+    dir: &std::path::Path,
+    bank: &str,
+    rows: &str,
+    extra: &[&str],
+) -> std::path::PathBuf {
+    let class = dir.join("class.csv");
+    std::fs::write(&class, format!("student,problem,part,answer\n{rows}")).expect("class");
+    let out = dir.join("out");
+    let (class, out_text) = (class.to_string_lossy(), out.to_string_lossy());
+    let mut args = vec![
+        "--add-problems",
+        bank,
+        "grade",
+        &class,
+        "--out",
+        &out_text,
+        "--seed",
+        "7",
+    ];
+    args.extend_from_slice(extra);
+    let (code, _, err) = lagrange(&args);
+    assert!(code == 0 || code == 1, "{err}");
+    out
+}
+
 #[test]
 fn an_override_on_one_students_numbers_leaves_another_variants_rows_alone() {
     let (dir, bank) = bank("seed-override");
@@ -282,33 +311,22 @@ fn an_override_on_one_students_numbers_leaves_another_variants_rows_alone() {
     .expect("two lengths among four students");
     assert_ne!(ada_numbers, ben_numbers);
     let text = format!("{:.12}", (9.81 / ada_l).sqrt());
-    let class = dir.join("class.csv");
-    std::fs::write(
-        &class,
-        format!("student,problem,part,answer\n{ada},varied-pendulum,frequencies,{text}\n{ben},varied-pendulum,frequencies,{text}\n"),
-    )
-    .expect("class");
     let decisions = dir.join("decisions.csv");
     std::fs::write(
         &decisions,
         format!("problem,part,variant,answer,decision\nvaried-pendulum,frequencies,\"{ben_numbers}\",{text},0.5\n"),
     )
     .expect("decisions");
-    let out = dir.join("out");
-    let (code, _, err) = lagrange(&[
-        "--add-problems",
+    let rows = format!(
+        "{ada},varied-pendulum,frequencies,{text}\n{ben},varied-pendulum,frequencies,{text}\n"
+    );
+    let decisions = decisions.to_string_lossy();
+    let out = grade_at_seed_7(
+        &dir,
         &bank,
-        "grade",
-        &class.to_string_lossy(),
-        "--out",
-        &out.to_string_lossy(),
-        "--seed",
-        "7",
-        "--overrides",
-        &decisions.to_string_lossy(),
-        "--feedback",
-    ]);
-    assert!(code == 0 || code == 1, "{err}");
+        &rows,
+        &["--overrides", &decisions, "--feedback"],
+    );
     let results = std::fs::read_to_string(out.join("results.csv")).expect("results");
     let row = |key: &str| {
         results
@@ -356,24 +374,10 @@ fn the_summary_never_groups_one_number_told_differently_to_different_students() 
     .expect("two lengths among four students");
     // m g l = 9.81 J is nobody's (m l is never 1 here): wrong for both, by different factors.
     let wrong = "-1*9.81*1*cos(theta)";
-    let class = dir.join("class.csv");
-    std::fs::write(
-        &class,
-        format!("student,problem,part,answer\nada@uni.example,varied-pendulum,potential,{wrong}\n{ben},varied-pendulum,potential,{wrong}\n"),
-    )
-    .expect("class");
-    let out = dir.join("out");
-    let (code, _, err) = lagrange(&[
-        "--add-problems",
-        &bank,
-        "grade",
-        &class.to_string_lossy(),
-        "--out",
-        &out.to_string_lossy(),
-        "--seed",
-        "7",
-    ]);
-    assert!(code == 0 || code == 1, "{err}");
+    let rows = format!(
+        "ada@uni.example,varied-pendulum,potential,{wrong}\n{ben},varied-pendulum,potential,{wrong}\n"
+    );
+    let out = grade_at_seed_7(&dir, &bank, &rows, &[]);
     let mut results = csv::Reader::from_path(out.join("results.csv")).expect("results");
     let messages: Vec<String> = (results.records())
         .map(|r| r.expect("a record")[8].to_string())

@@ -23,6 +23,16 @@ pub enum Status {
     Error,
 }
 
+impl From<Checked> for Status {
+    fn from(s: Checked) -> Status {
+        match s {
+            Checked::Correct => Status::Correct,
+            Checked::Incorrect => Status::Incorrect,
+            Checked::Invalid => Status::Invalid,
+        }
+    }
+}
+
 impl Status {
     /// The name written in results.csv and the summary.
     pub fn name(self) -> &'static str {
@@ -71,11 +81,7 @@ impl Rep {
     /// [`Rep::outcome`] without its codes and message.
     fn brief(&self, r: usize) -> Brief {
         let status = match &self.verdict {
-            Ok(v) => match v.status {
-                Checked::Correct => Status::Correct,
-                Checked::Incorrect => Status::Incorrect,
-                Checked::Invalid => Status::Invalid,
-            },
+            Ok(v) => Status::from(v.status),
             Err(_) => Status::Error,
         };
         Brief {
@@ -88,27 +94,12 @@ impl Rep {
 
     /// The outcome every row of this representative shares (`r`: its index).
     pub(in crate::grade) fn outcome(&self, r: usize) -> Outcome {
-        let (status, codes) = match &self.verdict {
-            Ok(v) => (
-                match v.status {
-                    Checked::Correct => Status::Correct,
-                    Checked::Incorrect => Status::Incorrect,
-                    Checked::Invalid => Status::Invalid,
-                },
-                v.codes.clone(),
-            ),
-            Err(_) => (Status::Error, no_codes()),
+        let codes = match &self.verdict {
+            Ok(v) => v.codes.clone(),
+            Err(_) => no_codes(),
         };
-        Outcome {
-            status,
-            score: self.score,
-            codes,
-            // The verdict's first message (or the error), read through `Judged::message`.
-            message: None,
-            target: Some((self.counted_as as usize, self.part as usize)),
-            rep: Some(r),
-            decision: None,
-        }
+        // The verdict's first message (or the error) is read through `Judged::message`.
+        Outcome::new(self.brief(r), codes, None)
     }
 }
 
@@ -134,6 +125,36 @@ pub struct Outcome {
     pub rep: Option<usize>,
     /// The instructor's decision that replaced the checker's (`--overrides`), if any.
     pub decision: Option<Decision>,
+}
+
+impl Outcome {
+    /// An outcome with `brief`'s status, score, target and representative, `codes` and
+    /// `message` (`None`: its representative's), decided by no one.
+    pub(in crate::grade) fn new(
+        brief: Brief,
+        codes: Arc<[Code]>,
+        message: Option<String>,
+    ) -> Outcome {
+        Outcome {
+            status: brief.status,
+            score: brief.score,
+            codes,
+            message,
+            target: brief.target,
+            rep: brief.rep,
+            decision: None,
+        }
+    }
+
+    /// What the passes over every row read of it.
+    fn brief(&self) -> Brief {
+        Brief {
+            status: self.status,
+            score: self.score,
+            target: self.target,
+            rep: self.rep,
+        }
+    }
 }
 
 /// What the passes over every row read of an outcome ([`Judged::brief`]): an [`Outcome`]
@@ -203,6 +224,11 @@ impl Judged {
         }
     }
 
+    /// Every outcome's [`Brief`], in number order.
+    pub fn briefs(&self) -> impl Iterator<Item = Brief> + '_ {
+        (0..self.outcome_count() as u32).map(|k| self.brief_at(k))
+    }
+
     /// Every outcome, in number order.
     pub fn outcomes(&self) -> impl Iterator<Item = Cow<'_, Outcome>> {
         (0..self.outcome_count() as u32).map(|k| self.outcome_at(k))
@@ -219,15 +245,7 @@ impl Judged {
         let k = k as usize;
         match k.checked_sub(self.reps.len()) {
             None => self.reps[k].brief(k),
-            Some(i) => {
-                let o = &self.kept[i];
-                Brief {
-                    status: o.status,
-                    score: o.score,
-                    target: o.target,
-                    rep: o.rep,
-                }
-            }
+            Some(i) => self.kept[i].brief(),
         }
     }
 
