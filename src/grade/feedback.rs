@@ -114,7 +114,7 @@ pub fn write(
     table: &Table,
     judged: &Judged,
     bank: &Bank,
-    book: &Gradebook,
+    book: &Gradebook<'_>,
     variants: &Variants,
 ) -> Result<usize, String> {
     let names = names(&table.students)?;
@@ -144,10 +144,7 @@ pub fn write(
         let rows = &order[start..end];
         start = end;
         let shown = shown(rows, (table, judged, bank, variants), &mut hints);
-        let scores = book
-            .students
-            .get(s)
-            .map_or(&[][..], |(_, sc)| sc.as_slice());
+        let scores = book.scores(s);
         let head = Head {
             key: &table.students[s],
             total: scores.iter().flatten().sum(),

@@ -179,6 +179,15 @@ impl Builder {
     /// joined in order (a small part of the work); the rows, renumbered, in parallel.
     fn absorb(&mut self, pieces: Vec<Builder>, phases: &mut super::phases::Phases) {
         let keys: usize = pieces.iter().map(|p| p.students.len()).sum();
+        let answers: usize = pieces.iter().map(|p| p.answers.len()).sum();
+        let text: usize = (pieces.iter())
+            .map(|p| {
+                (0..p.answers.len() as u32)
+                    .map(|i| p.answers.get(i).len())
+                    .sum::<usize>()
+            })
+            .sum();
+        self.answers.reserve(answers, text);
         self.exact.reserve(keys);
         self.folded.reserve(keys);
         self.students.reserve(keys);
@@ -297,6 +306,8 @@ fn parse_cut(
     phases.end("pieces");
     let mut b = Builder::default();
     b.absorb(pieces, phases);
+    // Grading looks answers up by number from here on.
+    b.answers.seal();
     let (format, columns) = match layout {
         Layout::Long { .. } => (Format::Long, Vec::new()),
         Layout::Wide { parts, .. } => (

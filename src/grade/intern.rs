@@ -14,8 +14,11 @@ pub struct Interner {
     text: String,
     /// Where each string is in `text`: (start, end).
     spans: Vec<(u32, u32)>,
-    /// Indices into `spans`, by the hash of their string.
+    /// Indices into `spans`, by the hash of their string (empty once sealed, rebuilt if
+    /// a string is added after).
     table: HashTable<u32>,
+    /// Whether `table` was dropped ([`Interner::seal`]).
+    sealed: bool,
 }
 
 impl Interner {
@@ -25,11 +28,44 @@ impl Interner {
             text: String::with_capacity(bytes),
             spans: Vec::with_capacity(strings),
             table: HashTable::with_capacity(strings),
+            sealed: false,
         }
+    }
+
+    /// Room for `strings` more distinct strings of `bytes` bytes in all (reserved, not
+    /// touched: the text does not grow by doubling, each step copying the last).
+    pub fn reserve(&mut self, strings: usize, bytes: usize) {
+        self.text.reserve(bytes);
+        self.spans.reserve(strings);
+        let (text, spans) = (&self.text, &self.spans);
+        self.table.reserve(strings, |&j| {
+            let (a, b) = spans[j as usize];
+            FxBuildHasher.hash_one(&text[a as usize..b as usize])
+        });
+    }
+
+    /// Drops the lookup table once every string is in (a class of all-different answers
+    /// would keep one entry per answer to the end); adding a string later rebuilds it.
+    pub fn seal(&mut self) {
+        self.table = HashTable::new();
+        self.sealed = true;
+    }
+
+    /// The hash of string `i`.
+    fn hash(&self, i: u32) -> u64 {
+        FxBuildHasher.hash_one(self.get(i))
     }
 
     /// The index of `s`, added if new.
     pub fn intern(&mut self, s: &str) -> u32 {
+        if self.sealed {
+            self.sealed = false;
+            let mut table = HashTable::with_capacity(self.spans.len());
+            for i in 0..self.spans.len() as u32 {
+                table.insert_unique(self.hash(i), i, |&j| self.hash(j));
+            }
+            self.table = table;
+        }
         let hash = FxBuildHasher.hash_one(s);
         let (text, spans) = (&self.text, &self.spans);
         let get = |i: u32| {
@@ -77,5 +113,20 @@ mod tests {
             .collect();
         assert_eq!(ids, [0, 1, 0, 2, 1, 3]);
         assert_eq!((t.get(1), t.get(2), t.get(3), t.get(4)), ("b", "", "c", ""));
+    }
+
+    /// A sealed interner still gives every string, and adding strings after finds the old
+    /// ones (the table is rebuilt).
+    #[test]
+    fn a_sealed_interner_reads_and_interns_as_before() {
+        let mut t = Interner::default();
+        t.reserve(3, 4);
+        let ids: Vec<u32> = ["a", "b", "a"].iter().map(|s| t.intern(s)).collect();
+        t.seal();
+        assert_eq!(
+            (ids, t.get(0), t.get(1), t.len()),
+            (vec![0, 1, 0], "a", "b", 2)
+        );
+        assert_eq!((t.intern("b"), t.intern("c"), t.intern("a")), (1, 2, 0));
     }
 }

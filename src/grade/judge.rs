@@ -24,6 +24,7 @@ use super::input::Table;
 mod counted;
 mod judged;
 mod slim;
+mod words;
 use crate::face::bar::Shared;
 use counted::{follow_through, mark_counted};
 pub use judged::{Brief, Graded, Judged, Outcome, Rep, Status, no_codes};
@@ -53,6 +54,10 @@ pub struct Settings<'s> {
     pub overrides: Option<&'s dyn Override>,
     /// The problems pinned to each student's numbers (`variants.rs`).
     pub variants: &'s super::variants::Variants,
+    /// Where a class of many different answers keeps its representatives' words until the
+    /// outputs are written (a nameless temporary file; see `judge/words.rs`): the output
+    /// folder, on the disk the outputs go to.
+    pub scratch: &'s std::path::Path,
 }
 
 /// The most answers one checker reads (see [`par_map`]).
@@ -72,8 +77,9 @@ fn window_size() -> usize {
 }
 
 /// An answer to check: the problem and part indices in the bank and its index in
-/// [`Table::answers`] (its text is looked up there, not copied).
-type Item = (usize, usize, u32);
+/// [`Table::answers`] (its text is looked up there, not copied); 12 bytes (a class of
+/// all-different answers has one per row).
+type Item = (u32, u32, u32);
 
 /// What grading needs to check a window of answers.
 struct Window<'a, 'b, 's> {
@@ -91,6 +97,7 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, Words)> {
         w.answers,
         window,
         |c, part, (problem, q, answer), text| {
+            let (problem, q) = (problem as usize, q as usize);
             let verdict = if w.bar.tick() {
                 c.check(&part.id, text).map_err(|e| e.to_string())
             } else {
@@ -116,7 +123,9 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, Words)> {
                 Err(e) => (Err(Arc::from(e)), None),
             };
             let score = (verdict.as_ref()).map_or(0.0, |v| {
-                w.policy.answer_fraction(v.status, v.score, &v.codes) * points
+                w.policy
+                    .answer_fraction(v.status, v.score, &w.codes.get(v.codes))
+                    * points
             });
             let rep = Rep {
                 problem: problem as u32,
@@ -188,7 +197,7 @@ pub fn judge(
                     Ok(*by_text
                         .entry((p as u32, *q as u32, row.answer))
                         .or_insert_with(|| {
-                            distinct.push((p, *q, row.answer));
+                            distinct.push((p as u32, *q as u32, row.answer));
                             distinct.len() as u32 - 1
                         }))
                 }
@@ -211,20 +220,33 @@ pub fn judge(
     phases.end("exact text");
     let bar = Shared::new(progress);
     bar.start(distinct.len() as u64);
-    let canon = par_map(bank, &table.answers, &distinct, |c, part, _, text| {
-        if !bar.tick() {
-            return None;
+    // A window at a time, each form kept only as its key for finding representatives.
+    let mut keyed: Vec<FormKey> = Vec::with_capacity(distinct.len());
+    for window in distinct.chunks(window_size()) {
+        let forms = par_map(bank, &table.answers, window, |c, part, _, text| {
+            if !bar.tick() {
+                return None;
+            }
+            // A list's verdict depends on what its canonical form leaves out (the stated
+            // stability of each equilibrium, labels, the items' order that messages name),
+            // so lists share a verdict only with the same text.
+            // Only equality of forms matters: each is kept as its 128-bit hash (a class of
+            // all-different answers would otherwise hold every form's text at once).
+            (!is_list(part))
+                .then(|| c.canonical(&part.id, text).ok().flatten())?
+                .map(|form| meaning(&form))
+        });
+        let first = keyed.len();
+        keyed.extend(
+            (window.iter().zip(forms).enumerate())
+                .map(|(i, (&item, form))| form_key(first + i, item, form)),
+        );
+        trim();
+        if bar.stopped() {
+            break;
         }
-        // A list's verdict depends on what its canonical form leaves out (the stated
-        // stability of each equilibrium, labels, the items' order that messages name), so
-        // lists share a verdict only with the same text.
-        // Only equality of forms matters: each is kept as its 128-bit hash (a class of
-        // all-different answers would otherwise hold every form's text at once).
-        (!is_list(part))
-            .then(|| c.canonical(&part.id, text).ok().flatten())?
-            .map(|form| meaning(&form))
-    });
-    let (reps_of, rep_inputs) = representatives(&distinct, canon);
+    }
+    let (reps_of, rep_inputs) = representatives(&distinct, keyed);
     // Each row's distinct answer becomes its representative.
     for d in row_distinct.iter_mut().flatten() {
         *d = reps_of[*d as usize];
@@ -242,7 +264,16 @@ pub fn judge(
     let typed: usize = (rep_inputs.iter())
         .map(|&(_, _, a)| table.answers.get(a).len())
         .sum();
-    let mut judged = Judged::with_capacity(rep_inputs.len(), 2 * typed);
+    // A class of many different answers keeps its words on disk: they are about half of what
+    // its representatives would hold in memory.
+    let mut judged = if many {
+        Judged::with_words(
+            rep_inputs.len(),
+            words::Store::disk(settings.scratch, rep_inputs.len()),
+        )
+    } else {
+        Judged::with_capacity(rep_inputs.len(), 2 * typed)
+    };
     let w = Window {
         bank,
         answers: &table.answers,
@@ -265,7 +296,7 @@ pub fn judge(
             break;
         }
     }
-    drop(codes);
+    judged.set_codes(codes.into_lists());
     if bar.stopped() {
         return Err(Interrupted);
     }
@@ -349,11 +380,11 @@ fn par_map<'b, R: Send>(
         .map_init(
             || (0..n).map(|_| None).collect::<Vec<Option<Checker<'b>>>>(),
             |checkers, &(p, q, answer)| {
-                let problem = &bank.problems[p];
-                let checker = checkers[p].get_or_insert_with(|| Checker::new(problem));
+                let problem = &bank.problems[p as usize];
+                let checker = checkers[p as usize].get_or_insert_with(|| Checker::new(problem));
                 f(
                     checker,
-                    &problem.parts[q],
+                    &problem.parts[q as usize],
                     (p, q, answer),
                     answers.get(answer),
                 )
@@ -362,20 +393,47 @@ fn par_map<'b, R: Send>(
         .collect()
 }
 
+/// A distinct answer's key for finding representatives: its part and whether it has a
+/// canonical form (one word), the form's 128-bit hash or else the answer's own index (two
+/// words), and the distinct answer's index. Sorted rather than hashed: 32 bytes each, where a
+/// map of them took about 130 (a class of a million different answers has a million).
+type FormKey = (u64, u64, u64, u32);
+
+/// The [`FormKey`] of distinct answer `i`, `(p, q, answer)`, with canonical form `form`.
+fn form_key(i: usize, (p, q, answer): Item, form: Option<u128>) -> FormKey {
+    // An answer without a canonical form stands for itself (its distinct text).
+    let (own, hi, lo) = match form {
+        Some(f) => (0, (f >> 64) as u64, f as u64),
+        None => (1, 0, u64::from(answer)),
+    };
+    ((p as u64) << 33 | (q as u64) << 1 | own, hi, lo, i as u32)
+}
+
 /// For each distinct answer, the index of its representative, and the representatives (the
-/// first distinct answer of each canonical form; unreadable answers stand for themselves).
-fn representatives(distinct: &[Item], canon: Vec<Option<u128>>) -> (Vec<u32>, Vec<Item>) {
-    let mut reps: Vec<Item> = Vec::new();
-    let mut by_form: FxHashMap<(usize, usize, Result<u128, u32>), u32> = FxHashMap::default();
-    let mut of = Vec::with_capacity(distinct.len());
-    for (&(p, q, answer), form) in distinct.iter().zip(canon) {
-        // An answer without a canonical form stands for itself (its distinct text).
-        let key = form.ok_or(answer);
-        let r = *by_form.entry((p, q, key)).or_insert_with(|| {
-            reps.push((p, q, answer));
-            reps.len() as u32 - 1
-        });
-        of.push(r);
+/// first distinct answer of each canonical form in input order, numbered in that order;
+/// unreadable answers stand for themselves), from every distinct answer's [`FormKey`].
+fn representatives(distinct: &[Item], mut keyed: Vec<FormKey>) -> (Vec<u32>, Vec<Item>) {
+    keyed.par_sort_unstable();
+    // Each form's first distinct answer and where its run of keys starts, in input order.
+    let mut firsts: Vec<(u32, u32)> = Vec::new();
+    for (k, w) in keyed.iter().enumerate() {
+        let prev = k.checked_sub(1).map(|j| &keyed[j]);
+        if prev.is_none_or(|v| (v.0, v.1, v.2) != (w.0, w.1, w.2)) {
+            firsts.push((w.3, k as u32));
+        }
+    }
+    firsts.par_sort_unstable();
+    let mut of = vec![0u32; distinct.len()];
+    let mut reps: Vec<Item> = Vec::with_capacity(firsts.len());
+    for (r, &(first, start)) in firsts.iter().enumerate() {
+        reps.push(distinct[first as usize]);
+        let key = &keyed[start as usize];
+        for w in keyed[start as usize..]
+            .iter()
+            .take_while(|w| (w.0, w.1, w.2) == (key.0, key.1, key.2))
+        {
+            of[w.3 as usize] = r as u32;
+        }
     }
     (of, reps)
 }
@@ -456,17 +514,21 @@ mod tests {
                 .check(part, answer)
                 .unwrap_or_else(|e| panic!("{answer}: {e}"));
             assert_eq!(v.status, status, "{answer}");
-            let (slim, words) = Slim::new(v.clone());
+            let (slim, words, codes) = Slim::new(v.clone());
             let (unicode, message) = (&words.reading, &words.message);
-            assert_eq!(slim.verdict(unicode, message), kept(v.clone()), "{answer}");
             assert_eq!(
-                slim.first(message),
+                slim.verdict(&codes, unicode, message),
+                kept(v.clone()),
+                "{answer}"
+            );
+            assert_eq!(
+                slim.first(&codes, message),
                 v.diagnoses.first().cloned(),
                 "{answer}"
             );
             assert_eq!(*unicode, v.reading.unicode, "{answer}");
             if status != Checked::Correct {
-                assert!(!slim.codes.is_empty() && !message.is_empty(), "{answer}");
+                assert!(!codes.is_empty() && !message.is_empty(), "{answer}");
             }
         }
     }

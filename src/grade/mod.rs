@@ -100,6 +100,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         eprintln!("error: {message}");
         return Ok(ExitCode::from(2));
     }
+    memory::map_large_blocks();
     let mut phases = phases::Phases::from_env();
     let bytes = match read_input(&opts.input) {
         Ok(b) => b,
@@ -179,12 +180,17 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         policy: &policy,
         overrides: decisions.as_ref().map(|d| d as &dyn judge::Override),
         variants: &variants,
+        scratch: if dir.is_dir() { &dir } else { Path::new(".") },
     };
     let mut bar = crate::face::bar::Bar::new("{bar:40} {pos}/{len} distinct answers", true);
     phases.end("bank");
     let judged = judge::judge(&table, &bank, settings, &mut bar, &mut phases);
     bar.finish();
     let judged = judged?;
+    if let Some(message) = judged.lost() {
+        eprintln!("error: {message}; nothing was written");
+        return Ok(ExitCode::from(2));
+    }
     if opts.feedback {
         let book = output::gradebook(&table, &judged, &bank, columns.as_deref());
         if let Err(message) = feedback::write(
@@ -226,7 +232,9 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     // memory is a verdict's worth per row: made before results.csv is written rather than
     // beside it, so the two never add up (issue 20 §5). The bytes are the same either way.
     let one_at_a_time = judged.outcome_count() * 4 > table.rows.len();
-    let (summary, written) = match write_outputs(&dir, &names, results, others, one_at_a_time)? {
+    let lost = || judged.lost();
+    let made = write_outputs(&dir, &names, results, others, one_at_a_time, lost)?;
+    let (summary, written) = match made {
         Ok(done) => done,
         Err(message) => {
             eprintln!("error: {message}");
@@ -380,13 +388,15 @@ type Files<'n> = Vec<(&'n str, Vec<u8>)>;
 /// while `others` makes the summary and the other files — and renames them all into place
 /// (the folder locked meanwhile; stale temporary files of a killed run removed): the summary
 /// and the paths written, or why they could not be written. `one_at_a_time`: `others` first,
-/// then results.csv, instead of both at once (less memory, a little more time).
+/// then results.csv, instead of both at once (less memory, a little more time). `lost`: why
+/// what the files were made from cannot be trusted (then none is renamed into place).
 fn write_outputs<'n>(
     dir: &Path,
     names: &[&str],
     mut results: impl FnMut(&mut (dyn std::io::Write + Send)) -> std::io::Result<()> + Send,
     others: impl FnOnce() -> anyhow::Result<(summary::Summary, Files<'n>)> + Send,
     one_at_a_time: bool,
+    lost: impl Fn() -> Option<String>,
 ) -> anyhow::Result<Result<(summary::Summary, Vec<PathBuf>), String>> {
     let folder = match crate::face::outfile::Folder::open(dir, names) {
         Ok(f) => f,
@@ -403,6 +413,9 @@ fn write_outputs<'n>(
         let mut staged = vec![staged?];
         for (name, bytes) in &files {
             staged.push(folder.stage(name, bytes)?);
+        }
+        if let Some(message) = lost() {
+            return Err(format!("{message}; nothing was written"));
         }
         crate::face::outfile::commit(staged)
     })();

@@ -127,7 +127,7 @@ pub fn results(
         let codes: Vec<&str> = o.codes.iter().map(|c| c.as_str()).collect();
         push_plain(t, &codes.join(";"));
         t.push(b',');
-        push_cell(t, judged.message(o));
+        push_cell(t, &judged.message(o));
         t.push(b',');
         push_plain(t, &super::review::override_cell(o));
         t.push(b',');
@@ -188,31 +188,45 @@ pub fn results(
 
 /// The gradebook: students in order of first appearance, one column per part answered by
 /// anyone (in bank order), the counted score of each, the total, the maximum and the percent.
-pub struct Gradebook {
+pub struct Gradebook<'t> {
     /// `PROBLEM/PART` column titles.
     pub columns: Vec<String>,
     /// The points of each column.
     pub points: Vec<f64>,
-    /// Student key and score per column (`None`: not answered).
-    pub students: Vec<(String, Vec<Option<f64>>)>,
+    /// The student keys, in order of first appearance.
+    names: Vec<&'t str>,
+    /// Every student's score per column, one student after the other (`None`: not
+    /// answered): one list, not one per student (a class may have a million students).
+    scores: Vec<Option<f64>>,
 }
 
-impl Gradebook {
+impl Gradebook<'_> {
     /// The maximum total.
     pub fn max(&self) -> f64 {
         self.points.iter().sum()
+    }
+
+    /// Student `i`'s scores, one per column (empty past the last student).
+    pub fn scores(&self, i: usize) -> &[Option<f64>] {
+        let w = self.columns.len();
+        self.scores.get(i * w..(i + 1) * w).unwrap_or(&[])
+    }
+
+    /// The students' keys and scores, in order.
+    fn students(&self) -> impl Iterator<Item = (&str, &[Option<f64>])> + '_ {
+        (self.names.iter().enumerate()).map(|(i, &s)| (s, self.scores(i)))
     }
 }
 
 /// Builds the gradebook from the rows that count. Its columns are `parts` (`--parts`, or the
 /// wide format's part columns) when given, else every part some row names, in bank order;
 /// every student's maximum is the sum of all columns, answered or not.
-pub fn gradebook(
-    table: &Table,
+pub fn gradebook<'t>(
+    table: &'t Table,
     judged: &Judged,
     bank: &Bank,
     parts: Option<&[(usize, usize)]>,
-) -> Gradebook {
+) -> Gradebook<'t> {
     let targets: Vec<(usize, usize)> = match parts {
         Some(p) => p.to_vec(),
         None => {
@@ -222,21 +236,25 @@ pub fn gradebook(
             t
         }
     };
-    let column: rustc_hash::FxHashMap<(usize, usize), usize> =
-        targets.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-    // Each outcome's column, looked up once.
-    let columns: Vec<Option<usize>> = (judged.briefs())
-        .map(|o| column.get(&o.target?).copied())
+    let column: rustc_hash::FxHashMap<(usize, usize), u32> = (targets.iter().enumerate())
+        .map(|(i, &t)| (t, i as u32))
+        .collect();
+    // Each outcome's column, looked up once (`u32::MAX`: none).
+    let columns: Vec<u32> = (judged.briefs())
+        .map(|o| {
+            o.target
+                .and_then(|t| column.get(&t).copied())
+                .unwrap_or(u32::MAX)
+        })
         .collect();
     let names = students(table);
-    let mut scores = vec![vec![None; targets.len()]; names.len()];
+    let w = targets.len();
+    let mut scores = vec![None; names.len() * w];
     for (i, (r, g)) in table.rows.iter().zip(&judged.rows).enumerate() {
-        if let (true, Some(c), Some(s)) = (
-            g.counts,
-            columns[g.outcome as usize],
-            scores.get_mut(r.student as usize),
-        ) {
-            s[c] = Some(judged.counted_score(i));
+        let c = columns[g.outcome as usize] as usize;
+        let at = (r.student as usize).saturating_mul(w).saturating_add(c);
+        if let (true, true, Some(s)) = (g.counts, c < w, scores.get_mut(at)) {
+            *s = Some(judged.counted_score(i));
         }
     }
     Gradebook {
@@ -248,7 +266,8 @@ pub fn gradebook(
             .iter()
             .map(|&(p, q)| bank.problems[p].parts[q].points)
             .collect(),
-        students: names.iter().map(|s| s.to_string()).zip(scores).collect(),
+        names,
+        scores,
     }
 }
 
@@ -287,11 +306,11 @@ fn per_student(
     book: &Gradebook,
     line: impl Fn(&str, &[Option<f64>], &mut Numbers, &mut Vec<u8>) + Sync,
 ) -> anyhow::Result<Vec<u8>> {
-    let chunks: Vec<Vec<u8>> = (book.students.par_chunks(STUDENTS))
-        .map(|chunk| {
+    let chunks: Vec<Vec<u8>> = (book.names.par_chunks(STUDENTS).enumerate())
+        .map(|(k, chunk)| {
             let (mut w, mut numbers) = (Vec::with_capacity(chunk.len() * 64), Numbers::default());
-            for (s, scores) in chunk {
-                line(s, scores, &mut numbers, &mut w);
+            for (i, s) in chunk.iter().enumerate() {
+                line(s, book.scores(k * STUDENTS + i), &mut numbers, &mut w);
             }
             w
         })
@@ -334,7 +353,7 @@ pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
 /// Whether every student key looks like an email address (Moodle then matches on email
 /// rather than on an ID number).
 fn emails(book: &Gradebook) -> bool {
-    !book.students.is_empty() && book.students.iter().all(|(s, _)| s.contains('@'))
+    !book.names.is_empty() && book.students().all(|(s, _)| s.contains('@'))
 }
 
 /// Moodle matches every row on one user field: student keys mixing email addresses and other

@@ -6,6 +6,7 @@
 //! next review.csv carries them (also those that matched no answer this time), so no decision
 //! is lost by grading again.
 
+use std::borrow::Cow;
 use std::io::Write as _;
 
 use lagrange::bank::Bank;
@@ -29,8 +30,8 @@ const HEADER: [&str; 11] = [
 struct Said<'j> {
     status: &'static str,
     codes: Vec<Code>,
-    read_as: &'j str,
-    message: &'j str,
+    read_as: Cow<'j, str>,
+    message: Cow<'j, str>,
 }
 
 /// What the checker said of an outcome (from its representative's verdict when an override
@@ -38,7 +39,7 @@ struct Said<'j> {
 fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
     let rep = o.rep.map(|r| &judged.reps[r]);
     let verdict = rep.and_then(|r| r.verdict.as_ref().ok());
-    let read_as = o.rep.map_or("", |r| judged.reading(r));
+    let read_as = o.rep.map_or(Cow::Borrowed(""), |r| judged.reading(r));
     if o.decision.is_none() {
         return Said {
             status: o.status.name(),
@@ -50,7 +51,7 @@ fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
     match (rep, verdict) {
         (_, Some(v)) => Said {
             status: v.status.name(),
-            codes: v.codes.to_vec(),
+            codes: judged.codes(v).to_vec(),
             read_as,
             message: judged.said(v),
         },
@@ -58,14 +59,14 @@ fn said<'j>(o: &'j Outcome, judged: &'j Judged) -> Said<'j> {
             status: Status::Error.name(),
             codes: Vec::new(),
             read_as,
-            message: r.verdict.as_ref().err().map_or("", |e| &**e),
+            message: Cow::Borrowed(r.verdict.as_ref().err().map_or("", |e| &**e)),
         },
         // Only an answer too long to read has no representative.
         (None, None) => Said {
             status: Checked::Invalid.name(),
             codes: Vec::new(),
             read_as,
-            message: "the answer is over the checker's limit; not read",
+            message: Cow::Borrowed("the answer is over the checker's limit; not read"),
         },
     }
 }
@@ -177,7 +178,7 @@ pub fn review_csv(
             [problem, part, variant, answer],
             [g.students, g.answers],
             [s.status, &codes.join(";")],
-            [s.read_as, s.message, written],
+            [&s.read_as, &s.message, written],
         );
     }
     let unmatched: Vec<usize> = (0..matched.len()).filter(|&e| !matched[e]).collect();

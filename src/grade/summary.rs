@@ -85,8 +85,8 @@ pub struct Group {
     pub examples: Vec<String>,
 }
 
-/// A group of wrong answers: its part, its status and its meaning (an index), in 16 bytes
-/// (a class of all-different answers has a group per answer).
+/// What makes a group of wrong answers: its part, its status and its meaning (an index), in
+/// 16 bytes (a class of all-different answers has a group per answer).
 type GroupKey = ((u32, u32), Status, u32);
 
 /// The summary of a judged class: counted per outcome and per group, never per row's text.
@@ -141,24 +141,15 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         .collect();
     drop(meaning);
     keyed.par_sort_unstable();
-    // Each group's first outcome and where its run starts, in order of first appearance.
-    let mut firsts: Vec<(u32, u32)> = Vec::new();
-    for (k, w) in keyed.iter().enumerate() {
-        if k == 0 || keyed[k - 1].0 != w.0 {
-            firsts.push((w.1, k as u32));
-        }
-    }
-    firsts.par_sort_unstable();
+    // A group goes by its first outcome (the first of its run, the runs being sorted by
+    // outcome within): numbers in order of first appearance, with no list of the groups.
     let mut group_of = vec![u32::MAX; judged.outcome_count()];
-    let mut groups: Vec<GroupKey> = Vec::with_capacity(firsts.len());
-    for (id, &(_, start)) in firsts.iter().enumerate() {
-        let key = keyed[start as usize].0;
-        groups.push(key);
-        for &(_, o) in keyed[start as usize..].iter().take_while(|w| w.0 == key) {
-            group_of[o as usize] = id as u32;
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+        for &(_, o) in run {
+            group_of[o as usize] = run[0].1;
         }
     }
-    drop((keyed, firsts));
+    drop(keyed);
     // Per row of a group: (group, student, representative, answer), sorted in parallel and
     // counted per group: no set or map per group.
     let mut members: Vec<(u32, u32, u32, u32)> = Vec::new();
@@ -194,8 +185,10 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
         }
         let shown_batch: Vec<((String, Status), Shown)> = (batch.par_iter())
             .map(|rows| {
-                let ((p, q), status, _) = groups[rows[0].0 as usize];
-                let t = (p as usize, q as usize);
+                // A group's part and status are its first outcome's.
+                let first = judged.brief_at(rows[0].0);
+                let t = first.target.unwrap_or_default();
+                let status = first.status;
                 ((key(t), status), shown(status, tally(rows), table, judged))
             })
             .collect();

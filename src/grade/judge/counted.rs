@@ -175,7 +175,9 @@ pub(super) fn follow_through(
         .map(|r| match &r.verdict {
             Ok(v) => match v.status {
                 Checked::Incorrect => true,
-                Checked::Correct => v.first(judged.said(v)).as_ref().is_some_and(accepts),
+                Checked::Correct => {
+                    (v.first(judged.codes(v), &judged.said(v)).as_ref()).is_some_and(accepts)
+                }
                 Checked::Invalid => false,
             },
             Err(_) => false,
@@ -280,7 +282,8 @@ fn follows(key: &FollowKey, judged: &Judged, answers: &Interner, bank: &Bank) ->
             let id = problem.parts[e.part as usize].id.clone();
             (
                 Earlier::new(id, answers.get(e.answer).to_string()),
-                (e.verdict.as_ref().ok()).map(|v| v.verdict(judged.reading(r), judged.said(v))),
+                (e.verdict.as_ref().ok())
+                    .map(|v| v.verdict(judged.codes(v), &judged.reading(r), &judged.said(v))),
             )
         })
         .collect();

@@ -92,10 +92,14 @@ impl Rep {
         }
     }
 
-    /// The outcome every row of this representative shares (`r`: its index).
-    pub(in crate::grade) fn outcome(&self, r: usize) -> Outcome {
+    /// The outcome every row of this representative shares (`r`: its index; `lists`: the
+    /// run's code lists).
+    fn outcome(&self, r: usize, lists: &[Arc<[Code]>]) -> Outcome {
         let codes = match &self.verdict {
-            Ok(v) => v.codes.clone(),
+            Ok(v) => lists
+                .get(v.codes as usize)
+                .cloned()
+                .unwrap_or_else(no_codes),
             Err(_) => no_codes(),
         };
         // The verdict's first message (or the error) is read through `Judged::message`.
@@ -192,12 +196,11 @@ pub struct Judged {
     pub(in crate::grade) kept: Vec<Outcome>,
     /// The answers actually checked.
     pub reps: Vec<Rep>,
-    /// The representatives' readings, one after the other ([`Judged::reading`]).
-    pub(in crate::grade) readings: String,
-    /// Where each representative's reading is in `readings`: (start, end).
-    pub(in crate::grade) spans: Vec<(u32, u32)>,
-    /// The representatives' first messages, each kept once ([`Slim::message`]).
-    messages: super::super::intern::Interner,
+    /// The representatives' readings and first messages ([`Judged::reading`],
+    /// [`Judged::said`]), in memory or in a temporary file.
+    words: super::words::Store,
+    /// The code lists of the verdicts, by number ([`Slim::codes`]).
+    code_lists: Vec<Arc<[Code]>>,
     /// The score a counted row counts for when the attempt penalty lowers it below its
     /// outcome's (few rows: only later attempts, only with a penalty).
     pub penalised: FxHashMap<u32, f64>,
@@ -219,7 +222,7 @@ impl Judged {
     pub fn outcome_at(&self, k: u32) -> Cow<'_, Outcome> {
         let k = k as usize;
         match k.checked_sub(self.reps.len()) {
-            None => Cow::Owned(self.reps[k].outcome(k)),
+            None => Cow::Owned(self.reps[k].outcome(k, &self.code_lists)),
             Some(i) => Cow::Borrowed(&self.kept[i]),
         }
     }
@@ -255,22 +258,26 @@ impl Judged {
     }
 
     /// How a representative's answer was read (Unicode; empty when it could not be).
-    pub fn reading(&self, rep: usize) -> &str {
-        self.spans
-            .get(rep)
-            .map_or("", |&(a, b)| &self.readings[a as usize..b as usize])
+    pub fn reading(&self, rep: usize) -> Cow<'_, str> {
+        self.words.reading(rep)
     }
 
     /// An outcome's message (results.csv's `message`).
-    pub fn message<'s>(&'s self, o: &'s Outcome) -> &'s str {
+    pub fn message<'s>(&'s self, o: &'s Outcome) -> Cow<'s, str> {
         match (&o.message, o.rep) {
-            (Some(m), _) => m,
+            (Some(m), _) => Cow::Borrowed(m),
             (None, Some(r)) => match &self.reps[r].verdict {
                 Ok(v) => self.said(v),
-                Err(e) => e,
+                Err(e) => Cow::Borrowed(e),
             },
-            (None, None) => "",
+            (None, None) => Cow::Borrowed(""),
         }
+    }
+
+    /// Why some words were lost (grading's temporary file could not be written or read
+    /// back), if they were: outputs made since must not be written.
+    pub fn lost(&self) -> Option<String> {
+        self.words.lost()
     }
 
     /// The score row `i` counts for in the gradebook (after the attempt penalty).
@@ -311,41 +318,45 @@ impl Judged {
         judged
     }
 
+    /// A verdict's codes, most specific first.
+    pub fn codes(&self, v: &Slim) -> &[Code] {
+        self.code_lists.get(v.codes as usize).map_or(&[], |c| c)
+    }
+
+    /// Sets the code lists the verdicts' numbers name (once they are all checked).
+    pub(in crate::grade) fn set_codes(&mut self, lists: Vec<Arc<[Code]>>) {
+        self.code_lists = lists;
+    }
+
     /// What a verdict said: its first diagnosis's message (empty without one).
-    pub fn said(&self, v: &Slim) -> &str {
-        self.messages.get(v.message)
+    pub fn said(&self, v: &Slim) -> Cow<'_, str> {
+        self.words.message(v.message)
     }
 
     /// No outcome yet, room for `reps` representatives and `text` bytes of readings and as
     /// many of messages (reserved, not touched: only what is written takes memory).
     pub(in crate::grade) fn with_capacity(reps: usize, text: usize) -> Judged {
+        Judged::with_words(reps, super::words::Store::memory(reps, text))
+    }
+
+    /// No outcome yet, room for `reps` representatives, their words kept in `words`.
+    pub(in crate::grade) fn with_words(reps: usize, words: super::words::Store) -> Judged {
         Judged {
             rows: Vec::new(),
             kept: Vec::new(),
             reps: Vec::with_capacity(reps),
-            readings: String::with_capacity(text),
-            spans: Vec::with_capacity(reps),
-            messages: super::super::intern::Interner::with_capacity(reps, text),
+            words,
+            code_lists: Vec::new(),
             penalised: FxHashMap::default(),
         }
     }
 
     /// Adds a checked representative and its words.
     pub(in crate::grade) fn push(&mut self, mut rep: Rep, words: &super::Words) {
+        let message = self.words.push(&words.reading, &words.message);
         if let Ok(v) = &mut rep.verdict {
-            v.message = self.messages.intern(&words.message);
+            v.message = message;
         }
-        let reading = words.reading.as_str();
-        let start = self.readings.len();
-        // Offsets are 32-bit: past 4 GB of readings (never, for a 512 MB file) none is kept.
-        let span = match u32::try_from(start + reading.len()) {
-            Ok(end) => {
-                self.readings.push_str(reading);
-                (start as u32, end)
-            }
-            Err(_) => (0, 0),
-        };
-        self.spans.push(span);
         self.reps.push(rep);
     }
 }

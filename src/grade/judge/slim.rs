@@ -17,8 +17,10 @@ pub struct Slim {
     pub score: f64,
     /// The sampling seed (kept so [`Slim::verdict`] gives back the verdict kept before).
     pub seed: u64,
-    /// Every diagnosis's code, most specific first (shared with the outcomes scored from it).
-    pub codes: std::sync::Arc<[Code]>,
+    /// Every diagnosis's code, most specific first, as the number of the list in the run's
+    /// code lists ([`Codes`]; `Judged::codes`): most wrong answers of a class get one of a
+    /// few lists, and a number is a quarter of a shared list's size.
+    pub codes: u32,
     /// The first diagnosis's message (empty without one), as its number in the interned
     /// messages (`Judged::said`): equal messages are kept once, and none in a block of its
     /// own (a class of all-different answers has nearly a message per answer).
@@ -34,30 +36,54 @@ pub struct Words {
     pub message: String,
 }
 
-/// The code lists of one run's verdicts, each kept once: most wrong answers of a class get
-/// one of a few (a class of all-different answers would otherwise keep a copy for each).
+/// The code lists of one run's verdicts, each kept once and numbered in order of first
+/// appearance: most wrong answers of a class get one of a few (a class of all-different
+/// answers would otherwise keep a copy for each).
 #[derive(Default)]
-pub struct Codes(std::sync::Mutex<rustc_hash::FxHashSet<std::sync::Arc<[Code]>>>);
+pub struct Codes(std::sync::Mutex<CodeLists>);
+
+/// The lists and their numbers.
+type CodeLists = (
+    rustc_hash::FxHashMap<std::sync::Arc<[Code]>, u32>,
+    Vec<std::sync::Arc<[Code]>>,
+);
 
 impl Codes {
-    /// `codes`, shared with the equal list given before if there is one.
-    fn share(&self, codes: Vec<Code>) -> std::sync::Arc<[Code]> {
-        // A worker that panicked holding the lock left the set whole (insertions are atomic).
-        let mut set = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(a) = set.get(codes.as_slice()) {
-            return a.clone();
+    /// The number of `codes`, shared with the equal list given before if there is one.
+    fn share(&self, codes: Vec<Code>) -> u32 {
+        // A worker that panicked holding the lock left the lists whole (each change is one
+        // insertion, made after the push it names).
+        let mut lists = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(&n) = lists.0.get(codes.as_slice()) {
+            return n;
         }
         let a: std::sync::Arc<[Code]> = codes.into();
-        set.insert(a.clone());
-        a
+        let n = lists.1.len() as u32;
+        lists.1.push(a.clone());
+        lists.0.insert(a, n);
+        n
+    }
+
+    /// List number `n` (empty for a number never given).
+    pub fn get(&self, n: u32) -> std::sync::Arc<[Code]> {
+        let lists = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        (lists.1.get(n as usize).cloned()).unwrap_or_else(super::no_codes)
+    }
+
+    /// Every list, by number.
+    pub fn into_lists(self) -> Vec<std::sync::Arc<[Code]>> {
+        self.0.into_inner().unwrap_or_else(|e| e.into_inner()).1
     }
 }
 
 impl Slim {
-    /// What grading reads of `v`, and its words (its message numbered 0).
+    /// What grading reads of `v`, its words (its message numbered 0) and its codes.
     #[cfg(test)]
-    pub fn new(v: Verdict) -> (Slim, Words) {
-        Slim::shared(v, &Codes::default())
+    pub fn new(v: Verdict) -> (Slim, Words, std::sync::Arc<[Code]>) {
+        let codes = Codes::default();
+        let (slim, words) = Slim::shared(v, &codes);
+        let list = codes.get(slim.codes);
+        (slim, words, list)
     }
 
     /// What grading reads of `v`, its codes shared through `codes`; and its words, to be
@@ -80,10 +106,10 @@ impl Slim {
     }
 
     /// The verdict with only what grading reads (no ids, no plain reading or note, no
-    /// parse error, and only the first diagnosis's message), read as `unicode` and saying
-    /// `message`: what follow-through is given of an earlier answer.
-    pub fn verdict(&self, unicode: &str, message: &str) -> Verdict {
-        let diagnoses = (self.codes.iter().enumerate())
+    /// parse error, and only the first diagnosis's message), with its code list `codes`, read
+    /// as `unicode` and saying `message`: what follow-through is given of an earlier answer.
+    pub fn verdict(&self, codes: &[Code], unicode: &str, message: &str) -> Verdict {
+        let diagnoses = (codes.iter().enumerate())
             .map(|(i, &code)| Diagnosis {
                 code,
                 message: if i == 0 {
@@ -102,9 +128,10 @@ impl Slim {
         )
     }
 
-    /// The first diagnosis, as the verdict gave it (its message `message`).
-    pub fn first(&self, message: &str) -> Option<Diagnosis> {
-        let &code = self.codes.first()?;
+    /// The first diagnosis, as the verdict gave it (its code list `codes`, its message
+    /// `message`).
+    pub fn first(&self, codes: &[Code], message: &str) -> Option<Diagnosis> {
+        let &code = codes.first()?;
         Some(Diagnosis::new(code, message.to_string()))
     }
 }

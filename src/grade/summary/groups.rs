@@ -179,7 +179,7 @@ fn group(g: Shown, judged: &Judged) -> Group {
         status: g.status.name().to_string(),
         answer: cut(&g.full.0),
         codes: verdict.map_or(Vec::new(), |v| {
-            v.codes.iter().map(|c| c.to_string()).collect()
+            judged.codes(v).iter().map(|c| c.to_string()).collect()
         }),
         diagnosis: verdict.map_or(String::new(), |v| judged.said(v).to_string()),
         examples: g.full.1.iter().take(2).map(|s| cut(s)).collect(),
