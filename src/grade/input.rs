@@ -267,16 +267,30 @@ pub struct BadFile(
 
 /// Parses a whole class file. Only an unusable header (or none) is an error; every other
 /// problem is recorded on the row it concerns.
+#[cfg(test)]
 pub fn parse(bytes: &[u8], phases: &mut super::phases::Phases) -> Result<Table, BadFile> {
-    parse_cut(bytes, super::decode::CUT_BYTES, phases)
+    parse_cut(bytes, super::decode::CUT_BYTES, phases, || ()).map(|(t, ())| t)
 }
 
-/// [`parse`], the file read in pieces of about `cut` bytes (small in tests, to cut often).
-fn parse_cut(
+/// [`parse`], running `beside` while the pieces read in parallel are joined in order (which
+/// is serial work): work given to the other core then, rather than taken from the parallel
+/// reading. `beside` does not run when the file cannot be read.
+pub fn parse_beside<R: Send>(
+    bytes: &[u8],
+    phases: &mut super::phases::Phases,
+    beside: impl FnOnce() -> R + Send,
+) -> Result<(Table, R), BadFile> {
+    parse_cut(bytes, super::decode::CUT_BYTES, phases, beside)
+}
+
+/// [`parse_beside`], the file read in pieces of about `cut` bytes (small in tests, to cut
+/// often).
+fn parse_cut<R: Send>(
     bytes: &[u8],
     cut: usize,
     phases: &mut super::phases::Phases,
-) -> Result<Table, BadFile> {
+    beside: impl FnOnce() -> R + Send,
+) -> Result<(Table, R), BadFile> {
     let decoded = super::decode::decode_cut(bytes, cut).map_err(BadFile)?;
     phases.end("decode");
     let mut reader = csv::ReaderBuilder::new()
@@ -305,7 +319,7 @@ fn parse_cut(
         .collect::<Result<Vec<Builder>, BadFile>>()?;
     phases.end("pieces");
     let mut b = Builder::default();
-    b.absorb(pieces, phases);
+    let ((), besides) = rayon::join(|| b.absorb(pieces, phases), beside);
     // Grading looks answers up by number from here on.
     b.answers.seal();
     let (format, columns) = match layout {
@@ -315,7 +329,7 @@ fn parse_cut(
             parts.into_iter().map(|(_, p, q)| (p, q)).collect(),
         ),
     };
-    Ok(Table {
+    let table = Table {
         format,
         rows: b.rows,
         columns,
@@ -324,7 +338,8 @@ fn parse_cut(
         names: b.names,
         answers: b.answers,
         errors: b.errors,
-    })
+    };
+    Ok((table, besides))
 }
 
 /// The rows of the records in `text[start..end]` (which starts at a record, on line
@@ -531,11 +546,11 @@ mod tests {
             "student,a/b,c/d\ns1,x,\"y\r\n1\"\rS1,,z\r\ns2,\"\",\",\"\n\ns3,1,2,3\n",
         ];
         for f in files {
-            let whole = parse_cut(f.as_bytes(), 1 << 30, &mut Default::default());
-            let whole = whole.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+            let whole = parse_cut(f.as_bytes(), 1 << 30, &mut Default::default(), || ());
+            let whole = (whole.map(|(t, ())| t).map_err(|e| e.0)).unwrap_or_else(|e| panic!("{e}"));
             for cut in 1..12 {
-                let t = parse_cut(f.as_bytes(), cut, &mut Default::default());
-                let t = t.map_err(|e| e.0).unwrap_or_else(|e| panic!("{e}"));
+                let t = parse_cut(f.as_bytes(), cut, &mut Default::default(), || ());
+                let t = (t.map(|(t, ())| t).map_err(|e| e.0)).unwrap_or_else(|e| panic!("{e}"));
                 assert_eq!(shown(&t), shown(&whole), "cut {cut}");
             }
         }

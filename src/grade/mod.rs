@@ -110,9 +110,8 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
     };
     phases.end("read");
-    // The file's hash (one serial pass) beside the parallel reading.
-    let (table, hash) = rayon::join(|| input::parse(&bytes, &mut phases), || file_hash(&bytes));
-    let table = match table {
+    // The file's hash (one serial pass) beside the serial part of the reading.
+    let (table, hash) = match input::parse_beside(&bytes, &mut phases, || file_hash(&bytes)) {
         Ok(t) => t,
         Err(input::BadFile(message)) => {
             eprintln!("error: {}: {message}", shown(&opts.input));
@@ -517,13 +516,40 @@ fn read_input(path: &Path) -> Result<Vec<u8>, String> {
             return Err(too_large());
         }
         let file = std::fs::File::open(path).map_err(cannot)?;
-        file.take(MAX_FILE_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .map_err(cannot)?;
+        bytes = read_whole(&file, meta.len()).map_err(cannot)?;
     }
     if bytes.len() as u64 > MAX_FILE_BYTES {
         return Err(too_large());
     }
+    Ok(bytes)
+}
+
+/// A file of about `len` bytes read whole (more if it grew since, up to one byte past
+/// [`MAX_FILE_BYTES`]): in parallel blocks into room made at once, where the system reads at
+/// an offset, rather than one read into a list that doubles (each time copying the last).
+fn read_whole(file: &std::fs::File, len: u64) -> std::io::Result<Vec<u8>> {
+    #[cfg(unix)]
+    let mut bytes = {
+        use rayon::prelude::*;
+        use std::os::unix::fs::FileExt as _;
+        const BLOCK: usize = 4 << 20;
+        // Zeroed room comes as fresh pages: filled by the reads, not written twice.
+        let mut bytes = vec![0; len as usize];
+        (bytes.par_chunks_mut(BLOCK).enumerate())
+            .try_for_each(|(i, block)| file.read_exact_at(block, (i * BLOCK) as u64))?;
+        bytes
+    };
+    #[cfg(not(unix))]
+    let mut bytes = {
+        let _ = len;
+        Vec::new()
+    };
+    // What is left (all of it where reading at an offset is not available), up to the limit.
+    let mut rest = file;
+    #[cfg(unix)]
+    std::io::Seek::seek(&mut rest, std::io::SeekFrom::Start(len))?;
+    rest.take(MAX_FILE_BYTES + 1 - bytes.len() as u64)
+        .read_to_end(&mut bytes)?;
     Ok(bytes)
 }
 
