@@ -193,7 +193,15 @@ impl Builder {
         self.students.reserve(keys);
         let mut maps = Vec::with_capacity(pieces.len());
         let mut piece_rows = Vec::with_capacity(pieces.len());
-        for p in pieces {
+        // A class of mostly different answers joins as much text as it read: the pieces'
+        // memory, freed as each is joined, is given back now and then, else it would still be
+        // counted (in the workers' heaps) when the joined text is whole.
+        let rows: usize = pieces.iter().map(|p| p.rows.len()).sum();
+        let give_back = answers >= super::judge::MANY && answers * 4 > rows;
+        for (k, p) in pieces.into_iter().enumerate() {
+            if give_back && k % 8 == 7 {
+                super::memory::give_back();
+            }
             let students: Vec<u32> = (p.students.into_iter().zip(p.lower))
                 .map(|(s, l)| self.table_student(s, l))
                 .collect();
@@ -210,20 +218,12 @@ impl Builder {
         }
         phases.end("join text");
         let shift = |i: u32, to: &[u32]| to.get(i as usize).copied().unwrap_or(NONE);
-        let start = self.rows.len();
-        let total: usize = piece_rows.iter().map(Vec::len).sum();
-        self.rows.resize(start + total, Row::default());
-        let mut slices = Vec::with_capacity(piece_rows.len());
-        let mut rest = &mut self.rows[start..];
-        for r in &piece_rows {
-            let (head, tail) = rest.split_at_mut(r.len());
-            slices.push(head);
-            rest = tail;
-        }
-        (slices.into_par_iter().zip(&piece_rows).zip(&maps)).for_each(
-            |((to, from), (students, names, answers, first_error))| {
-                for (t, r) in to.iter_mut().zip(from) {
-                    *t = Row {
+        // Each piece's rows renumbered where they are, in parallel, then moved onto the
+        // table's one piece at a time, each freed once moved: never every row twice.
+        (piece_rows.par_iter_mut().zip(&maps)).for_each(
+            |(rows, (students, names, answers, first_error))| {
+                for r in rows.iter_mut() {
+                    *r = Row {
                         line: r.line,
                         student: shift(r.student, students),
                         problem: shift(r.problem, names),
@@ -238,6 +238,12 @@ impl Builder {
                 }
             },
         );
+        drop(maps);
+        let total: usize = piece_rows.iter().map(Vec::len).sum();
+        self.rows.reserve_exact(total);
+        for rows in piece_rows {
+            self.rows.extend_from_slice(&rows);
+        }
     }
 
     /// Adds a row; `error` is why it cannot be graded.

@@ -12,9 +12,10 @@ use std::hash::BuildHasher as _;
 pub struct Interner {
     /// Every string, one after the other.
     text: String,
-    /// Where each string is in `text`: (start, end).
-    spans: Vec<(u32, u32)>,
-    /// Indices into `spans`, by the hash of their string (empty once sealed, rebuilt if
+    /// Where each string ends in `text` (it starts where the one before ends): 4 bytes a
+    /// string, not 8 (a class of all-different answers has one per row).
+    ends: Vec<u32>,
+    /// Indices into `ends`, by the hash of their string (empty once sealed, rebuilt if
     /// a string is added after).
     table: HashTable<u32>,
     /// Whether `table` was dropped ([`Interner::seal`]).
@@ -26,7 +27,7 @@ impl Interner {
     pub fn with_capacity(strings: usize, bytes: usize) -> Interner {
         Interner {
             text: String::with_capacity(bytes),
-            spans: Vec::with_capacity(strings),
+            ends: Vec::with_capacity(strings),
             table: HashTable::with_capacity(strings),
             sealed: false,
         }
@@ -36,12 +37,10 @@ impl Interner {
     /// touched: the text does not grow by doubling, each step copying the last).
     pub fn reserve(&mut self, strings: usize, bytes: usize) {
         self.text.reserve(bytes);
-        self.spans.reserve(strings);
-        let (text, spans) = (&self.text, &self.spans);
-        self.table.reserve(strings, |&j| {
-            let (a, b) = spans[j as usize];
-            FxBuildHasher.hash_one(&text[a as usize..b as usize])
-        });
+        self.ends.reserve(strings);
+        let (text, ends) = (&self.text, &self.ends);
+        self.table
+            .reserve(strings, |&j| FxBuildHasher.hash_one(at(text, ends, j)));
     }
 
     /// Drops the lookup table once every string is in (a class of all-different answers
@@ -60,44 +59,44 @@ impl Interner {
     pub fn intern(&mut self, s: &str) -> u32 {
         if self.sealed {
             self.sealed = false;
-            let mut table = HashTable::with_capacity(self.spans.len());
-            for i in 0..self.spans.len() as u32 {
+            let mut table = HashTable::with_capacity(self.ends.len());
+            for i in 0..self.ends.len() as u32 {
                 table.insert_unique(self.hash(i), i, |&j| self.hash(j));
             }
             self.table = table;
         }
         let hash = FxBuildHasher.hash_one(s);
-        let (text, spans) = (&self.text, &self.spans);
-        let get = |i: u32| {
-            let (a, b) = spans[i as usize];
-            &text[a as usize..b as usize]
-        };
-        if let Some(&i) = self.table.find(hash, |&i| get(i) == s) {
+        let (text, ends) = (&self.text, &self.ends);
+        if let Some(&i) = self.table.find(hash, |&i| at(text, ends, i) == s) {
             return i;
         }
-        let i = self.spans.len() as u32;
-        let start = self.text.len() as u32;
+        let i = self.ends.len() as u32;
         self.text.push_str(s);
-        self.spans.push((start, self.text.len() as u32));
-        let (text, spans) = (&self.text, &self.spans);
-        self.table.insert_unique(hash, i, |&j| {
-            let (a, b) = spans[j as usize];
-            FxBuildHasher.hash_one(&text[a as usize..b as usize])
-        });
+        self.ends.push(self.text.len() as u32);
+        let (text, ends) = (&self.text, &self.ends);
+        self.table
+            .insert_unique(hash, i, |&j| FxBuildHasher.hash_one(at(text, ends, j)));
         i
     }
 
     /// The number of distinct strings.
     pub fn len(&self) -> usize {
-        self.spans.len()
+        self.ends.len()
     }
 
     /// The string of index `i` (empty for an index never given).
     pub fn get(&self, i: u32) -> &str {
-        self.spans
-            .get(i as usize)
-            .map_or("", |&(a, b)| &self.text[a as usize..b as usize])
+        at(&self.text, &self.ends, i)
     }
+}
+
+/// String `i` of `text` cut at `ends` (empty for an index never given).
+fn at<'t>(text: &'t str, ends: &[u32], i: u32) -> &'t str {
+    let Some(&end) = ends.get(i as usize) else {
+        return "";
+    };
+    let start = (i as usize).checked_sub(1).map_or(0, |j| ends[j]);
+    &text[start as usize..end as usize]
 }
 
 #[cfg(test)]

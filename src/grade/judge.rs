@@ -67,6 +67,10 @@ const CHUNK: usize = 1024;
 /// memory (see [`judge`]): large enough that the workers are rarely idle at a window's end.
 const WINDOW: usize = 16 * 1024;
 
+/// How many different answers make a class of many: its words are kept on disk and the
+/// memory freed between passes given back (each time costs some milliseconds).
+pub const MANY: usize = WINDOW;
+
 /// [`WINDOW`], or `LAGRANGE_GRADE_WINDOW` from the environment when it is a positive number
 /// (for the test that outputs do not depend on it).
 fn window_size() -> usize {
@@ -134,12 +138,13 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, Words)> {
                 counted_as: counted_as as u32,
                 score,
                 verdict,
-                fingerprint: [(fingerprint >> 64) as u64, fingerprint as u64],
             };
-            let words = words.unwrap_or(Words {
+            let mut words = words.unwrap_or(Words {
                 reading: String::new(),
                 message: String::new(),
+                fingerprint: 0,
             });
+            words.fingerprint = fingerprint;
             (rep, words)
         },
     )

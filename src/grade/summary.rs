@@ -111,7 +111,7 @@ pub fn summarise(table: &Table, judged: &Judged, bank: &Bank) -> Summary {
     drop(ids);
     let mut keyed: Vec<(u64, u64, u32)> = (judged.reps.par_iter().enumerate())
         .map(|(i, r)| {
-            let mut m = r.fingerprint().unwrap_or_else(|| {
+            let mut m = judged.fingerprint(i).unwrap_or_else(|| {
                 super::judge::meaning(&format!("text:{}", table.answers.get(r.answer).trim()))
             });
             if let (true, Ok(v)) = (pinned[r.problem as usize], &r.verdict) {

@@ -46,8 +46,9 @@ impl Status {
 }
 
 /// One checked representative: the verdict every row of its canonical form shares. Kept
-/// small (no text of its own: its reading is in [`Judged::readings`], its codes and message
-/// shared), since a class of all-different answers keeps one per row (issue 20 §5).
+/// small (no text of its own: its reading, message and grouping key are in [`Judged`]'s
+/// words, its codes shared), since a class of all-different answers keeps one per row
+/// (issue 20 §5).
 pub struct Rep {
     /// The problem's index in the bank (for a part that accepts numbers, the problem pinned
     /// to the student's numbers).
@@ -65,19 +66,9 @@ pub struct Rep {
     /// The verdict ([`Slim`]: what grading reads of it), or why the part could not be
     /// checked.
     pub verdict: Result<Slim, std::sync::Arc<str>>,
-    /// Equal for answers equal at the sample points: the summary's grouping key (the
-    /// checker's fingerprint, hashed: see [`meaning`]); `[0, 0]`: none.
-    pub(in crate::grade) fingerprint: [u64; 2],
 }
 
 impl Rep {
-    /// The summary's grouping key, if the checker gave one.
-    pub fn fingerprint(&self) -> Option<u128> {
-        let [a, b] = self.fingerprint;
-        let f = (u128::from(a) << 64) | u128::from(b);
-        (f != 0).then_some(f)
-    }
-
     /// [`Rep::outcome`] without its codes and message.
     fn brief(&self, r: usize) -> Brief {
         let status = match &self.verdict {
@@ -307,11 +298,11 @@ impl Judged {
                 counted_as: 0,
                 score: 0.0,
                 verdict: Err(Arc::from("")),
-                fingerprint: [0, 0],
             };
             let words = super::Words {
                 reading: String::new(),
                 message: String::new(),
+                fingerprint: 0,
             };
             judged.push(rep, &words);
         }
@@ -351,9 +342,14 @@ impl Judged {
         }
     }
 
+    /// Representative `rep`'s grouping key in the summary, if the checker gave one.
+    pub fn fingerprint(&self, rep: usize) -> Option<u128> {
+        self.words.fingerprint(rep)
+    }
+
     /// Adds a checked representative and its words.
     pub(in crate::grade) fn push(&mut self, mut rep: Rep, words: &super::Words) {
-        let message = self.words.push(&words.reading, &words.message);
+        let message = self.words.push(words);
         if let Ok(v) = &mut rep.verdict {
             v.message = message;
         }

@@ -34,6 +34,9 @@ pub struct Words {
     pub reading: String,
     /// The first diagnosis's message (empty without one).
     pub message: String,
+    /// Equal for answers equal at the sample points: the summary's grouping key (the
+    /// checker's fingerprint, hashed: see [`meaning`]); 0: none.
+    pub fingerprint: u128,
 }
 
 /// The code lists of one run's verdicts, each kept once and numbered in order of first
@@ -101,6 +104,7 @@ impl Slim {
         let words = Words {
             reading: v.reading.unicode,
             message,
+            fingerprint: 0,
         };
         (slim, words)
     }

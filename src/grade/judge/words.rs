@@ -15,9 +15,13 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use super::super::intern::Interner;
+use super::Words;
 
 /// How many bytes of words are gathered before they are written to the file.
 const PENDING: usize = 1 << 20;
+
+/// The bytes of a record before its words: the reading's length and the grouping key.
+const HEAD: usize = 4 + 16;
 
 /// The representatives' words.
 pub(in crate::grade) enum Store {
@@ -29,21 +33,25 @@ pub(in crate::grade) enum Store {
         spans: Vec<(u32, u32)>,
         /// The first messages, each kept once.
         messages: Interner,
+        /// The grouping keys, halves apart (a `u128` would be aligned to 16 bytes).
+        fingerprints: Vec<[u64; 2]>,
     },
     /// Written to a nameless temporary file.
     Disk(Disk),
 }
 
-/// Words in a temporary file: each representative's reading then its message, one record
-/// after the other; the last records still in memory until a whole buffer is gathered.
+/// Words in a temporary file: for each representative, its reading's length (4 bytes, little
+/// endian), its grouping key (16 bytes, little endian), its reading and its message, one
+/// record after the other (a record ends where the next starts); the last records still in
+/// memory until a whole buffer is gathered.
 pub(in crate::grade) struct Disk {
     file: File,
     /// Records not yet written (they start at `written` in the file).
     pending: Vec<u8>,
     /// How many bytes are in the file.
     written: u64,
-    /// Each record: where it starts, its reading's length, its message's length.
-    records: Vec<(u64, u32, u32)>,
+    /// Where each record starts: 8 bytes a representative.
+    records: Vec<u64>,
     /// Why the file could not be written or read back, once it could not (the run then
     /// fails: [`Store::lost`]); nothing read after that is trusted.
     failed: Mutex<Option<String>>,
@@ -58,6 +66,7 @@ impl Store {
             readings: String::with_capacity(text),
             spans: Vec::with_capacity(reps),
             messages: Interner::with_capacity(reps, text),
+            fingerprints: Vec::with_capacity(reps),
         }
     }
 
@@ -79,12 +88,14 @@ impl Store {
 
     /// Adds the next representative's words; the number its message goes by
     /// ([`Store::message`]).
-    pub(in crate::grade) fn push(&mut self, reading: &str, message: &str) -> u32 {
+    pub(in crate::grade) fn push(&mut self, words: &Words) -> u32 {
+        let (reading, message) = (words.reading.as_str(), words.message.as_str());
         match self {
             Store::Memory {
                 readings,
                 spans,
                 messages,
+                fingerprints,
             } => {
                 let start = readings.len();
                 // Offsets are 32-bit: past 4 GB of readings (never, for a 512 MB file) none
@@ -97,10 +108,24 @@ impl Store {
                     Err(_) => (0, 0),
                 };
                 spans.push(span);
+                let f = words.fingerprint;
+                fingerprints.push([(f >> 64) as u64, f as u64]);
                 messages.intern(message)
             }
-            Store::Disk(d) => d.push(reading, message),
+            Store::Disk(d) => d.push(reading, message, words.fingerprint),
         }
+    }
+
+    /// Representative `rep`'s grouping key, if the checker gave one.
+    pub(in crate::grade) fn fingerprint(&self, rep: usize) -> Option<u128> {
+        let f = match self {
+            Store::Memory { fingerprints, .. } => {
+                let [a, b] = fingerprints.get(rep).copied().unwrap_or_default();
+                (u128::from(a) << 64) | u128::from(b)
+            }
+            Store::Disk(d) => d.fingerprint(rep),
+        };
+        (f != 0).then_some(f)
     }
 
     /// How representative `rep`'s answer was read (empty when it could not be).
@@ -137,17 +162,18 @@ impl Store {
 
 impl Disk {
     /// Adds a record; its number (a representative's own).
-    fn push(&mut self, reading: &str, message: &str) -> u32 {
-        let start = self.written + self.pending.len() as u64;
+    fn push(&mut self, reading: &str, message: &str, fingerprint: u128) -> u32 {
         let n = self.records.len() as u32;
-        let (Ok(a), Ok(b)) = (u32::try_from(reading.len()), u32::try_from(message.len())) else {
-            self.fail("a reading or message over 4 GB".to_string());
-            self.records.push((start, 0, 0));
+        self.records.push(self.written + self.pending.len() as u64);
+        let Ok(a) = u32::try_from(reading.len()) else {
+            self.fail("a reading over 4 GB".to_string());
+            self.pending.extend_from_slice(&[0; HEAD]);
             return n;
         };
+        self.pending.extend_from_slice(&a.to_le_bytes());
+        self.pending.extend_from_slice(&fingerprint.to_le_bytes());
         self.pending.extend_from_slice(reading.as_bytes());
         self.pending.extend_from_slice(message.as_bytes());
-        self.records.push((start, a, b));
         if self.pending.len() >= PENDING {
             self.write_pending();
         }
@@ -180,33 +206,52 @@ impl Disk {
 
     /// Record `r`'s reading (`reading`) or message.
     fn read(&self, r: usize, reading: bool) -> Cow<'_, str> {
-        let Some(&(start, a, b)) = self.records.get(r) else {
+        let Some(&start) = self.records.get(r) else {
             return Cow::Borrowed("");
         };
-        let (at, len) = if reading {
-            (start, a as usize)
-        } else {
-            (start + u64::from(a), b as usize)
-        };
-        if len == 0 {
-            return Cow::Borrowed("");
-        }
+        let end =
+            (self.records.get(r + 1).copied()).unwrap_or(self.written + self.pending.len() as u64);
+        let len = (end - start) as usize;
         // The last records may still be waiting in memory.
-        if let Some(i) = at.checked_sub(self.written) {
-            let i = i as usize;
-            return match self.pending.get(i..i + len).map(std::str::from_utf8) {
-                Some(Ok(s)) => Cow::Borrowed(s),
-                _ => self.lost("a record past the end"),
+        if let Some(i) = start.checked_sub(self.written) {
+            let record = self.pending.get(i as usize..i as usize + len);
+            return match record.map(|r| part(r, reading)) {
+                Some(Some(s)) => Cow::Borrowed(s),
+                _ => self.lost("a record past the end, or not whole"),
             };
         }
-        let mut bytes = vec![0; len];
-        if let Err(e) = read_at(&self.file, &mut bytes, at) {
+        let mut record = vec![0; len];
+        if let Err(e) = read_at(&self.file, &mut record, start) {
             return self.lost(&e.to_string());
         }
-        match String::from_utf8(bytes) {
-            Ok(s) => Cow::Owned(s),
-            Err(_) => self.lost("a record that is not UTF-8"),
+        match part(&record, reading) {
+            Some(s) => Cow::Owned(s.to_string()),
+            None => self.lost("a record not whole"),
         }
+    }
+
+    /// Record `r`'s grouping key (0: none, or lost).
+    fn fingerprint(&self, r: usize) -> u128 {
+        let Some(&start) = self.records.get(r) else {
+            return 0;
+        };
+        let mut head = [0; HEAD];
+        match start.checked_sub(self.written) {
+            Some(i) => match self.pending.get(i as usize..i as usize + HEAD) {
+                Some(b) => head.copy_from_slice(b),
+                None => {
+                    self.lost("a record past the end");
+                }
+            },
+            None => {
+                if let Err(e) = read_at(&self.file, &mut head, start) {
+                    self.lost(&e.to_string());
+                }
+            }
+        }
+        let mut key = [0; 16];
+        key.copy_from_slice(&head[4..]);
+        u128::from_le_bytes(key)
     }
 
     /// An empty text, the reason remembered.
@@ -214,6 +259,14 @@ impl Disk {
         self.fail(format!("cannot read back grading's temporary file: {why}"));
         Cow::Borrowed("")
     }
+}
+
+/// A record's reading (`reading`) or message, if the record is whole.
+fn part(record: &[u8], reading: bool) -> Option<&str> {
+    let (head, words) = record.split_first_chunk::<HEAD>()?;
+    let (len, _) = head.split_first_chunk::<4>()?;
+    let (a, b) = words.split_at_checked(u32::from_le_bytes(*len) as usize)?;
+    std::str::from_utf8(if reading { a } else { b }).ok()
 }
 
 /// Reads exactly `buf.len()` bytes at `offset`, without moving a shared position (so that
@@ -267,14 +320,27 @@ mod tests {
                 (reading, message)
             })
             .collect();
-        let ids: Vec<(u32, u32)> = (words.iter())
-            .map(|(r, m)| (memory.push(r, m), disk.push(r, m)))
+        let key = |i: usize| (i as u128 % 3) * (u128::MAX / 7 + i as u128);
+        let ids: Vec<(u32, u32)> = (words.iter().enumerate())
+            .map(|(i, (r, m))| {
+                let w = Words {
+                    reading: r.clone(),
+                    message: m.clone(),
+                    fingerprint: key(i),
+                };
+                (memory.push(&w), disk.push(&w))
+            })
             .collect();
         for (rep, ((r, m), (a, b))) in words.iter().zip(&ids).enumerate() {
             assert_eq!(memory.reading(rep), r.as_str());
             assert_eq!(disk.reading(rep), r.as_str());
             assert_eq!(memory.message(*a), m.as_str());
             assert_eq!(disk.message(*b), m.as_str());
+            let want = (key(rep) != 0).then_some(key(rep));
+            assert_eq!(
+                (memory.fingerprint(rep), disk.fingerprint(rep)),
+                (want, want)
+            );
         }
         assert_eq!((memory.lost(), disk.lost()), (None, None));
         // The folder holds no file of the store's: it has no name.
@@ -300,9 +366,14 @@ mod tests {
             failed: Mutex::new(None),
         });
         let big = "x".repeat(PENDING);
-        let m = store.push(&big, "off by a factor of 2");
+        let m = store.push(&Words {
+            reading: big.clone(),
+            message: "off by a factor of 2".to_string(),
+            fingerprint: 7,
+        });
         assert!(store.lost().is_some_and(|why| why.contains("cannot write")));
         assert_eq!(store.reading(0), big.as_str());
         assert_eq!(store.message(m), "off by a factor of 2");
+        assert_eq!(store.fingerprint(0), Some(7));
     }
 }
