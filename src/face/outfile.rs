@@ -198,11 +198,62 @@ impl Folder {
             builder.permissions(std::fs::Permissions::from_mode(mode));
         }
         let mut tmp = builder.tempfile_in(&self.dir).map_err(fail)?;
-        let mut out = std::io::BufWriter::with_capacity(1 << 16, tmp.as_file_mut());
+        let file = Writeback {
+            file: tmp.as_file_mut(),
+            written: 0,
+            handed: 0,
+        };
+        let mut out = std::io::BufWriter::with_capacity(1 << 16, file);
         write(&mut out).and_then(|()| out.flush()).map_err(fail)?;
         drop(out);
         tmp.as_file().sync_all().map_err(fail)?;
         Ok(Staged { tmp, path })
+    }
+}
+
+/// A file being written whose pages are handed to the disk every [`Writeback::EVERY`] bytes
+/// (on Linux, `sync_file_range` starts writing them back without waiting), so that the
+/// `fsync` ending a large output waits for little: writing to the disk overlaps making the
+/// rest (results.csv of a 1M-row class spent about 60 ms in its `fsync`).
+struct Writeback<'f> {
+    file: &'f mut std::fs::File,
+    /// Bytes written so far.
+    written: u64,
+    /// Bytes handed to the disk so far.
+    handed: u64,
+}
+
+impl Writeback<'_> {
+    const EVERY: u64 = 8 << 20;
+}
+
+impl std::io::Write for Writeback<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.file.write(buf)?;
+        self.written += n as u64;
+        if self.written - self.handed >= Self::EVERY {
+            #[cfg(all(target_os = "linux", target_env = "gnu"))]
+            {
+                use std::os::fd::AsRawFd as _;
+                let (from, len) = (self.handed as i64, (self.written - self.handed) as i64);
+                // SAFETY: the descriptor is the open file's own for the call's duration; the
+                // call only starts writeback of that range (a hint: its result is not needed).
+                unsafe {
+                    libc::sync_file_range(
+                        self.file.as_raw_fd(),
+                        from,
+                        len,
+                        libc::SYNC_FILE_RANGE_WRITE,
+                    );
+                }
+            }
+            self.handed = self.written;
+        }
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
     }
 }
 

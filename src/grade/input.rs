@@ -197,7 +197,7 @@ impl Builder {
         // memory, freed as each is joined, is given back now and then, else it would still be
         // counted (in the workers' heaps) when the joined text is whole.
         let rows: usize = pieces.iter().map(|p| p.rows.len()).sum();
-        let give_back = answers >= super::judge::MANY && answers * 4 > rows;
+        let give_back = answers >= super::memory::MANY && answers * 4 > rows;
         for (k, p) in pieces.into_iter().enumerate() {
             if give_back && k % 8 == 7 {
                 super::memory::give_back();
@@ -218,31 +218,43 @@ impl Builder {
         }
         phases.end("join text");
         let shift = |i: u32, to: &[u32]| to.get(i as usize).copied().unwrap_or(NONE);
-        // Each piece's rows renumbered where they are, in parallel, then moved onto the
-        // table's one piece at a time, each freed once moved: never every row twice.
-        (piece_rows.par_iter_mut().zip(&maps)).for_each(
-            |(rows, (students, names, answers, first_error))| {
-                for r in rows.iter_mut() {
-                    *r = Row {
-                        line: r.line,
-                        student: shift(r.student, students),
-                        problem: shift(r.problem, names),
-                        part: shift(r.part, names),
-                        answer: shift(r.answer, answers),
-                        error: if r.error == NONE {
-                            NONE
-                        } else {
-                            first_error + r.error
-                        },
-                    };
+        // Every row renumbered into its place in the table, in parallel (each finds its piece
+        // among the pieces' first rows).
+        let mut firsts = Vec::with_capacity(piece_rows.len());
+        let mut total = 0;
+        for rows in &piece_rows {
+            firsts.push(total);
+            total += rows.len();
+        }
+        // A worker goes through consecutive rows: it looks its piece up again only when it
+        // starts or leaves one.
+        let renumbered = (0..total).into_par_iter().map_init(
+            || usize::MAX,
+            |k, i| {
+                if *k >= firsts.len() || i < firsts[*k] || i - firsts[*k] >= piece_rows[*k].len() {
+                    *k = firsts.partition_point(|&f| f <= i) - 1;
+                }
+                let k = *k;
+                let r = &piece_rows[k][i - firsts[k]];
+                let (students, names, answers, first_error) = &maps[k];
+                Row {
+                    line: r.line,
+                    student: shift(r.student, students),
+                    problem: shift(r.problem, names),
+                    part: shift(r.part, names),
+                    answer: shift(r.answer, answers),
+                    error: if r.error == NONE {
+                        NONE
+                    } else {
+                        first_error + r.error
+                    },
                 }
             },
         );
-        drop(maps);
-        let total: usize = piece_rows.iter().map(Vec::len).sum();
-        self.rows.reserve_exact(total);
-        for rows in piece_rows {
-            self.rows.extend_from_slice(&rows);
+        if self.rows.is_empty() {
+            renumbered.collect_into_vec(&mut self.rows);
+        } else {
+            self.rows.par_extend(renumbered);
         }
     }
 
@@ -275,16 +287,16 @@ pub struct BadFile(
 /// problem is recorded on the row it concerns.
 #[cfg(test)]
 pub fn parse(bytes: &[u8], phases: &mut super::phases::Phases) -> Result<Table, BadFile> {
-    parse_cut(bytes, super::decode::CUT_BYTES, phases, || ()).map(|(t, ())| t)
+    parse_cut(bytes.to_vec(), super::decode::CUT_BYTES, phases, |_| ()).map(|(t, ())| t)
 }
 
-/// [`parse`], running `beside` while the pieces read in parallel are joined in order (which
-/// is serial work): work given to the other core then, rather than taken from the parallel
-/// reading. `beside` does not run when the file cannot be read.
+/// [`parse`] of a class file it takes and frees as soon as its pieces are read (before
+/// they are joined, where a class of all-different answers needs its memory), running
+/// `beside(bytes)` while it is decoded.
 pub fn parse_beside<R: Send>(
-    bytes: &[u8],
+    bytes: Vec<u8>,
     phases: &mut super::phases::Phases,
-    beside: impl FnOnce() -> R + Send,
+    beside: impl FnOnce(&[u8]) -> R + Send,
 ) -> Result<(Table, R), BadFile> {
     parse_cut(bytes, super::decode::CUT_BYTES, phases, beside)
 }
@@ -292,12 +304,14 @@ pub fn parse_beside<R: Send>(
 /// [`parse_beside`], the file read in pieces of about `cut` bytes (small in tests, to cut
 /// often).
 fn parse_cut<R: Send>(
-    bytes: &[u8],
+    bytes: Vec<u8>,
     cut: usize,
     phases: &mut super::phases::Phases,
-    beside: impl FnOnce() -> R + Send,
+    beside: impl FnOnce(&[u8]) -> R + Send,
 ) -> Result<(Table, R), BadFile> {
-    let decoded = super::decode::decode_cut(bytes, cut).map_err(BadFile)?;
+    let (decoded, besides) =
+        rayon::join(|| super::decode::decode_cut(&bytes, cut), || beside(&bytes));
+    let decoded = decoded.map_err(BadFile)?;
     phases.end("decode");
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
@@ -324,8 +338,11 @@ fn parse_cut<R: Send>(
         .map(|w| read_piece(&decoded, w[0], w[1].0, &layout, width))
         .collect::<Result<Vec<Builder>, BadFile>>()?;
     phases.end("pieces");
+    drop(reader);
+    drop(decoded);
+    drop(bytes);
     let mut b = Builder::default();
-    let ((), besides) = rayon::join(|| b.absorb(pieces, phases), beside);
+    b.absorb(pieces, phases);
     // Grading looks answers up by number from here on.
     b.answers.seal();
     let (format, columns) = match layout {
@@ -552,10 +569,15 @@ mod tests {
             "student,a/b,c/d\ns1,x,\"y\r\n1\"\rS1,,z\r\ns2,\"\",\",\"\n\ns3,1,2,3\n",
         ];
         for f in files {
-            let whole = parse_cut(f.as_bytes(), 1 << 30, &mut Default::default(), || ());
+            let whole = parse_cut(
+                f.as_bytes().to_vec(),
+                1 << 30,
+                &mut Default::default(),
+                |_| (),
+            );
             let whole = (whole.map(|(t, ())| t).map_err(|e| e.0)).unwrap_or_else(|e| panic!("{e}"));
             for cut in 1..12 {
-                let t = parse_cut(f.as_bytes(), cut, &mut Default::default(), || ());
+                let t = parse_cut(f.as_bytes().to_vec(), cut, &mut Default::default(), |_| ());
                 let t = (t.map(|(t, ())| t).map_err(|e| e.0)).unwrap_or_else(|e| panic!("{e}"));
                 assert_eq!(shown(&t), shown(&whole), "cut {cut}");
             }

@@ -67,10 +67,6 @@ const CHUNK: usize = 1024;
 /// memory (see [`judge`]): large enough that the workers are rarely idle at a window's end.
 const WINDOW: usize = 16 * 1024;
 
-/// How many different answers make a class of many: its words are kept on disk and the
-/// memory freed between passes given back (each time costs some milliseconds).
-pub const MANY: usize = WINDOW;
-
 /// [`WINDOW`], or `LAGRANGE_GRADE_WINDOW` from the environment when it is a positive number
 /// (for the test that outputs do not depend on it).
 fn window_size() -> usize {
@@ -536,6 +532,33 @@ mod tests {
                 assert!(!codes.is_empty() && !message.is_empty(), "{answer}");
             }
         }
+    }
+
+    /// Distinct answers share a representative exactly when they are of one part and have
+    /// one canonical form; answers without a form stand for themselves; representatives are
+    /// the first of each form, numbered in input order.
+    #[test]
+    fn representatives_are_the_first_of_each_form_of_each_part() {
+        let (a, b) = (Some(7u128 << 70 | 3), Some(7u128 << 70 | 4));
+        let cases: [(Item, Option<u128>, u32); 9] = [
+            ((0, 0, 10), a, 0),
+            ((0, 0, 11), b, 1),
+            ((0, 0, 12), a, 0),
+            ((0, 1, 13), a, 2),
+            ((0, 0, 14), None, 3),
+            ((0, 0, 15), None, 4),
+            ((1, 0, 16), b, 5),
+            ((0, 0, 17), b, 1),
+            ((0, 1, 18), a, 2),
+        ];
+        let distinct: Vec<Item> = cases.iter().map(|c| c.0).collect();
+        let keyed = (cases.iter().enumerate())
+            .map(|(i, &(item, form, _))| form_key(i, item, form))
+            .collect();
+        let (of, reps) = representatives(&distinct, keyed);
+        assert_eq!(of, cases.iter().map(|c| c.2).collect::<Vec<u32>>());
+        let firsts = [0, 1, 3, 4, 5, 6].map(|i| cases[i].0);
+        assert_eq!(reps, firsts.to_vec());
     }
 
     /// Equal texts share a meaning and different ones do not (the summary's grouping key).

@@ -5,6 +5,10 @@
 //! a class of all-different answers then needs far less memory (issue 20 §5). Elsewhere
 //! (another C library or system) this does nothing.
 
+/// How many different answers make a class of many, where reading gives back the memory
+/// its pieces freed as they are joined (each time costs some milliseconds).
+pub const MANY: usize = 16 * 1024;
+
 /// Returns the whole free pages of every heap to the system (a few milliseconds).
 pub fn give_back() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
