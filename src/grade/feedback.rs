@@ -158,11 +158,19 @@ pub fn write(
         staged.push(folder.stage(&format!("{name}.md"), markdown(&head, &shown).as_bytes())?);
         staged.push(folder.stage(&format!("{name}.html"), html(&head, &shown).as_bytes())?);
         if staged.len() >= 2 * BATCH {
+            sound(judged)?;
             crate::face::outfile::commit(std::mem::take(&mut staged))?;
         }
     }
+    sound(judged)?;
     crate::face::outfile::commit(staged)?;
     Ok(names.len())
+}
+
+/// Whether every word the files were made from was read back (else none of them is put in
+/// place: a batch is checked before it is renamed).
+fn sound(judged: &Judged) -> Result<(), String> {
+    judged.lost().map_or(Ok(()), |m| Err(format!("{m}; no more feedback was written")))
 }
 
 /// A student's answers as shown.
