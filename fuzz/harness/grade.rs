@@ -447,6 +447,11 @@ pub fn execute(input: &[u8]) -> Result<(), String> {
         .args(["grade", "class.csv", "--out", "out"])
         .env("NO_COLOR", "1")
         .stdin(Stdio::null());
+    // Half the inputs as a class of many different answers would be graded: checked in
+    // windows of 2, the words kept in the nameless scratch file (which must leave nothing).
+    if input.len() % 2 == 1 {
+        cmd.env("LAGRANGE_GRADE_WINDOW", "2");
+    }
     if c.lms != "none" {
         cmd.args(["--lms", c.lms]);
     }
