@@ -170,7 +170,9 @@ pub fn write(
 /// Whether every word the files were made from was read back (else none of them is put in
 /// place: a batch is checked before it is renamed).
 fn sound(judged: &Judged) -> Result<(), String> {
-    judged.lost().map_or(Ok(()), |m| Err(format!("{m}; no more feedback was written")))
+    judged.lost().map_or(Ok(()), |m| {
+        Err(format!("{m}; no more feedback was written"))
+    })
 }
 
 /// A student's answers as shown.
