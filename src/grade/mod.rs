@@ -21,6 +21,7 @@ mod output;
 mod overrides;
 mod phases;
 mod review;
+mod run_id;
 mod summary;
 mod variants;
 
@@ -114,7 +115,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
     // The bank is loaded meanwhile (on the other core when there is one); a bad file is
     // still what is reported first.
     let (parsed, bank) = rayon::join(
-        || input::parse_beside(bytes, &mut phases, file_hash),
+        || input::parse_beside(bytes, &mut phases, run_id::file_hash),
         || crate::face::load_bank(opts.problems.as_deref()),
     );
     let (table, hash) = match parsed {
@@ -177,7 +178,7 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let run = run_id(hash, opts, &bank, &extra, seed);
+    let run = run_id::run_id(hash, opts, &bank, &extra, seed);
     let mut bank = bank;
     let variants = variants::extend(&mut bank, &table, seed);
     let settings = judge::Settings {
@@ -424,91 +425,6 @@ fn write_outputs<'n>(
         crate::face::outfile::commit(staged)
     })();
     Ok(written.map(|w| (summary, w)))
-}
-
-/// The run's id: 16 hex digits of a hash of everything the outputs depend on (the class
-/// file's bytes, the options, the bank's parts, lagrange's version). Files of one run carry
-/// the same id; two runs with equal ids wrote equal files, so outputs stay byte-identical
-/// from run to run.
-/// The class file's share of it ([`run_id`] goes on from it), taken while the file is read:
-/// eight bytes a step ([`Fnv::add_words`]), a tenth of the time of one byte a step.
-fn file_hash(bytes: &[u8]) -> Fnv {
-    let mut h = Fnv::default();
-    h.add(env!("CARGO_PKG_VERSION").as_bytes());
-    h.add(&(bytes.len() as u64).to_le_bytes());
-    h.add_words(bytes);
-    h
-}
-
-fn run_id(
-    mut h: Fnv,
-    opts: &Options,
-    bank: &lagrange::bank::Bank,
-    extra: &str,
-    seed: u64,
-) -> String {
-    let settings = format!("{:?}|{}|{:?}", opts.follow_through, opts.best, opts.parts);
-    h.add(settings.as_bytes());
-    // The assignment's policy, seed and decisions (empty without them: ids stay as they were).
-    h.add(extra.as_bytes());
-    // The seed decides the students' numbers, so it is part of what the outputs depend on
-    // (the default seed adds nothing: run ids from before it existed stay).
-    if seed != 0 {
-        h.add(format!("|seed {seed}").as_bytes());
-    }
-    for p in &bank.problems {
-        for part in &p.parts {
-            let key = format!(
-                "{}/{}|{:?}|{}|{:?}|{:?}|{}|{:?}|{:?}\n",
-                p.id,
-                part.id,
-                part.kind,
-                part.points,
-                part.answers,
-                part.stability,
-                part.tolerance,
-                part.substitute,
-                part.at
-            );
-            h.add(key.as_bytes());
-        }
-    }
-    format!("{:016x}", h.0)
-}
-
-/// FNV-1a, 64 bits: a hash that is the same on every machine and Rust version.
-struct Fnv(u64);
-
-impl Default for Fnv {
-    fn default() -> Self {
-        Fnv(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fnv {
-    fn add(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 ^= u64::from(b);
-            self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-
-    /// `bytes` eight at a time (little-endian words; the rest a byte at a time): each step
-    /// xors a word in, multiplies by an odd constant whose bits are spread (FNV's prime only
-    /// carries a word's low bits upward) and rotates, so that the high bits reach the low
-    /// ones. Each step is one-to-one in the state, so two files differing in one word never
-    /// share a hash.
-    fn add_words(&mut self, bytes: &[u8]) {
-        let mut words = bytes.chunks_exact(8);
-        for w in &mut words {
-            let mut word = [0; 8];
-            word.copy_from_slice(w);
-            self.0 = (self.0 ^ u64::from_le_bytes(word))
-                .wrapping_mul(0x9e37_79b9_7f4a_7c15)
-                .rotate_left(27);
-        }
-        self.add(words.remainder());
-    }
 }
 
 /// The whole class file, refusing one over [`MAX_FILE_BYTES`]; the error is one line.
