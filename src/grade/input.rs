@@ -5,8 +5,10 @@
 
 use std::borrow::Cow;
 
+use hashbrown::HashTable;
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxBuildHasher, FxHashMap};
+use std::hash::BuildHasher as _;
 
 use super::cell::unquote_cell;
 use super::decode::Decoded;
@@ -101,13 +103,23 @@ impl Table {
 #[derive(Default)]
 struct Builder {
     rows: Vec<Row>,
+    /// A piece's student keys by exact spelling, in order of first appearance.
+    keys: Interner,
+    /// A piece's student keys whose lower case differs from them, with it (by index in
+    /// `keys`, ascending), made beside the reading so that joining the pieces does not lower
+    /// every key again; the others are their own lower case.
+    lowered: Vec<(u32, String)>,
+    /// The table's students, each under its first spelling.
     students: Vec<String>,
-    /// A piece's student keys in lower case (`None`: the key itself), made beside the
-    /// reading so that joining the pieces does not lower every key again.
-    lower: Vec<Option<String>>,
-    /// Student keys by exact spelling, then by lower case.
-    exact: FxHashMap<String, u32>,
-    folded: FxHashMap<String, u32>,
+    /// The table's students by their own spelling, and by every other spelling (one that
+    /// differs only in case) in `spellings`.
+    exact: HashTable<u32>,
+    spellings: FxHashMap<String, u32>,
+    /// The table's students by their lower case: `folded_of` holds it where it differs from
+    /// the key itself. No key is held twice: a class of a million students would otherwise
+    /// keep three copies of every key while its pieces are joined.
+    folded: HashTable<u32>,
+    folded_of: FxHashMap<u32, String>,
     /// The last key looked up and its index: a class file usually lists one student's
     /// answers together.
     last: Option<(String, u32)>,
@@ -115,6 +127,18 @@ struct Builder {
     names: Interner,
     answers: Interner,
     errors: Vec<String>,
+}
+
+/// The hash of a key, as the tables of student keys take it.
+fn key_hash(key: &str) -> u64 {
+    FxBuildHasher.hash_one(key)
+}
+
+/// Student `i`'s key in lower case.
+fn folded<'a>(students: &'a [String], folded_of: &'a FxHashMap<u32, String>, i: u32) -> &'a str {
+    folded_of
+        .get(&i)
+        .map_or(students[i as usize].as_str(), String::as_str)
 }
 
 impl Builder {
@@ -128,17 +152,14 @@ impl Builder {
         {
             return *i;
         }
-        let i = match self.exact.get(key) {
-            Some(&i) => i,
-            None => {
-                let i = self.students.len() as u32;
-                self.students.push(key.to_string());
-                let lower = key.to_lowercase();
-                self.lower.push((lower != key).then_some(lower));
-                self.exact.insert(key.to_string(), i);
-                i
+        let known = self.keys.len();
+        let i = self.keys.intern(key);
+        if i as usize == known {
+            let lower = key.to_lowercase();
+            if lower != key {
+                self.lowered.push((i, lower));
             }
-        };
+        }
         match &mut self.last {
             Some((k, j)) => {
                 k.clear();
@@ -153,24 +174,39 @@ impl Builder {
     /// The table's index of a piece's student key (`lower`: its lower case, `None` when the
     /// same): keys that differ only in case are one student, under the first spelling (the
     /// merge noted once per other spelling).
-    fn table_student(&mut self, key: String, lower: Option<String>) -> u32 {
-        if let Some(&i) = self.exact.get(&key) {
+    fn table_student(&mut self, key: &str, lower: Option<&str>) -> u32 {
+        let students = &self.students;
+        let hash = key_hash(key);
+        if let Some(&i) = self.exact.find(hash, |&i| students[i as usize] == key) {
             return i;
         }
-        let i = match self.folded.get(lower.as_deref().unwrap_or(&key)) {
-            Some(&i) => {
-                self.merged
-                    .push((self.students[i as usize].clone(), key.clone()));
-                i
-            }
-            None => {
-                let i = self.students.len() as u32;
-                self.students.push(key.clone());
-                self.folded.insert(lower.unwrap_or_else(|| key.clone()), i);
-                i
-            }
-        };
-        self.exact.insert(key, i);
+        if let Some(&i) = self.spellings.get(key) {
+            return i;
+        }
+        let lowered = lower.unwrap_or(key);
+        let folded_hash = key_hash(lowered);
+        let found = (self.folded)
+            .find(folded_hash, |&i| {
+                folded(students, &self.folded_of, i) == lowered
+            })
+            .copied();
+        if let Some(i) = found {
+            self.merged
+                .push((self.students[i as usize].clone(), key.to_string()));
+            self.spellings.insert(key.to_string(), i);
+            return i;
+        }
+        let i = self.students.len() as u32;
+        self.students.push(key.to_string());
+        if let Some(l) = lower {
+            self.folded_of.insert(i, l.to_string());
+        }
+        let (students, folded_of) = (&self.students, &self.folded_of);
+        self.exact
+            .insert_unique(hash, i, |&j| key_hash(&students[j as usize]));
+        (self.folded).insert_unique(folded_hash, i, |&j| {
+            key_hash(folded(students, folded_of, j))
+        });
         i
     }
 
@@ -178,7 +214,7 @@ impl Builder {
     /// appearance, so the indices are those a single pass would have given. The text is
     /// joined in order (a small part of the work); the rows, renumbered, in parallel.
     fn absorb(&mut self, pieces: Vec<Builder>, phases: &mut super::phases::Phases) {
-        let keys: usize = pieces.iter().map(|p| p.students.len()).sum();
+        let keys: usize = pieces.iter().map(|p| p.keys.len()).sum();
         let answers: usize = pieces.iter().map(|p| p.answers.len()).sum();
         let text: usize = (pieces.iter())
             .map(|p| {
@@ -188,9 +224,10 @@ impl Builder {
             })
             .sum();
         self.answers.reserve(answers, text);
-        self.exact.reserve(keys);
-        self.folded.reserve(keys);
         self.students.reserve(keys);
+        let (students, folded_of) = (&self.students, &self.folded_of);
+        (self.exact).reserve(keys, |&j| key_hash(&students[j as usize]));
+        (self.folded).reserve(keys, |&j| key_hash(folded(students, folded_of, j)));
         let mut maps = Vec::with_capacity(pieces.len());
         let mut piece_rows = Vec::with_capacity(pieces.len());
         // A class of mostly different answers joins as much text as it read: the pieces'
@@ -202,8 +239,12 @@ impl Builder {
             if give_back && k % 8 == 7 {
                 super::memory::give_back();
             }
-            let students: Vec<u32> = (p.students.into_iter().zip(p.lower))
-                .map(|(s, l)| self.table_student(s, l))
+            let mut lowered = p.lowered.iter().peekable();
+            let students: Vec<u32> = (0..p.keys.len() as u32)
+                .map(|i| {
+                    let lower = lowered.next_if(|(j, _)| *j == i).map(|(_, l)| l.as_str());
+                    self.table_student(p.keys.get(i), lower)
+                })
                 .collect();
             let names: Vec<u32> = (0..p.names.len() as u32)
                 .map(|i| self.names.intern(p.names.get(i)))

@@ -225,18 +225,24 @@ pub fn run(opts: &Options) -> anyhow::Result<ExitCode> {
         }
         let (queue, unmatched) =
             review::review_csv(&table, &judged, &bank, &variants, decisions.as_ref());
-        files.push(("review.csv", queue));
+        files.push(("review.csv", vec![queue]));
         if let Some(d) = &decisions {
             assignment::unmatched_notes(d, &unmatched);
         }
-        files.push(("summary.md", summary::markdown(&summary).into_bytes()));
-        files.push(("summary.json", output::summary_json(&summary)?.into_bytes()));
+        files.push(("summary.md", vec![summary::markdown(&summary).into_bytes()]));
+        files.push((
+            "summary.json",
+            vec![output::summary_json(&summary)?.into_bytes()],
+        ));
         Ok((summary, files))
     };
     // With about as many verdicts as rows (all-different answers), the summary's working
-    // memory is a verdict's worth per row: made before results.csv is written rather than
-    // beside it, so the two never add up (issue 20 §5). The bytes are the same either way.
-    let one_at_a_time = judged.outcome_count() * 4 > table.rows.len();
+    // memory is a verdict's worth per row; with about as many students as rows, the gradebook
+    // and the LMS file are about as long as the results. Then they are made and written
+    // before results.csv rather than beside it, so the two never add up (issue 20 §5). The
+    // bytes are the same either way.
+    let many = |n: usize| n * 4 > table.rows.len();
+    let one_at_a_time = many(judged.outcome_count()) || many(table.students.len());
     let lost = || judged.lost();
     let made = write_outputs(&dir, &names, results, others, one_at_a_time, lost)?;
     let (summary, written) = match made {
@@ -386,8 +392,8 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     }
 }
 
-/// The outputs other than results.csv, by name.
-type Files<'n> = Vec<(&'n str, Vec<u8>)>;
+/// The outputs other than results.csv, by name, each as the pieces it is written from.
+type Files<'n> = Vec<(&'n str, output::Pieces)>;
 
 /// Writes every output whole under a temporary name — results.csv streamed by `results`
 /// while `others` makes the summary and the other files — and renames them all into place
@@ -407,18 +413,30 @@ fn write_outputs<'n>(
         Ok(f) => f,
         Err(e) => return Ok(Err(e)),
     };
-    let (staged, made) = if one_at_a_time {
-        let made = others();
-        (folder.stage_with("results.csv", &mut results), made)
-    } else {
-        rayon::join(|| folder.stage_with("results.csv", &mut results), others)
+    let stage = |(name, pieces): (&str, output::Pieces)| {
+        folder.stage_with(name, &mut |w| {
+            pieces.iter().try_for_each(|p| w.write_all(p))
+        })
     };
-    let (summary, files) = made?;
+    // One at a time, the other files are written (and their bytes freed) before results.csv
+    // is made; else results.csv is made beside them and they are written after.
+    let (summary, staged) = if one_at_a_time {
+        let (summary, files) = others()?;
+        let files: Vec<_> = files.into_iter().map(stage).collect();
+        let results = folder.stage_with("results.csv", &mut results);
+        (
+            summary,
+            std::iter::once(results).chain(files).collect::<Vec<_>>(),
+        )
+    } else {
+        let (results, made) =
+            rayon::join(|| folder.stage_with("results.csv", &mut results), others);
+        let (summary, files) = made?;
+        let files = files.into_iter().map(stage);
+        (summary, std::iter::once(results).chain(files).collect())
+    };
     let written = (|| {
-        let mut staged = vec![staged?];
-        for (name, bytes) in &files {
-            staged.push(folder.stage(name, bytes)?);
-        }
+        let staged = staged.into_iter().collect::<Result<Vec<_>, String>>()?;
         if let Some(message) = lost() {
             return Err(format!("{message}; nothing was written"));
         }

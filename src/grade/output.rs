@@ -299,13 +299,17 @@ impl Numbers {
 /// Students per chunk of an output formatted by one worker.
 const STUDENTS: usize = 4 * 1024;
 
-/// `out` (the lines before the students'), then `line(student, scores, out)` for every student, formatted in
-/// parallel chunks and joined in order.
+/// A file as the pieces it is written from, in order (never joined: a class of a million
+/// students would hold its gradebook twice while joining it).
+pub type Pieces = Vec<Vec<u8>>;
+
+/// `out` (the lines before the students'), then `line(student, scores, out)` for every
+/// student, formatted in parallel chunks, in order.
 fn per_student(
-    mut out: Vec<u8>,
+    out: Vec<u8>,
     book: &Gradebook,
     line: impl Fn(&str, &[Option<f64>], &mut Numbers, &mut Vec<u8>) + Sync,
-) -> anyhow::Result<Vec<u8>> {
+) -> anyhow::Result<Pieces> {
     let chunks: Vec<Vec<u8>> = (book.names.par_chunks(STUDENTS).enumerate())
         .map(|(k, chunk)| {
             let (mut w, mut numbers) = (Vec::with_capacity(chunk.len() * 64), Numbers::default());
@@ -315,13 +319,11 @@ fn per_student(
             w
         })
         .collect();
-    out.reserve(chunks.iter().map(Vec::len).sum());
-    chunks.iter().for_each(|c| out.extend_from_slice(c));
-    Ok(out)
+    Ok(std::iter::once(out).chain(chunks).collect())
 }
 
 /// gradebook.csv.
-pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Vec<u8>> {
+pub fn gradebook_csv(book: &Gradebook) -> anyhow::Result<Pieces> {
     let mut header: Vec<&str> = vec!["student"];
     header.extend(book.columns.iter().map(String::as_str));
     header.extend(["total", "max", "percent"]);
@@ -383,7 +385,7 @@ pub fn moodle_keys(students: &[&str]) -> Result<(), String> {
 }
 
 /// The LMS import file's name and contents; `assignment` names the total column.
-pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<(String, Vec<u8>)> {
+pub fn lms_file(lms: Lms, book: &Gradebook, assignment: &str) -> anyhow::Result<(String, Pieces)> {
     let max = book.max();
     let bytes = match lms {
         // Canvas matches a student on SIS Login ID (among its ID columns) and reads the
