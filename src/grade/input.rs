@@ -216,13 +216,7 @@ impl Builder {
     fn absorb(&mut self, pieces: Vec<Builder>, phases: &mut super::phases::Phases) {
         let keys: usize = pieces.iter().map(|p| p.keys.len()).sum();
         let answers: usize = pieces.iter().map(|p| p.answers.len()).sum();
-        let text: usize = (pieces.iter())
-            .map(|p| {
-                (0..p.answers.len() as u32)
-                    .map(|i| p.answers.get(i).len())
-                    .sum::<usize>()
-            })
-            .sum();
+        let text: usize = pieces.iter().map(|p| p.answers.bytes()).sum();
         self.answers.reserve(answers, text);
         self.students.reserve(keys);
         let (students, folded_of) = (&self.students, &self.folded_of);

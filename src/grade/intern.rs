@@ -79,6 +79,11 @@ impl Interner {
         i
     }
 
+    /// The bytes of all the strings together.
+    pub fn bytes(&self) -> usize {
+        self.text.len()
+    }
+
     /// The number of distinct strings.
     pub fn len(&self) -> usize {
         self.ends.len()

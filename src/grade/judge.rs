@@ -117,16 +117,15 @@ fn check_window(w: &Window<'_, '_, '_>, window: &[Item]) -> Vec<(Rep, Words)> {
             let points = w.bank.problems[counted_as].parts[q].points;
             let (verdict, words) = match verdict {
                 Ok(v) => {
-                    let (slim, words) = Slim::shared(v, w.codes);
-                    (Ok(slim), Some(words))
+                    let (slim, words, codes) = Slim::shared(v, w.codes);
+                    (Ok((slim, codes)), Some(words))
                 }
                 Err(e) => (Err(Arc::from(e)), None),
             };
-            let score = (verdict.as_ref()).map_or(0.0, |v| {
-                w.policy
-                    .answer_fraction(v.status, v.score, &w.codes.get(v.codes))
-                    * points
+            let score = (verdict.as_ref()).map_or(0.0, |(v, codes)| {
+                w.policy.answer_fraction(v.status, v.score, codes) * points
             });
+            let verdict = verdict.map(|(v, _)| v);
             let rep = Rep {
                 problem: problem as u32,
                 part: q as u32,
@@ -415,26 +414,25 @@ fn form_key(i: usize, (p, q, answer): Item, form: Option<u128>) -> FormKey {
 /// unreadable answers stand for themselves), from every distinct answer's [`FormKey`].
 fn representatives(distinct: &[Item], mut keyed: Vec<FormKey>) -> (Vec<u32>, Vec<Item>) {
     keyed.par_sort_unstable();
-    // Each form's first distinct answer and where its run of keys starts, in input order.
-    let mut firsts: Vec<(u32, u32)> = Vec::new();
-    for (k, w) in keyed.iter().enumerate() {
-        let prev = k.checked_sub(1).map(|j| &keyed[j]);
-        if prev.is_none_or(|v| (v.0, v.1, v.2) != (w.0, w.1, w.2)) {
-            firsts.push((w.3, k as u32));
+    // Each distinct answer's form's first answer (the first of its run: runs are sorted by
+    // index within), then, in input order, each first answer numbered as a representative
+    // and every other one given its first's number (already given: the first comes before).
+    let mut of = vec![0u32; distinct.len()];
+    for run in keyed.chunk_by(|a, b| (a.0, a.1, a.2) == (b.0, b.1, b.2)) {
+        for w in run {
+            of[w.3 as usize] = run[0].3;
         }
     }
-    firsts.par_sort_unstable();
-    let mut of = vec![0u32; distinct.len()];
-    let mut reps: Vec<Item> = Vec::with_capacity(firsts.len());
-    for (r, &(first, start)) in firsts.iter().enumerate() {
-        reps.push(distinct[first as usize]);
-        let key = &keyed[start as usize];
-        for w in keyed[start as usize..]
-            .iter()
-            .take_while(|w| (w.0, w.1, w.2) == (key.0, key.1, key.2))
-        {
-            of[w.3 as usize] = r as u32;
-        }
+    drop(keyed);
+    let mut reps: Vec<Item> = Vec::new();
+    for i in 0..of.len() {
+        let first = of[i] as usize;
+        of[i] = if first == i {
+            reps.push(distinct[i]);
+            reps.len() as u32 - 1
+        } else {
+            of[first]
+        };
     }
     (of, reps)
 }

@@ -52,25 +52,20 @@ type CodeLists = (
 );
 
 impl Codes {
-    /// The number of `codes`, shared with the equal list given before if there is one.
-    fn share(&self, codes: Vec<Code>) -> u32 {
+    /// The number of `codes`, shared with the equal list given before if there is one, and
+    /// the list.
+    fn share(&self, codes: Vec<Code>) -> (u32, std::sync::Arc<[Code]>) {
         // A worker that panicked holding the lock left the lists whole (each change is one
         // insertion, made after the push it names).
         let mut lists = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(&n) = lists.0.get(codes.as_slice()) {
-            return n;
+        if let Some((a, &n)) = lists.0.get_key_value(codes.as_slice()) {
+            return (n, a.clone());
         }
         let a: std::sync::Arc<[Code]> = codes.into();
         let n = lists.1.len() as u32;
         lists.1.push(a.clone());
-        lists.0.insert(a, n);
-        n
-    }
-
-    /// List number `n` (empty for a number never given).
-    pub fn get(&self, n: u32) -> std::sync::Arc<[Code]> {
-        let lists = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        (lists.1.get(n as usize).cloned()).unwrap_or_else(super::no_codes)
+        lists.0.insert(a.clone(), n);
+        (n, a)
     }
 
     /// Every list, by number.
@@ -83,22 +78,20 @@ impl Slim {
     /// What grading reads of `v`, its words (its message numbered 0) and its codes.
     #[cfg(test)]
     pub fn new(v: Verdict) -> (Slim, Words, std::sync::Arc<[Code]>) {
-        let codes = Codes::default();
-        let (slim, words) = Slim::shared(v, &codes);
-        let list = codes.get(slim.codes);
-        (slim, words, list)
+        Slim::shared(v, &Codes::default())
     }
 
-    /// What grading reads of `v`, its codes shared through `codes`; and its words, to be
-    /// kept apart (the message's number is set when they are: `Judged::push`).
-    pub fn shared(v: Verdict, codes: &Codes) -> (Slim, Words) {
+    /// What grading reads of `v`, its codes shared through `codes`; its words, to be kept
+    /// apart (the message's number is set when they are: `Judged::push`); and its code list.
+    pub fn shared(v: Verdict, codes: &Codes) -> (Slim, Words, std::sync::Arc<[Code]>) {
         let list = v.diagnoses.iter().map(|d| d.code).collect();
         let message = (v.diagnoses.into_iter().next()).map_or_else(String::new, |d| d.message);
+        let (number, list) = codes.share(list);
         let slim = Slim {
             status: v.status,
             score: v.score,
             seed: v.seed,
-            codes: codes.share(list),
+            codes: number,
             message: 0,
         };
         let words = Words {
@@ -106,7 +99,7 @@ impl Slim {
             message,
             fingerprint: 0,
         };
-        (slim, words)
+        (slim, words, list)
     }
 
     /// The verdict with only what grading reads (no ids, no plain reading or note, no

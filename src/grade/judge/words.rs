@@ -204,6 +204,19 @@ impl Disk {
         failed.get_or_insert(why);
     }
 
+    /// `len` bytes of the records at `at`: borrowed while still waiting in memory, else read
+    /// from the file; or why they could not be had.
+    fn bytes(&self, at: u64, len: usize) -> Result<Cow<'_, [u8]>, String> {
+        if let Some(i) = at.checked_sub(self.written) {
+            let i = i as usize;
+            return (self.pending.get(i..i + len).map(Cow::Borrowed))
+                .ok_or_else(|| "a record past the end".to_string());
+        }
+        let mut bytes = vec![0; len];
+        read_at(&self.file, &mut bytes, at).map_err(|e| e.to_string())?;
+        Ok(Cow::Owned(bytes))
+    }
+
     /// Record `r`'s reading (`reading`) or message.
     fn read(&self, r: usize, reading: bool) -> Cow<'_, str> {
         let Some(&start) = self.records.get(r) else {
@@ -211,22 +224,16 @@ impl Disk {
         };
         let end =
             (self.records.get(r + 1).copied()).unwrap_or(self.written + self.pending.len() as u64);
-        let len = (end - start) as usize;
-        // The last records may still be waiting in memory.
-        if let Some(i) = start.checked_sub(self.written) {
-            let record = self.pending.get(i as usize..i as usize + len);
-            return match record.map(|r| part(r, reading)) {
-                Some(Some(s)) => Cow::Borrowed(s),
-                _ => self.lost("a record past the end, or not whole"),
-            };
-        }
-        let mut record = vec![0; len];
-        if let Err(e) = read_at(&self.file, &mut record, start) {
-            return self.lost(&e.to_string());
-        }
-        match part(&record, reading) {
-            Some(s) => Cow::Owned(s.to_string()),
-            None => self.lost("a record not whole"),
+        match self.bytes(start, (end - start) as usize) {
+            Ok(Cow::Borrowed(record)) => match part(record, reading) {
+                Some(s) => Cow::Borrowed(s),
+                None => self.lost("a record not whole"),
+            },
+            Ok(Cow::Owned(record)) => match part(&record, reading) {
+                Some(s) => Cow::Owned(s.to_string()),
+                None => self.lost("a record not whole"),
+            },
+            Err(why) => self.lost(&why),
         }
     }
 
@@ -235,22 +242,15 @@ impl Disk {
         let Some(&start) = self.records.get(r) else {
             return 0;
         };
-        let mut head = [0; HEAD];
-        match start.checked_sub(self.written) {
-            Some(i) => match self.pending.get(i as usize..i as usize + HEAD) {
-                Some(b) => head.copy_from_slice(b),
-                None => {
-                    self.lost("a record past the end");
-                }
-            },
-            None => {
-                if let Err(e) = read_at(&self.file, &mut head, start) {
-                    self.lost(&e.to_string());
-                }
+        let head = match self.bytes(start, HEAD) {
+            Ok(head) => head,
+            Err(why) => {
+                self.lost(&why);
+                return 0;
             }
-        }
+        };
         let mut key = [0; 16];
-        key.copy_from_slice(&head[4..]);
+        key.copy_from_slice(&head[4..HEAD]);
         u128::from_le_bytes(key)
     }
 
